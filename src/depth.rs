@@ -1,0 +1,185 @@
+//! Depth formats: what one entry of the depth row stores and how a span
+//! steps it.
+//!
+//! The renderer evaluates each polygon's plane in *plane units*: an `i64`
+//! holding the input depth (Q0.24, see [`crate::fixed`]) with
+//! [`PLANE_FRAC_BITS`] extra fractional bits. A depth format turns a span's
+//! start value and per-pixel step, both in plane units, into its own
+//! accumulator, and the accumulator into the stored value.
+//!
+//! Convention for every format: **smaller is nearer**, the depth test is
+//! strict (`new < stored`), and the row is cleared to [`DepthFormat::CLEAR`]
+//! (the far plane), so a surface whose quantised depth is the far plane is
+//! not drawn. On exactly equal depth the polygon drawn first keeps the pixel.
+//!
+//! Every format stores the plane value rounded to the nearest step of its
+//! resolution, within one step (1 LSB) of the exactly rounded value of the
+//! exact plane; `tests/depth_bound.rs` checks this over full-width spans.
+
+use crate::fixed::PLANE_FRAC_BITS;
+
+/// A depth-row format: the stored value type, its span accumulator and the
+/// conversions from plane units.
+pub trait DepthFormat {
+    /// What one depth-row entry stores.
+    type Value: Copy + PartialOrd + core::fmt::Debug;
+    /// The per-pixel accumulator stepped along a span.
+    type Accum: Copy;
+    /// Value the row is cleared to: the far plane.
+    const CLEAR: Self::Value;
+    /// Short name used in reports ("z16", "z24").
+    const NAME: &'static str;
+    /// Resolution of the stored value, in bits.
+    const BITS: u32;
+
+    /// Accumulator and per-pixel step for a span of `len >= 1` pixels whose
+    /// first pixel has plane value `start` and which steps by `step` per
+    /// pixel. `None` when some pixel of the span would leave the format's
+    /// range; the renderer then quantises pixel by pixel with
+    /// [`DepthFormat::quantize`].
+    fn span(start: i64, step: i64, len: u32) -> Option<(Self::Accum, Self::Accum)>;
+    /// The stored value for the current pixel.
+    fn value(acc: Self::Accum) -> Self::Value;
+    /// Advances the accumulator by one pixel.
+    fn advance(acc: Self::Accum, step: Self::Accum) -> Self::Accum;
+    /// Rounds a plane value to the nearest stored value, clamped to the
+    /// format's range.
+    fn quantize(plane_value: i64) -> Self::Value;
+}
+
+/// 16-bit depth: `u16` entries (480 bytes for a 240-pixel row); one step is
+/// 2^-16 of the depth range. The span accumulator is an `i32` in Q16.15.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Depth16;
+
+/// 24-bit depth in `u32` entries; one step is one input-depth step (2^-24
+/// of the range). The span accumulator is an `i64` in Q24.32, so the stored
+/// value is the accumulator's high word.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Depth24;
+
+/// Fractional bits of the [`Depth16`] accumulator.
+const Z16_ACC_FRAC: u32 = 15;
+/// Plane units per [`Depth16`] accumulator unit, as a shift.
+const Z16_SHIFT: u32 = PLANE_FRAC_BITS + 8 - Z16_ACC_FRAC;
+/// Fractional bits of the [`Depth24`] accumulator.
+const Z24_ACC_FRAC: u32 = 32;
+
+/// `value / 2^shift` rounded to nearest (ties up).
+fn shift_round(value: i64, shift: u32) -> i64 {
+    (value + (1 << (shift - 1))) >> shift
+}
+
+impl DepthFormat for Depth16 {
+    type Value = u16;
+    type Accum = i32;
+    const CLEAR: u16 = u16::MAX;
+    const NAME: &'static str = "z16";
+    const BITS: u32 = 16;
+
+    fn span(start: i64, step: i64, len: u32) -> Option<(i32, i32)> {
+        // Bias by half a step so that truncation rounds to nearest.
+        let first = shift_round(start, Z16_SHIFT) + (1 << (Z16_ACC_FRAC - 1));
+        let step = shift_round(step, Z16_SHIFT);
+        let last = first.checked_add(step.checked_mul(i64::from(len) - 1)?)?;
+        let limit = 1i64 << 31;
+        let in_range = |v: i64| (0..limit).contains(&v);
+        if in_range(first) && in_range(last) {
+            // Both ends fit, and the accumulator is affine in the pixel
+            // index, so every pixel in between fits as well.
+            Some((i32::try_from(first).ok()?, i32::try_from(step).ok()?))
+        } else {
+            None
+        }
+    }
+
+    #[inline(always)]
+    fn value(acc: i32) -> u16 {
+        (acc >> Z16_ACC_FRAC) as u16
+    }
+
+    #[inline(always)]
+    fn advance(acc: i32, step: i32) -> i32 {
+        acc + step
+    }
+
+    fn quantize(plane_value: i64) -> u16 {
+        shift_round(plane_value, PLANE_FRAC_BITS + 8).clamp(0, i64::from(u16::MAX)) as u16
+    }
+}
+
+impl DepthFormat for Depth24 {
+    type Value = u32;
+    type Accum = i64;
+    const CLEAR: u32 = crate::fixed::DEPTH_MAX;
+    const NAME: &'static str = "z24";
+    const BITS: u32 = 24;
+
+    fn span(start: i64, step: i64, len: u32) -> Option<(i64, i64)> {
+        let widen = Z24_ACC_FRAC - PLANE_FRAC_BITS;
+        let first = start
+            .checked_mul(1 << widen)?
+            .checked_add(1 << (Z24_ACC_FRAC - 1))?;
+        let step = step.checked_mul(1 << widen)?;
+        let last = first.checked_add(step.checked_mul(i64::from(len) - 1)?)?;
+        let limit = i64::from(crate::fixed::DEPTH_MAX) << Z24_ACC_FRAC;
+        let in_range = |v: i64| (0..limit).contains(&v);
+        (in_range(first) && in_range(last)).then_some((first, step))
+    }
+
+    #[inline(always)]
+    fn value(acc: i64) -> u32 {
+        (acc >> Z24_ACC_FRAC) as u32
+    }
+
+    #[inline(always)]
+    fn advance(acc: i64, step: i64) -> i64 {
+        acc + step
+    }
+
+    fn quantize(plane_value: i64) -> u32 {
+        shift_round(plane_value, PLANE_FRAC_BITS).clamp(0, i64::from(crate::fixed::DEPTH_MAX))
+            as u32
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn plane(units: f64) -> i64 {
+        (units * f64::from(1u32 << PLANE_FRAC_BITS)) as i64
+    }
+
+    #[test]
+    fn quantize_rounds_and_clamps() {
+        assert_eq!(Depth24::quantize(plane(10.49)), 10);
+        assert_eq!(Depth24::quantize(plane(10.5)), 11);
+        assert_eq!(Depth24::quantize(plane(-3.0)), 0);
+        assert_eq!(Depth24::quantize(plane(1e9)), crate::fixed::DEPTH_MAX);
+        assert_eq!(Depth16::quantize(plane(256.0 * 7.49)), 7);
+        assert_eq!(Depth16::quantize(plane(256.0 * 7.5)), 8);
+        assert_eq!(Depth16::quantize(plane(-1.0)), 0);
+        assert_eq!(Depth16::quantize(plane(1e9)), u16::MAX);
+    }
+
+    #[test]
+    fn span_matches_quantize_and_rejects_out_of_range() {
+        let start = plane(1000.3);
+        let step = plane(-2.75);
+        let (mut a16, s16) = Depth16::span(start * 256, step * 256, 100).unwrap();
+        let (mut a24, s24) = Depth24::span(start, step, 100).unwrap();
+        for k in 0..100 {
+            assert_eq!(Depth24::value(a24), Depth24::quantize(start + k * step));
+            assert_eq!(
+                Depth16::value(a16),
+                Depth16::quantize(256 * (start + k * step))
+            );
+            a24 = Depth24::advance(a24, s24);
+            a16 = Depth16::advance(a16, s16);
+        }
+        // 1000.3 - 2.75 * 400 < 0: the span leaves the range.
+        assert!(Depth24::span(start, step, 401).is_none());
+        assert!(Depth16::span(start * 256, step * 256, 401).is_none());
+    }
+}

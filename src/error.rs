@@ -1,0 +1,89 @@
+//! Errors. Nothing that does not fit is dropped silently: every capacity,
+//! every malformed input and every failure of the row sink comes back as a
+//! value naming what went wrong.
+
+use core::fmt;
+
+/// Why a vertex or polygon was refused, or a frame could not be finished.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Error {
+    /// The vertex table (const parameter `V`) is full.
+    VertexTableFull,
+    /// The polygon table (const parameter `P`) is full.
+    PolygonTableFull,
+    /// The edge table (const parameter `E`, which also holds every
+    /// polygon corner) is full.
+    EdgeTableFull,
+    /// More polygons overlap one scanline than the active polygon table
+    /// (const parameter `AP`) holds. Rows above `row` were already sent.
+    ActivePolygonsFull {
+        /// The scanline that did not fit.
+        row: u16,
+    },
+    /// More edges cross one scanline than the active edge table (const
+    /// parameter `AE`) holds. Rows above `row` were already sent.
+    ActiveEdgesFull {
+        /// The scanline that did not fit.
+        row: u16,
+    },
+    /// A polygon has more corners than the const parameter `N` allows.
+    TooManyCorners,
+    /// A polygon has fewer than three corners.
+    TooFewCorners,
+    /// A polygon names a vertex that was never added.
+    VertexOutOfRange,
+    /// A vertex lies outside the guard band
+    /// ([`GUARD_BAND_PX`](crate::fixed::GUARD_BAND_PX)), or is NaN/infinite.
+    OutsideGuardBand,
+    /// A vertex depth is outside `[0, DEPTH_MAX]`, or is NaN/infinite.
+    DepthOutOfRange,
+    /// The frame height is zero or above
+    /// [`MAX_FRAME_SIZE`](crate::fixed::MAX_FRAME_SIZE).
+    BadFrameHeight,
+}
+
+impl fmt::Display for Error {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Error::VertexTableFull => f.write_str("vertex table full"),
+            Error::PolygonTableFull => f.write_str("polygon table full"),
+            Error::EdgeTableFull => f.write_str("edge table full"),
+            Error::ActivePolygonsFull { row } => {
+                write!(f, "active polygon table full at row {row}")
+            }
+            Error::ActiveEdgesFull { row } => write!(f, "active edge table full at row {row}"),
+            Error::TooManyCorners => f.write_str("polygon has too many corners"),
+            Error::TooFewCorners => f.write_str("polygon has fewer than 3 corners"),
+            Error::VertexOutOfRange => f.write_str("polygon names a vertex that does not exist"),
+            Error::OutsideGuardBand => f.write_str("vertex outside the guard band or not finite"),
+            Error::DepthOutOfRange => f.write_str("vertex depth outside [0, 1] or not finite"),
+            Error::BadFrameHeight => f.write_str("frame height is zero or too large"),
+        }
+    }
+}
+
+impl core::error::Error for Error {}
+
+/// Failure while rendering a frame: either the tables or the row sink.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RenderError<E> {
+    /// A table overflowed while the frame was being scanned.
+    Table(Error),
+    /// The row sink failed; rows before it were delivered.
+    Sink(E),
+}
+
+impl<E> From<Error> for RenderError<E> {
+    fn from(error: Error) -> Self {
+        RenderError::Table(error)
+    }
+}
+
+impl<E: fmt::Debug> fmt::Display for RenderError<E> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            RenderError::Table(e) => write!(f, "{e}"),
+            RenderError::Sink(e) => write!(f, "row sink failed: {e:?}"),
+        }
+    }
+}

@@ -1,0 +1,144 @@
+//! Fixed-point number formats shared by the whole pipeline: the sub-pixel
+//! grid for screen coordinates, the input depth format, the guard band and
+//! the exact rounding helpers used during polygon setup.
+//!
+//! # Coordinates
+//! Screen x and y are `i32` on a grid of [`SUBPIXEL_STEPS`] steps per pixel
+//! (8 fractional bits). Pixel `(i, j)` is sampled at its centre
+//! `(i + 0.5, j + 0.5)`; x grows to the right and y grows downwards.
+//!
+//! # Depth
+//! Vertex depth is unsigned Q0.24 ([`DEPTH_ONE`] is 1.0): `0` is the near
+//! plane, [`DEPTH_MAX`] the far plane, and the **smaller value is nearer**.
+//! It must be a quantity that is affine in screen space (`z_ndc` mapped to
+//! `[0, 1]`, or `1 - 1/w` scaled), never view-space z.
+//!
+//! # Guard band
+//! Every vertex must satisfy `|x|, |y| < GUARD_BAND_PX` pixels. Inside that
+//! band every intermediate of edge and plane setup fits its integer type on
+//! a 32-bit MCU (64-bit products at setup, 32-bit stepping per row); a
+//! vertex outside it is rejected with
+//! [`Error::OutsideGuardBand`](crate::Error::OutsideGuardBand).
+
+/// Fractional bits of the sub-pixel grid.
+pub const SUBPIXEL_BITS: u32 = 8;
+/// Sub-pixel steps per pixel (256).
+pub const SUBPIXEL_STEPS: i32 = 1 << SUBPIXEL_BITS;
+/// Half a pixel in sub-pixel steps: the offset of a pixel's sample point.
+pub const HALF_PIXEL: i32 = SUBPIXEL_STEPS / 2;
+
+/// Largest frame width or height, in pixels, that the renderer accepts.
+pub const MAX_FRAME_SIZE: usize = 4096;
+/// Vertices must lie strictly inside `(-GUARD_BAND_PX, GUARD_BAND_PX)` on
+/// both axes, in pixels.
+pub const GUARD_BAND_PX: i32 = 8192;
+/// [`GUARD_BAND_PX`] in sub-pixel steps.
+pub const GUARD_BAND: i32 = GUARD_BAND_PX * SUBPIXEL_STEPS;
+
+/// Fractional bits of the input depth (Q0.24).
+pub const DEPTH_BITS: u32 = 24;
+/// 1.0 in the input depth format.
+pub const DEPTH_ONE: u32 = 1 << DEPTH_BITS;
+/// Largest valid vertex depth: the far plane.
+pub const DEPTH_MAX: u32 = DEPTH_ONE - 1;
+
+/// Extra fractional bits carried by plane values and gradients during
+/// rasterisation: a plane value is an `i64` in units of
+/// `2^-PLANE_FRAC_BITS` input-depth steps.
+pub const PLANE_FRAC_BITS: u32 = 16;
+
+/// Converts pixels (any real value) to the sub-pixel grid, rounding to the
+/// nearest step. Returns `None` for NaN, infinities and values outside the
+/// guard band.
+pub fn subpixel_from_f32(pixels: f32) -> Option<i32> {
+    let scaled = pixels * SUBPIXEL_STEPS as f32;
+    // Also rejects NaN: every comparison with NaN is false.
+    if scaled > -(GUARD_BAND as f32) && scaled < GUARD_BAND as f32 {
+        // Round half away from zero without libm.
+        let rounded = if scaled >= 0.0 {
+            scaled + 0.5
+        } else {
+            scaled - 0.5
+        };
+        let value = rounded as i32;
+        if value.unsigned_abs() < GUARD_BAND as u32 {
+            return Some(value);
+        }
+    }
+    None
+}
+
+/// Converts a depth in `[0, 1]` (0 near, 1 far) to Q0.24, rounding to the
+/// nearest step and mapping 1.0 to [`DEPTH_MAX`]. Returns `None` for NaN and
+/// values outside `[0, 1]`.
+pub fn depth_from_f32(depth: f32) -> Option<u32> {
+    if (0.0..=1.0).contains(&depth) {
+        let value = (depth * DEPTH_ONE as f32 + 0.5) as u32;
+        Some(value.min(DEPTH_MAX))
+    } else {
+        None
+    }
+}
+
+/// `ceil(num / den)` for `den > 0`.
+pub(crate) fn div_ceil_i64(num: i64, den: i64) -> i64 {
+    debug_assert!(den > 0);
+    let q = num.div_euclid(den);
+    if q * den == num { q } else { q + 1 }
+}
+
+/// `num / den` rounded to the nearest integer (ties towards +inf), for any
+/// non-zero `den`.
+pub(crate) fn div_round_i128(num: i128, den: i128) -> i128 {
+    debug_assert!(den != 0);
+    let (num, den) = if den < 0 { (-num, -den) } else { (num, den) };
+    (2 * num + den).div_euclid(2 * den)
+}
+
+/// First pixel whose sample point lies at or to the right of sub-pixel
+/// coordinate `x` (`ceil((x - HALF_PIXEL) / SUBPIXEL_STEPS)`). The same
+/// function gives the first row at or below a sub-pixel y.
+pub(crate) fn first_sample_at_or_after(x: i32) -> i32 {
+    (x - HALF_PIXEL).div_euclid(SUBPIXEL_STEPS)
+        + i32::from((x - HALF_PIXEL).rem_euclid(SUBPIXEL_STEPS) != 0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sample_rounding() {
+        // Pixel 0 samples at 128; a boundary exactly there includes pixel 0.
+        assert_eq!(first_sample_at_or_after(128), 0);
+        assert_eq!(first_sample_at_or_after(129), 1);
+        assert_eq!(first_sample_at_or_after(127), 0);
+        assert_eq!(first_sample_at_or_after(-128), -1);
+        assert_eq!(first_sample_at_or_after(-129), -1);
+        assert_eq!(first_sample_at_or_after(-127), 0);
+    }
+
+    #[test]
+    fn rounding_helpers() {
+        assert_eq!(div_ceil_i64(7, 2), 4);
+        assert_eq!(div_ceil_i64(-7, 2), -3);
+        assert_eq!(div_ceil_i64(6, 3), 2);
+        assert_eq!(div_round_i128(5, 2), 3);
+        assert_eq!(div_round_i128(-5, 2), -2);
+        assert_eq!(div_round_i128(5, -2), -2);
+        assert_eq!(div_round_i128(7, 3), 2);
+    }
+
+    #[test]
+    fn float_conversions_reject_bad_values() {
+        assert_eq!(subpixel_from_f32(1.5), Some(384));
+        assert_eq!(subpixel_from_f32(-1.5), Some(-384));
+        assert_eq!(subpixel_from_f32(f32::NAN), None);
+        assert_eq!(subpixel_from_f32(f32::INFINITY), None);
+        assert_eq!(subpixel_from_f32(GUARD_BAND_PX as f32), None);
+        assert_eq!(depth_from_f32(1.0), Some(DEPTH_MAX));
+        assert_eq!(depth_from_f32(0.5), Some(DEPTH_ONE / 2));
+        assert_eq!(depth_from_f32(-0.1), None);
+        assert_eq!(depth_from_f32(f32::NAN), None);
+    }
+}

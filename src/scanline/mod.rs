@@ -1,0 +1,561 @@
+//! The scanline z-buffer: polygon table, edge table, active polygon table,
+//! active edge table, and one row of depth and colour.
+//!
+//! # The algorithm
+//! 1. **Table building** ([`Renderer::push_vertex`], [`Renderer::push_polygon`]):
+//!    each polygon that can cover a pixel enters the *polygon table* (PT)
+//!    with its colour, its corners and its rows; polygons off-screen or of
+//!    zero area are counted and left out.
+//! 2. **Bucketing** (start of [`Renderer::render`]): the PT is sorted by first
+//!    row and the *edge table* (ET) is built from it, one entry per
+//!    non-horizontal visible edge, sorted by first row. Each table is a
+//!    compact bucket list: the entries of bucket `y` are one contiguous run.
+//! 3. **Scanning**, for each row `y`:
+//!    * polygons of bucket `y` enter the *active polygon table* (APT) with
+//!      their plane gradients `dz/dx = -a/c`, `dz/dy = -b/c` and the plane's
+//!      value at the start of the row;
+//!    * edges of bucket `y` enter the *active edge table* (AET);
+//!    * the AET is kept sorted by (polygon, crossing); each polygon's
+//!      crossings are paired even-odd into spans (left/right pairs for
+//!      convex polygons, correct for concave ones too);
+//!    * along each span, depth starts from the plane at the span's first
+//!      pixel and steps by `dz/dx`; a pixel is written when its depth is
+//!      nearer than the row's;
+//!    * the finished row goes to the [`RowSink`];
+//!    * edges and polygons whose last row this was leave; the others step
+//!      (`x += dx/dy` exactly, row depth `+= dz/dy`).
+//!
+//! Only one row of depth and one of colour exist: nothing is frame-sized.
+
+mod edge;
+mod plane;
+
+use heapless::Vec;
+
+use crate::depth::DepthFormat;
+use crate::error::{Error, RenderError};
+use crate::fixed::{MAX_FRAME_SIZE, first_sample_at_or_after};
+use crate::sink::RowSink;
+use crate::vertex::ScreenVertex;
+use edge::{ActiveEdge, EdgeEntry, edge_rows};
+use plane::Plane;
+
+/// What happened to a polygon offered to the tables.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Admission {
+    /// It entered the polygon table; its id is the given value.
+    Queued(u32),
+    /// It covers no pixel sample of the frame (bounding-box test).
+    OffScreen,
+    /// Its projected area is zero: it cannot cover a sample.
+    Degenerate,
+}
+
+/// Counts for one rendered frame.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct FrameStats {
+    /// Polygons in the polygon table.
+    pub polygons: u32,
+    /// Edges in the edge table (non-horizontal, visible).
+    pub edges: u32,
+    /// Largest number of polygons active on one row.
+    pub peak_active_polygons: u32,
+    /// Largest number of edges active on one row.
+    pub peak_active_edges: u32,
+    /// Spans filled.
+    pub spans: u32,
+    /// Polygons offered but left out as off-screen.
+    pub off_screen: u32,
+    /// Polygons offered but left out as zero-area.
+    pub degenerate: u32,
+}
+
+/// Polygon-table entry.
+#[derive(Debug, Clone, Copy)]
+struct PolygonEntry<C> {
+    /// Id: order of insertion. Equal depths resolve to the smaller id.
+    id: u32,
+    /// First corner in the corner list.
+    corner_start: u32,
+    /// Number of corners.
+    corner_count: u16,
+    /// First visible row (the bucket).
+    first_row: u16,
+    /// One past the last visible row.
+    end_row: u16,
+    color: C,
+}
+
+/// How an active polygon produces depth along a span.
+#[derive(Debug, Clone, Copy)]
+enum SpanDepth {
+    /// Gradients in plane units per pixel and the plane value at the sample
+    /// point of column 0 on the current row (it may lie outside the polygon;
+    /// only its sum with `dz_dx · x` at a covered pixel is stored).
+    Stepped {
+        dz_dx: i64,
+        dz_dy: i64,
+        row_value: i64,
+    },
+    /// Edge-on polygon: exact evaluation at each pixel.
+    Exact(Plane),
+}
+
+/// Active-polygon-table entry.
+#[derive(Debug, Clone, Copy)]
+struct ActivePolygon<C> {
+    id: u32,
+    end_row: u16,
+    color: C,
+    depth: SpanDepth,
+}
+
+/// A scanline z-buffer renderer with fixed capacities.
+///
+/// * `C`: the pixel colour (any `Copy` type; an embedded-graphics
+///   `PixelColor` for [`DrawTargetSink`](crate::DrawTargetSink)).
+/// * `D`: the depth format ([`Depth16`](crate::Depth16),
+///   [`Depth24`](crate::Depth24)).
+/// * `W`: the row width in pixels (at most [`MAX_FRAME_SIZE`]).
+/// * `V`: vertex-table capacity (at most 65,536).
+/// * `P`: polygon-table capacity.
+/// * `E`: edge-table capacity; it also bounds the total number of polygon
+///   corners, so a mesh of `T` triangles needs `E >= 3·T`.
+/// * `AP`, `AE`: active polygon and active edge capacities (largest number
+///   crossing one row).
+/// * `N`: most corners of one polygon (3 to 256).
+///
+/// Exceeding any capacity is an [`Error`] naming it. The whole renderer
+/// lives in one value of `core::mem::size_of::<Self>()` bytes; it allocates
+/// nothing.
+#[derive(Debug)]
+pub struct Renderer<
+    C,
+    D: DepthFormat,
+    const W: usize,
+    const V: usize,
+    const P: usize,
+    const E: usize,
+    const AP: usize,
+    const AE: usize,
+    const N: usize,
+> {
+    height: u16,
+    background: C,
+    vertices: Vec<ScreenVertex, V>,
+    polygons: Vec<PolygonEntry<C>, P>,
+    corners: Vec<u16, E>,
+    edges: Vec<EdgeEntry, E>,
+    active_polygons: Vec<ActivePolygon<C>, AP>,
+    active_edges: Vec<ActiveEdge, AE>,
+    depth_row: [D::Value; W],
+    color_row: [C; W],
+    next_id: u32,
+    off_screen: u32,
+    degenerate: u32,
+}
+
+impl<
+    C: Copy,
+    D: DepthFormat,
+    const W: usize,
+    const V: usize,
+    const P: usize,
+    const E: usize,
+    const AP: usize,
+    const AE: usize,
+    const N: usize,
+> Renderer<C, D, W, V, P, E, AP, AE, N>
+{
+    /// An empty renderer for frames `W` wide and `height` tall, clearing
+    /// to `background`.
+    pub fn new(height: u16, background: C) -> Result<Self, Error> {
+        const {
+            assert!(W > 0 && W <= MAX_FRAME_SIZE, "W must be 1..=4096");
+            assert!(V <= 1 << 16, "V must be at most 65536");
+            assert!(N >= 3 && N <= 256, "N must be 3..=256");
+        }
+        if height == 0 || usize::from(height) > MAX_FRAME_SIZE {
+            return Err(Error::BadFrameHeight);
+        }
+        Ok(Self {
+            height,
+            background,
+            vertices: Vec::new(),
+            polygons: Vec::new(),
+            corners: Vec::new(),
+            edges: Vec::new(),
+            active_polygons: Vec::new(),
+            active_edges: Vec::new(),
+            depth_row: [D::CLEAR; W],
+            color_row: [background; W],
+            next_id: 0,
+            off_screen: 0,
+            degenerate: 0,
+        })
+    }
+
+    /// Frame height in rows.
+    pub fn height(&self) -> u16 {
+        self.height
+    }
+
+    /// Colour of pixels no polygon covers.
+    pub fn set_background(&mut self, background: C) {
+        self.background = background;
+    }
+
+    /// Empties the vertex and polygon tables for the next frame.
+    pub fn clear(&mut self) {
+        self.vertices.clear();
+        self.polygons.clear();
+        self.corners.clear();
+        self.edges.clear();
+        self.next_id = 0;
+        self.off_screen = 0;
+        self.degenerate = 0;
+    }
+
+    /// Number of vertices in the vertex table.
+    pub fn vertex_count(&self) -> usize {
+        self.vertices.len()
+    }
+
+    /// Number of polygons in the polygon table.
+    pub fn polygon_count(&self) -> usize {
+        self.polygons.len()
+    }
+
+    /// Adds a vertex and returns its index for [`Self::push_polygon`].
+    pub fn push_vertex(&mut self, vertex: ScreenVertex) -> Result<u16, Error> {
+        vertex.check()?;
+        let index = u16::try_from(self.vertices.len()).map_err(|_| Error::VertexTableFull)?;
+        self.vertices
+            .push(vertex)
+            .map_err(|_| Error::VertexTableFull)?;
+        Ok(index)
+    }
+
+    /// Offers a polygon, given by indices into the vertex table in order
+    /// around its boundary (either winding; it may be concave or even
+    /// self-intersecting, filled even-odd). Polygons that can cover no
+    /// pixel are counted and left out (see [`Admission`]); on `Err` nothing
+    /// was added.
+    pub fn push_polygon(&mut self, corners: &[u16], color: C) -> Result<Admission, Error> {
+        if corners.len() < 3 {
+            return Err(Error::TooFewCorners);
+        }
+        if corners.len() > N {
+            return Err(Error::TooManyCorners);
+        }
+        if corners
+            .iter()
+            .any(|&i| usize::from(i) >= self.vertices.len())
+        {
+            return Err(Error::VertexOutOfRange);
+        }
+        let vertices = &self.vertices;
+        let corner_vertices = corners.iter().map(|&i| vertices[usize::from(i)]);
+        if plane::twice_area(corner_vertices.clone()) == 0 {
+            self.degenerate += 1;
+            return Ok(Admission::Degenerate);
+        }
+        let Some((first_row, end_row)) = self.visible_rows(corner_vertices) else {
+            self.off_screen += 1;
+            return Ok(Admission::OffScreen);
+        };
+        if self.polygons.is_full() {
+            return Err(Error::PolygonTableFull);
+        }
+        if self.corners.capacity() - self.corners.len() < corners.len() {
+            return Err(Error::EdgeTableFull);
+        }
+        let entry = PolygonEntry {
+            id: self.next_id,
+            corner_start: self.corners.len() as u32,
+            corner_count: corners.len() as u16,
+            first_row,
+            end_row,
+            color,
+        };
+        // Both pushes were checked to fit just above.
+        self.corners
+            .extend_from_slice(corners)
+            .map_err(|_| Error::EdgeTableFull)?;
+        self.polygons
+            .push(entry)
+            .map_err(|_| Error::PolygonTableFull)?;
+        self.next_id += 1;
+        Ok(Admission::Queued(entry.id))
+    }
+
+    /// Adds the polygon's corners to the vertex table and the polygon to
+    /// the polygon table in one step; on `Err` neither table changed.
+    pub fn push_polygon_vertices(
+        &mut self,
+        corners: &[ScreenVertex],
+        color: C,
+    ) -> Result<Admission, Error> {
+        if corners.len() > N {
+            return Err(Error::TooManyCorners);
+        }
+        let mark = self.vertices.len();
+        let mut indices: Vec<u16, N> = Vec::new();
+        let result = corners.iter().try_for_each(|&v| {
+            let index = self.push_vertex(v)?;
+            indices.push(index).map_err(|_| Error::TooManyCorners)
+        });
+        let result = result.and_then(|()| self.push_polygon(&indices, color));
+        if !matches!(result, Ok(Admission::Queued(_))) {
+            self.vertices.truncate(mark);
+        }
+        result
+    }
+
+    /// Visible rows `[first, end)` of a polygon, or `None` if its bounding
+    /// box holds no pixel sample of the frame.
+    fn visible_rows(&self, mut corners: impl Iterator<Item = ScreenVertex>) -> Option<(u16, u16)> {
+        let first = corners.next()?;
+        let (mut x0, mut x1, mut y0, mut y1) = (first.x, first.x, first.y, first.y);
+        for v in corners {
+            x0 = x0.min(v.x);
+            x1 = x1.max(v.x);
+            y0 = y0.min(v.y);
+            y1 = y1.max(v.y);
+        }
+        let columns =
+            first_sample_at_or_after(x0).max(0)..first_sample_at_or_after(x1).min(W as i32);
+        let rows = first_sample_at_or_after(y0).max(0)
+            ..first_sample_at_or_after(y1).min(i32::from(self.height));
+        (!columns.is_empty() && !rows.is_empty()).then_some((rows.start as u16, rows.end as u16))
+    }
+
+    fn polygon_corners(
+        &self,
+        polygon: &PolygonEntry<C>,
+    ) -> impl Iterator<Item = ScreenVertex> + Clone + '_ {
+        let start = polygon.corner_start as usize;
+        self.corners[start..start + usize::from(polygon.corner_count)]
+            .iter()
+            .map(|&i| self.vertices[usize::from(i)])
+    }
+
+    /// Sorts the polygon table by first row and builds the edge table
+    /// from it, sorted by first row.
+    fn build_edge_table(&mut self) -> Result<(), Error> {
+        self.polygons.sort_unstable_by_key(|p| (p.first_row, p.id));
+        self.edges.clear();
+        let height = i32::from(self.height);
+        for polygon in &self.polygons {
+            let start = polygon.corner_start as usize;
+            let corners = &self.corners[start..start + usize::from(polygon.corner_count)];
+            let next = corners.iter().skip(1).chain(corners.first());
+            for (&a, &b) in corners.iter().zip(next) {
+                let (va, vb) = (self.vertices[usize::from(a)], self.vertices[usize::from(b)]);
+                let Some((top, _, first, end)) = edge_rows(va, vb) else {
+                    continue;
+                };
+                let (first, end) = (first.max(0), end.min(height));
+                if first >= end {
+                    continue;
+                }
+                let (top, bottom) = if top == va { (a, b) } else { (b, a) };
+                self.edges
+                    .push(EdgeEntry {
+                        top,
+                        bottom,
+                        polygon: polygon.id,
+                        first_row: first as u16,
+                        end_row: end as u16,
+                    })
+                    .map_err(|_| Error::EdgeTableFull)?;
+            }
+        }
+        self.edges
+            .sort_unstable_by_key(|e| (e.first_row, e.polygon));
+        Ok(())
+    }
+
+    /// Scans the frame top to bottom and sends every row to `sink`, one
+    /// call per row. The tables are kept, so the same scene can be
+    /// rendered again; call [`Self::clear`] before building the next one.
+    pub fn render<S>(&mut self, sink: &mut S) -> Result<FrameStats, RenderError<S::Error>>
+    where
+        S: RowSink<C, D::Value>,
+    {
+        self.build_edge_table()?;
+        self.active_polygons.clear();
+        self.active_edges.clear();
+        let mut stats = FrameStats {
+            polygons: self.polygons.len() as u32,
+            edges: self.edges.len() as u32,
+            off_screen: self.off_screen,
+            degenerate: self.degenerate,
+            ..FrameStats::default()
+        };
+        let (mut next_polygon, mut next_edge) = (0usize, 0usize);
+        for row in 0..self.height {
+            while let Some(polygon) = self
+                .polygons
+                .get(next_polygon)
+                .filter(|p| p.first_row == row)
+            {
+                let active = self.activate_polygon(polygon, row);
+                let at = self.active_polygons.partition_point(|a| a.id < active.id);
+                self.active_polygons
+                    .insert(at, active)
+                    .map_err(|_| Error::ActivePolygonsFull { row })?;
+                next_polygon += 1;
+            }
+            while let Some(entry) = self.edges.get(next_edge).filter(|e| e.first_row == row) {
+                let top = self.vertices[usize::from(entry.top)];
+                let bottom = self.vertices[usize::from(entry.bottom)];
+                self.active_edges
+                    .push(ActiveEdge::start(entry, top, bottom))
+                    .map_err(|_| Error::ActiveEdgesFull { row })?;
+                next_edge += 1;
+            }
+            stats.peak_active_polygons = stats
+                .peak_active_polygons
+                .max(self.active_polygons.len() as u32);
+            stats.peak_active_edges = stats.peak_active_edges.max(self.active_edges.len() as u32);
+
+            stats.spans += self.scan_row(row);
+            sink.write_row(row, &self.color_row, &self.depth_row)
+                .map_err(RenderError::Sink)?;
+            self.advance(row + 1);
+        }
+        Ok(stats)
+    }
+
+    /// Computes the APT entry of a polygon entering at `row`.
+    fn activate_polygon(&self, polygon: &PolygonEntry<C>, row: u16) -> ActivePolygon<C> {
+        // Non-zero area was checked when the polygon entered the table.
+        let plane = Plane::new(self.polygon_corners(polygon));
+        let depth = match plane.map(|p| (p, p.gradients())) {
+            Some((plane, Some((dz_dx, dz_dy)))) => SpanDepth::Stepped {
+                dz_dx,
+                dz_dy,
+                row_value: plane.value_at_pixel(0, i32::from(row)),
+            },
+            Some((plane, None)) => SpanDepth::Exact(plane),
+            None => SpanDepth::Stepped {
+                dz_dx: 0,
+                dz_dy: 0,
+                row_value: i64::MAX,
+            },
+        };
+        ActivePolygon {
+            id: polygon.id,
+            end_row: polygon.end_row,
+            color: polygon.color,
+            depth,
+        }
+    }
+
+    /// Resolves visibility on one row into the row buffers; returns the
+    /// number of spans filled.
+    fn scan_row(&mut self, row: u16) -> u32 {
+        self.depth_row.fill(D::CLEAR);
+        self.color_row.fill(self.background);
+        sort_active_edges(&mut self.active_edges);
+        let mut spans = 0;
+        let mut edges = self.active_edges.as_slice();
+        for polygon in &self.active_polygons {
+            let count = edges.iter().take_while(|e| e.polygon == polygon.id).count();
+            let (own, rest) = edges.split_at(count);
+            edges = rest;
+            for pair in own.chunks_exact(2) {
+                let start = pair[0].x.clamp(0, W as i32) as usize;
+                let end = pair[1].x.clamp(0, W as i32) as usize;
+                if start < end {
+                    spans += 1;
+                    fill_span::<C, D>(
+                        &mut self.depth_row[start..end],
+                        &mut self.color_row[start..end],
+                        start as i32,
+                        row,
+                        polygon,
+                    );
+                }
+            }
+        }
+        spans
+    }
+
+    /// Steps the active tables down to `next_row`, dropping finished
+    /// entries.
+    fn advance(&mut self, next_row: u16) {
+        self.active_edges.retain(|e| e.end_row > next_row);
+        self.active_edges.iter_mut().for_each(ActiveEdge::advance);
+        self.active_polygons.retain(|p| p.end_row > next_row);
+        for polygon in &mut self.active_polygons {
+            if let SpanDepth::Stepped {
+                dz_dy, row_value, ..
+            } = &mut polygon.depth
+            {
+                *row_value += *dz_dy;
+            }
+        }
+    }
+}
+
+/// Keeps the AET sorted by (polygon id, x). Insertion sort: between rows
+/// the order barely changes, so this is linear in practice.
+fn sort_active_edges(edges: &mut [ActiveEdge]) {
+    for i in 1..edges.len() {
+        let mut j = i;
+        while j > 0 && (edges[j - 1].polygon, edges[j - 1].x) > (edges[j].polygon, edges[j].x) {
+            edges.swap(j - 1, j);
+            j -= 1;
+        }
+    }
+}
+
+/// Depth-tests and writes one span: pixels `x0 .. x0 + depths.len()` of
+/// `row`.
+fn fill_span<C: Copy, D: DepthFormat>(
+    depths: &mut [D::Value],
+    colors: &mut [C],
+    x0: i32,
+    row: u16,
+    polygon: &ActivePolygon<C>,
+) {
+    let color = polygon.color;
+    let write = |depth: D::Value, stored: &mut D::Value, pixel: &mut C| {
+        if depth < *stored {
+            *stored = depth;
+            *pixel = color;
+        }
+    };
+    let len = depths.len() as u32;
+    let pixels = depths.iter_mut().zip(colors.iter_mut());
+    match polygon.depth {
+        SpanDepth::Stepped {
+            dz_dx, row_value, ..
+        } => {
+            // Re-evaluated from the plane at every span start: the error
+            // is the gradient's rounding times the column, never drift from
+            // earlier spans.
+            let start = row_value.saturating_add(dz_dx.saturating_mul(i64::from(x0)));
+            if let Some((mut acc, step)) = D::span(start, dz_dx, len) {
+                for (stored, pixel) in pixels {
+                    write(D::value(acc), stored, pixel);
+                    acc = D::advance(acc, step);
+                }
+            } else {
+                let mut value = start;
+                for (stored, pixel) in pixels {
+                    write(D::quantize(value), stored, pixel);
+                    value = value.saturating_add(dz_dx);
+                }
+            }
+        }
+        SpanDepth::Exact(plane) => {
+            for (k, (stored, pixel)) in pixels.enumerate() {
+                let value = plane.value_at_pixel(x0 + k as i32, i32::from(row));
+                write(D::quantize(value), stored, pixel);
+            }
+        }
+    }
+}
