@@ -1,0 +1,147 @@
+//! The fixed-point depth of every covered pixel, across full-width spans,
+//! against the exact plane through the snapped corners (rational, i128).
+//!
+//! Spec: every stored depth is within 1 LSB of the exactly rounded plane
+//! value. The analysis in `src/scanline/plane.rs` gives a tighter figure,
+//! so this also checks `|stored - exact| <= 0.5 + 1/4 LSB` (z24) and
+//! `<= 0.5 + 1/16 LSB` (z16): a format that drifted by a whole LSB would fail.
+
+mod common;
+
+use common::{capture, covers, exact_depth, exactly_rounded, format_scale};
+use proptest::prelude::*;
+use zline::fixed::{DEPTH_MAX, SUBPIXEL_STEPS};
+use zline::{Depth16, Depth24, DepthFormat, Renderer, ScreenVertex};
+
+const S: i32 = SUBPIXEL_STEPS;
+
+/// A triangle whose spans cross the whole frame: one corner far left, one
+/// far right, one anywhere; sub-pixel positions and depths uniform.
+fn wide_triangle(width: i32, height: i32) -> impl Strategy<Value = [ScreenVertex; 3]> {
+    let z = 0..=DEPTH_MAX;
+    let y = (-4 * height * S)..(5 * height * S);
+    (
+        (-7000 * S..-S, y.clone(), z.clone()),
+        ((width + 1) * S..8000 * S, y.clone(), z.clone()),
+        (-8000 * S..8000 * S, y, z),
+    )
+        .prop_map(|((x0, y0, z0), (x1, y1, z1), (x2, y2, z2))| {
+            [
+                ScreenVertex {
+                    x: x0,
+                    y: y0,
+                    z: z0,
+                },
+                ScreenVertex {
+                    x: x1,
+                    y: y1,
+                    z: z1,
+                },
+                ScreenVertex {
+                    x: x2,
+                    y: y2,
+                    z: z2,
+                },
+            ]
+        })
+}
+
+/// Renders one triangle and checks every pixel: coverage exactly as the
+/// reference, depth within the bound. Returns the number of pixels checked.
+fn check<D: DepthFormat, const W: usize>(
+    tri: [ScreenVertex; 3],
+    height: u16,
+    slack_16ths: i128,
+) -> usize
+where
+    D::Value: Into<u64>,
+{
+    let mut renderer: Renderer<u32, D, W, 3, 1, 3, 1, 3, 3> = Renderer::new(height, 0).unwrap();
+    renderer.push_polygon_vertices(&tri, 1).unwrap();
+    let (frame, _) = capture(&mut renderer);
+    let (lsb, max) = format_scale::<D>();
+    let mut checked = 0;
+    for j in 0..i32::from(height) {
+        for i in 0..W as i32 {
+            let drawn = frame.color(i as usize, j as usize) == 1;
+            assert_eq!(
+                drawn,
+                covers(&tri, i, j),
+                "coverage at ({i}, {j}) for {tri:?}"
+            );
+            if !drawn {
+                continue;
+            }
+            let (num, den) = exact_depth(&tri, i, j);
+            let stored = i128::from(frame.depth(i as usize, j as usize).into());
+            let rounded = exactly_rounded(num, den, lsb, max);
+            assert!(
+                (stored - rounded).abs() <= 1,
+                "{}: pixel ({i}, {j}) stored {stored}, exactly rounded {rounded}, tri {tri:?}",
+                D::NAME
+            );
+            // |stored·lsb·den - num| <= (1/2 + slack) · lsb · den, unless clamped.
+            if rounded > 0 && rounded < max {
+                let err16 = (stored * lsb * den - num).abs() * 16;
+                assert!(
+                    err16 <= (8 + slack_16ths) * lsb * den,
+                    "{}: pixel ({i}, {j}) error above 0.5 + {slack_16ths}/16 LSB",
+                    D::NAME
+                );
+            }
+            checked += 1;
+        }
+    }
+    checked
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(96))]
+
+    #[test]
+    fn z24_within_one_lsb_over_512_wide_spans(tri in wide_triangle(512, 12)) {
+        check::<Depth24, 512>(tri, 12, 4);
+    }
+
+    #[test]
+    fn z16_within_one_lsb_over_512_wide_spans(tri in wide_triangle(512, 12)) {
+        check::<Depth16, 512>(tri, 12, 1);
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(24))]
+
+    /// The largest frame width the renderer accepts.
+    #[test]
+    fn both_formats_within_one_lsb_over_4096_wide_spans(tri in wide_triangle(4096, 3)) {
+        check::<Depth24, 4096>(tri, 3, 4);
+        check::<Depth16, 4096>(tri, 3, 1);
+    }
+}
+
+/// Steep (nearly edge-on) triangles take the exact path: still within the
+/// bound, no panic.
+#[test]
+fn edge_on_triangle_depths_are_exact() {
+    // A sliver 1/256 px thick spanning the whole depth range across 200 px.
+    let tri = [
+        ScreenVertex {
+            x: -10 * S,
+            y: 5 * S + 100,
+            z: 0,
+        },
+        ScreenVertex {
+            x: 300 * S,
+            y: 5 * S + 140,
+            z: DEPTH_MAX,
+        },
+        ScreenVertex {
+            x: 140 * S,
+            y: 5 * S + 160,
+            z: DEPTH_MAX / 2,
+        },
+    ];
+    let n = check::<Depth24, 256>(tri, 12, 4) + check::<Depth16, 256>(tri, 12, 1);
+    assert!(n > 0, "the sliver should cover some samples");
+}
