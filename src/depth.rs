@@ -84,7 +84,10 @@ impl DepthFormat for Depth16 {
         let last = first.checked_add(step.checked_mul(i64::from(len) - 1)?)?;
         let limit = 1i64 << 31;
         let in_range = |v: i64| (0..limit).contains(&v);
-        if in_range(first) && in_range(last) {
+        // The span loop advances once more after the last pixel: that value
+        // is never stored but must not overflow the accumulator either.
+        let after = i32::try_from(last + step).is_ok();
+        if in_range(first) && in_range(last) && after {
             // Both ends fit, and the accumulator is affine in the pixel
             // index, so every pixel in between fits as well.
             Some((i32::try_from(first).ok()?, i32::try_from(step).ok()?))

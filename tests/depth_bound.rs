@@ -127,9 +127,21 @@ fn edge_on_triangle_depths_are_exact() {
     // Two corners at the near plane, the third at the far plane 0.16 px off
     // their line: depth crosses the whole range within a sixth of a pixel.
     let tri = [
-        ScreenVertex { x: -10 * S, y: 5 * S + 100, z: 0 },
-        ScreenVertex { x: 300 * S, y: 5 * S + 140, z: 0 },
-        ScreenVertex { x: 140 * S, y: 5 * S + 160, z: DEPTH_MAX },
+        ScreenVertex {
+            x: -10 * S,
+            y: 5 * S + 100,
+            z: 0,
+        },
+        ScreenVertex {
+            x: 300 * S,
+            y: 5 * S + 140,
+            z: 0,
+        },
+        ScreenVertex {
+            x: 140 * S,
+            y: 5 * S + 160,
+            z: DEPTH_MAX,
+        },
     ];
     let n = check::<Depth24, 256>(tri, 12, 4) + check::<Depth16, 256>(tri, 12, 1);
     assert!(n > 0, "the sliver should cover some samples");
