@@ -17,19 +17,41 @@
 use crate::fixed::{HALF_PIXEL, SUBPIXEL_STEPS, div_ceil_i64, first_sample_at_or_after};
 use crate::vertex::ScreenVertex;
 
-/// Edge-table entry: an edge of a polygon, bucketed by its first visible row.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct EdgeEntry {
-    /// Upper end (smaller y), index into the vertex table.
-    pub top: u16,
-    /// Lower end, index into the vertex table.
-    pub bottom: u16,
-    /// Id of the polygon the edge belongs to.
-    pub polygon: u32,
-    /// First visible row (the bucket).
-    pub first_row: u16,
-    /// One past the last visible row.
-    pub end_row: u16,
+/// Edge-table entry, packed in 4 bytes: the polygon's position in the
+/// (sorted) polygon table and which of its corners the edge starts from.
+/// The edge runs from that corner to the next one around the polygon; its
+/// bucket, the first visible row, follows from its upper end.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct EdgeEntry(u32);
+
+/// Bits of [`EdgeEntry`] holding the corner (polygons have at most 256).
+const CORNER_BITS: u32 = 8;
+/// Largest polygon table the packing can address.
+pub(crate) const MAX_POLYGONS: usize = 1 << (32 - CORNER_BITS);
+
+impl EdgeEntry {
+    /// The edge leaving corner `corner` of the polygon at `position` in the
+    /// polygon table.
+    pub fn new(position: usize, corner: usize) -> Self {
+        debug_assert!(position < MAX_POLYGONS && corner < 1 << CORNER_BITS);
+        Self(((position as u32) << CORNER_BITS) | corner as u32)
+    }
+
+    /// Position of the polygon in the polygon table.
+    pub fn position(self) -> usize {
+        (self.0 >> CORNER_BITS) as usize
+    }
+
+    /// Corner the edge starts from.
+    pub fn corner(self) -> usize {
+        (self.0 & ((1 << CORNER_BITS) - 1)) as usize
+    }
+
+    /// First visible row of an edge whose top vertex is at sub-pixel `top_y`:
+    /// the bucket it is sorted into.
+    pub fn first_row(top_y: i32) -> u16 {
+        first_sample_at_or_after(top_y).clamp(0, i32::from(u16::MAX)) as u16
+    }
 }
 
 /// Rows `[first, end)` that an edge from `a` to `b` covers, unclipped, with
@@ -64,16 +86,23 @@ pub(crate) struct ActiveEdge {
 }
 
 impl ActiveEdge {
-    /// Starts stepping `entry` at `row` (its first visible row).
+    /// Starts stepping an edge at `row`, its first visible row, until
+    /// `end_row`, one past its last.
     ///
     /// Inside the guard band `dy < 2^22` sub-pixel steps, so `den < 2^30`
     /// and every per-row quantity fits `i32`; the set-up products fit `i64`.
-    pub fn start(entry: &EdgeEntry, top: ScreenVertex, bottom: ScreenVertex) -> Self {
+    pub fn start(
+        polygon: u32,
+        top: ScreenVertex,
+        bottom: ScreenVertex,
+        row: u16,
+        end_row: u16,
+    ) -> Self {
         let dx = i64::from(bottom.x) - i64::from(top.x);
         let dy = i64::from(bottom.y) - i64::from(top.y);
         let s = i64::from(SUBPIXEL_STEPS);
         let den = s * dy;
-        let sample_y = i64::from(entry.first_row) * s + i64::from(HALF_PIXEL);
+        let sample_y = i64::from(row) * s + i64::from(HALF_PIXEL);
         // Crossing x at the sample line, minus half a pixel, times den:
         // x(row) - 0.5px = (x_top - half)·dy + (yc - y_top)·dx, over dy.
         let numerator =
@@ -83,9 +112,9 @@ impl ActiveEdge {
         let step = dx.div_euclid(dy);
         let step_remainder = s * dx - step * den;
         Self {
-            polygon: entry.polygon,
+            polygon,
             x: x as i32,
-            end_row: entry.end_row,
+            end_row,
             remainder: remainder as i32,
             step: step as i32,
             step_remainder: step_remainder as i32,

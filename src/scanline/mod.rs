@@ -174,6 +174,7 @@ impl<
             assert!(W > 0 && W <= MAX_FRAME_SIZE, "W must be 1..=4096");
             assert!(V <= 1 << 16, "V must be at most 65536");
             assert!(N >= 3 && N <= 256, "N must be 3..=256");
+            assert!(P <= edge::MAX_POLYGONS, "P must be at most 2^24");
         }
         if height == 0 || usize::from(height) > MAX_FRAME_SIZE {
             return Err(Error::BadFrameHeight);
@@ -346,33 +347,20 @@ impl<
         self.polygons.sort_unstable_by_key(|p| (p.first_row, p.id));
         self.edges.clear();
         let height = i32::from(self.height);
-        for polygon in &self.polygons {
-            let start = polygon.corner_start as usize;
-            let corners = &self.corners[start..start + usize::from(polygon.corner_count)];
-            let next = corners.iter().skip(1).chain(corners.first());
-            for (&a, &b) in corners.iter().zip(next) {
-                let (va, vb) = (self.vertices[usize::from(a)], self.vertices[usize::from(b)]);
-                let Some((top, _, first, end)) = edge_rows(va, vb) else {
-                    continue;
-                };
-                let (first, end) = (first.max(0), end.min(height));
-                if first >= end {
-                    continue;
+        for (position, polygon) in self.polygons.iter().enumerate() {
+            for corner in 0..usize::from(polygon.corner_count) {
+                let entry = EdgeEntry::new(position, corner);
+                let (top, bottom) = edge_ends(&self.polygons, &self.corners, &self.vertices, entry);
+                let rows = edge_rows(top, bottom);
+                if rows.is_some_and(|(_, _, first, end)| first.max(0) < end.min(height)) {
+                    self.edges.push(entry).map_err(|_| Error::EdgeTableFull)?;
                 }
-                let (top, bottom) = if top == va { (a, b) } else { (b, a) };
-                self.edges
-                    .push(EdgeEntry {
-                        top,
-                        bottom,
-                        polygon: polygon.id,
-                        first_row: first as u16,
-                        end_row: end as u16,
-                    })
-                    .map_err(|_| Error::EdgeTableFull)?;
             }
         }
-        self.edges
-            .sort_unstable_by_key(|e| (e.first_row, e.polygon));
+        let (polygons, corners, vertices) = (&self.polygons, &self.corners, &self.vertices);
+        self.edges.sort_unstable_by_key(|&e| {
+            EdgeEntry::first_row(edge_ends(polygons, corners, vertices, e).0.y)
+        });
         Ok(())
     }
 
@@ -407,11 +395,15 @@ impl<
                     .map_err(|_| Error::ActivePolygonsFull { row })?;
                 next_polygon += 1;
             }
-            while let Some(entry) = self.edges.get(next_edge).filter(|e| e.first_row == row) {
-                let top = self.vertices[usize::from(entry.top)];
-                let bottom = self.vertices[usize::from(entry.bottom)];
+            while let Some(&entry) = self.edges.get(next_edge) {
+                let (top, bottom) = edge_ends(&self.polygons, &self.corners, &self.vertices, entry);
+                if EdgeEntry::first_row(top.y) != row {
+                    break;
+                }
+                let polygon = self.polygons[entry.position()].id;
+                let end_row = first_sample_at_or_after(bottom.y).min(i32::from(self.height)) as u16;
                 self.active_edges
-                    .push(ActiveEdge::start(entry, top, bottom))
+                    .push(ActiveEdge::start(polygon, top, bottom, row, end_row))
                     .map_err(|_| Error::ActiveEdgesFull { row })?;
                 next_edge += 1;
             }
@@ -498,6 +490,21 @@ impl<
             }
         }
     }
+}
+
+/// Upper and lower end of an edge-table entry.
+fn edge_ends<C>(
+    polygons: &[PolygonEntry<C>],
+    corners: &[u16],
+    vertices: &[ScreenVertex],
+    entry: EdgeEntry,
+) -> (ScreenVertex, ScreenVertex) {
+    let polygon = &polygons[entry.position()];
+    let start = polygon.corner_start as usize;
+    let count = usize::from(polygon.corner_count);
+    let a = vertices[usize::from(corners[start + entry.corner()])];
+    let b = vertices[usize::from(corners[start + (entry.corner() + 1) % count])];
+    if a.y < b.y { (a, b) } else { (b, a) }
 }
 
 /// Keeps the AET sorted by (polygon id, x). Insertion sort: between rows
