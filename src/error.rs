@@ -87,3 +87,5 @@ impl<E: fmt::Debug> fmt::Display for RenderError<E> {
         }
     }
 }
+
+impl<E: fmt::Debug> core::error::Error for RenderError<E> {}

@@ -45,3 +45,8 @@ pub use error::{Error, RenderError};
 pub use scanline::{Admission, FrameStats, Renderer};
 pub use sink::{DrawTargetSink, FnSink, RowSink};
 pub use vertex::ScreenVertex;
+
+/// Compiles the README's code examples as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;
