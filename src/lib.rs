@@ -36,6 +36,8 @@
 pub mod depth;
 pub mod error;
 pub mod fixed;
+pub mod mesh;
+pub mod obj;
 pub mod scanline;
 pub mod sink;
 pub mod vertex;

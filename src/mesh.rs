@@ -1,0 +1,170 @@
+//! Meshes the pipeline can draw: positions and polygonal faces.
+//!
+//! [`StaticMesh`] borrows plain slices, so a mesh written as Rust statics
+//! (see `examples/obj2rust.rs`) stays in flash with no RAM copy. The OBJ
+//! reader's [`ObjMesh`](crate::obj::ObjMesh) holds the same layout in
+//! fixed-capacity storage.
+//!
+//! Layout: `positions[i]` is vertex `i`; face `f` is the run of `corners`
+//! from `face_starts[f]` up to `face_starts[f + 1]` (or the end of
+//! `corners` for the last face), each corner a 0-based vertex index.
+
+/// A polygon mesh: positions and faces of 3 or more corners.
+pub trait Mesh {
+    /// Number of vertices.
+    fn vertex_count(&self) -> usize;
+    /// Position of vertex `index` (`index < vertex_count()`).
+    fn position(&self, index: usize) -> [f32; 3];
+    /// Number of faces.
+    fn face_count(&self) -> usize;
+    /// Vertex indices of face `index` (`index < face_count()`), in order
+    /// around the face.
+    fn face(&self, index: usize) -> &[u16];
+}
+
+/// Why a mesh's arrays do not describe a valid mesh.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MeshError {
+    /// A corner names a vertex index at or beyond the vertex count.
+    IndexOutOfRange {
+        /// Position of the offending corner in `corners`.
+        corner: usize,
+    },
+    /// Face starts decrease, exceed the corner count, or leave a face with
+    /// fewer than 3 corners.
+    BadFaceStarts {
+        /// The offending face.
+        face: usize,
+    },
+    /// More than 65,536 vertices (corners are `u16`).
+    TooManyVertices,
+}
+
+/// A mesh over borrowed slices: `'static` ones live in flash.
+#[derive(Debug, Clone, Copy)]
+pub struct StaticMesh<'a> {
+    positions: &'a [[f32; 3]],
+    corners: &'a [u16],
+    face_starts: &'a [u32],
+}
+
+impl<'a> StaticMesh<'a> {
+    /// Checks the arrays and wraps them. `const`, so a static mesh is
+    /// checked at compile time:
+    ///
+    /// ```
+    /// use zline::mesh::{Mesh, StaticMesh};
+    /// static QUAD: StaticMesh<'static> = match StaticMesh::new(
+    ///     &[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
+    ///     &[0, 1, 2, 3],
+    ///     &[0],
+    /// ) {
+    ///     Ok(mesh) => mesh,
+    ///     Err(_) => panic!("invalid mesh"),
+    /// };
+    /// assert_eq!(QUAD.face(0), &[0, 1, 2, 3]);
+    /// ```
+    pub const fn new(
+        positions: &'a [[f32; 3]],
+        corners: &'a [u16],
+        face_starts: &'a [u32],
+    ) -> Result<Self, MeshError> {
+        if positions.len() > 1 << 16 {
+            return Err(MeshError::TooManyVertices);
+        }
+        let mut k = 0;
+        while k < corners.len() {
+            if corners[k] as usize >= positions.len() {
+                return Err(MeshError::IndexOutOfRange { corner: k });
+            }
+            k += 1;
+        }
+        let mut f = 0;
+        while f < face_starts.len() {
+            let start = face_starts[f] as usize;
+            let end = if f + 1 < face_starts.len() {
+                face_starts[f + 1] as usize
+            } else {
+                corners.len()
+            };
+            if end > corners.len() || start + 3 > end {
+                return Err(MeshError::BadFaceStarts { face: f });
+            }
+            f += 1;
+        }
+        Ok(Self {
+            positions,
+            corners,
+            face_starts,
+        })
+    }
+
+    /// All positions.
+    pub const fn positions(&self) -> &'a [[f32; 3]] {
+        self.positions
+    }
+
+    /// All corners, face after face.
+    pub const fn corners(&self) -> &'a [u16] {
+        self.corners
+    }
+
+    /// Where each face starts in [`Self::corners`].
+    pub const fn face_starts(&self) -> &'a [u32] {
+        self.face_starts
+    }
+}
+
+/// Face `index` of a mesh in the shared layout.
+pub(crate) fn face_of<'c>(corners: &'c [u16], face_starts: &[u32], index: usize) -> &'c [u16] {
+    let start = face_starts[index] as usize;
+    let end = face_starts
+        .get(index + 1)
+        .map_or(corners.len(), |&e| e as usize);
+    &corners[start..end]
+}
+
+impl Mesh for StaticMesh<'_> {
+    fn vertex_count(&self) -> usize {
+        self.positions.len()
+    }
+
+    fn position(&self, index: usize) -> [f32; 3] {
+        self.positions[index]
+    }
+
+    fn face_count(&self) -> usize {
+        self.face_starts.len()
+    }
+
+    fn face(&self, index: usize) -> &[u16] {
+        face_of(self.corners, self.face_starts, index)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const P: [[f32; 3]; 4] = [[0.0; 3], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
+
+    #[test]
+    fn validates() {
+        assert!(StaticMesh::new(&P, &[0, 1, 2, 0, 2, 3], &[0, 3]).is_ok());
+        assert_eq!(
+            StaticMesh::new(&P, &[0, 1, 4], &[0]).err(),
+            Some(MeshError::IndexOutOfRange { corner: 2 })
+        );
+        assert_eq!(
+            StaticMesh::new(&P, &[0, 1, 2, 3], &[0, 2]).err(),
+            Some(MeshError::BadFaceStarts { face: 0 })
+        );
+        assert_eq!(
+            StaticMesh::new(&P, &[0, 1, 2], &[0, 5]).err(),
+            Some(MeshError::BadFaceStarts { face: 0 })
+        );
+        let m = StaticMesh::new(&P, &[0, 1, 2, 0, 2, 3], &[0, 3]).unwrap();
+        assert_eq!((m.face(0), m.face(1)), (&[0, 1, 2][..], &[0, 2, 3][..]));
+        assert_eq!(m.face_count(), 2);
+    }
+}
