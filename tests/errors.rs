@@ -160,11 +160,14 @@ fn bad_vertices_are_refused() {
 }
 
 #[test]
-fn frame_height_is_checked() {
+fn frame_size_is_checked() {
     type R = Renderer<u32, Depth16, 16, 4, 4, 16, 4, 16, 4>;
-    assert_eq!(R::new(0, 0).err(), Some(Error::BadFrameHeight));
-    assert_eq!(R::new(5000, 0).err(), Some(Error::BadFrameHeight));
+    assert_eq!(R::new(0, 0).err(), Some(Error::BadFrameSize));
+    assert_eq!(R::new(5000, 0).err(), Some(Error::BadFrameSize));
     assert!(R::new(4096, 0).is_ok());
+    assert_eq!(R::with_size(17, 4, 0).err(), Some(Error::BadFrameSize));
+    assert_eq!(R::with_size(0, 4, 0).err(), Some(Error::BadFrameSize));
+    assert!(R::with_size(9, 4, 0).is_ok());
 }
 
 #[test]

@@ -90,3 +90,24 @@ fn origin_offsets_every_row() {
     let tops: Vec<Point> = recorder.fills.iter().map(|(a, _)| a.top_left).collect();
     assert_eq!(tops, [Point::new(5, 7), Point::new(5, 8), Point::new(5, 9)]);
 }
+
+#[test]
+fn runtime_width_below_capacity() {
+    // Row capacity 24, frame 10 wide: rows are 10 long and a triangle
+    // reaching past x = 10 is clipped there.
+    let mut renderer: Renderer<Rgb565, Depth16, 24, 8, 2, 8, 2, 8, 4> =
+        Renderer::with_size(10, 4, Rgb565::BLACK).unwrap();
+    let v = |x, y| ScreenVertex::from_f32(x, y, 0.5).unwrap();
+    renderer
+        .push_polygon_vertices(&[v(0.0, 0.0), v(30.0, 0.0), v(0.0, 30.0)], Rgb565::RED)
+        .unwrap();
+    let mut recorder = Recorder::default();
+    renderer
+        .render(&mut DrawTargetSink::new(&mut recorder))
+        .unwrap();
+    assert_eq!(recorder.fills.len(), 4);
+    for (area, colors) in &recorder.fills {
+        assert_eq!(area.size, Size::new(10, 1));
+        assert_eq!(colors, &vec![Rgb565::RED; 10]);
+    }
+}

@@ -116,7 +116,8 @@ struct ActivePolygon<C> {
 ///   `PixelColor` for [`DrawTargetSink`](crate::DrawTargetSink)).
 /// * `D`: the depth format ([`Depth16`](crate::Depth16),
 ///   [`Depth24`](crate::Depth24)).
-/// * `W`: the row width in pixels (at most [`MAX_FRAME_SIZE`]).
+/// * `W`: the row capacity in pixels (at most [`MAX_FRAME_SIZE`]); the
+///   frame width is `W` or, with [`Renderer::with_size`], any width up to it.
 /// * `V`: vertex-table capacity (at most 65,536).
 /// * `P`: polygon-table capacity.
 /// * `E`: edge-table capacity; it also bounds the total number of polygon
@@ -140,6 +141,7 @@ pub struct Renderer<
     const AE: usize,
     const N: usize,
 > {
+    width: u16,
     height: u16,
     background: C,
     vertices: Vec<ScreenVertex, V>,
@@ -170,16 +172,26 @@ impl<
     /// An empty renderer for frames `W` wide and `height` tall, clearing
     /// to `background`.
     pub fn new(height: u16, background: C) -> Result<Self, Error> {
+        Self::with_size(W as u16, height, background)
+    }
+
+    /// An empty renderer for frames `width` (at most `W`) by `height`
+    /// pixels, clearing to `background`.
+    pub fn with_size(width: u16, height: u16, background: C) -> Result<Self, Error> {
         const {
             assert!(W > 0 && W <= MAX_FRAME_SIZE, "W must be 1..=4096");
             assert!(V <= 1 << 16, "V must be at most 65536");
             assert!(N >= 3 && N <= 256, "N must be 3..=256");
             assert!(P <= edge::MAX_POLYGONS, "P must be at most 2^24");
         }
+        if width == 0 || usize::from(width) > W {
+            return Err(Error::BadFrameSize);
+        }
         if height == 0 || usize::from(height) > MAX_FRAME_SIZE {
-            return Err(Error::BadFrameHeight);
+            return Err(Error::BadFrameSize);
         }
         Ok(Self {
+            width,
             height,
             background,
             vertices: Vec::new(),
@@ -194,6 +206,11 @@ impl<
             off_screen: 0,
             degenerate: 0,
         })
+    }
+
+    /// Frame width in pixels.
+    pub fn width(&self) -> u16 {
+        self.width
     }
 
     /// Frame height in rows.
@@ -324,8 +341,8 @@ impl<
             y0 = y0.min(v.y);
             y1 = y1.max(v.y);
         }
-        let columns =
-            first_sample_at_or_after(x0).max(0)..first_sample_at_or_after(x1).min(W as i32);
+        let columns = first_sample_at_or_after(x0).max(0)
+            ..first_sample_at_or_after(x1).min(i32::from(self.width));
         let rows = first_sample_at_or_after(y0).max(0)
             ..first_sample_at_or_after(y1).min(i32::from(self.height));
         (!columns.is_empty() && !rows.is_empty()).then_some((rows.start as u16, rows.end as u16))
@@ -413,7 +430,8 @@ impl<
             stats.peak_active_edges = stats.peak_active_edges.max(self.active_edges.len() as u32);
 
             stats.spans += self.scan_row(row);
-            sink.write_row(row, &self.color_row, &self.depth_row)
+            let width = usize::from(self.width);
+            sink.write_row(row, &self.color_row[..width], &self.depth_row[..width])
                 .map_err(RenderError::Sink)?;
             self.advance(row + 1);
         }
@@ -448,8 +466,9 @@ impl<
     /// Resolves visibility on one row into the row buffers; returns the
     /// number of spans filled.
     fn scan_row(&mut self, row: u16) -> u32 {
-        self.depth_row.fill(D::CLEAR);
-        self.color_row.fill(self.background);
+        let width = usize::from(self.width);
+        self.depth_row[..width].fill(D::CLEAR);
+        self.color_row[..width].fill(self.background);
         sort_active_edges(&mut self.active_edges);
         let mut spans = 0;
         let mut edges = self.active_edges.as_slice();
@@ -458,8 +477,8 @@ impl<
             let (own, rest) = edges.split_at(count);
             edges = rest;
             for pair in own.chunks_exact(2) {
-                let start = pair[0].x.clamp(0, W as i32) as usize;
-                let end = pair[1].x.clamp(0, W as i32) as usize;
+                let start = pair[0].x.clamp(0, width as i32) as usize;
+                let end = pair[1].x.clamp(0, width as i32) as usize;
                 if start < end {
                     spans += 1;
                     fill_span::<C, D>(
