@@ -37,6 +37,9 @@ pub enum Error {
     OutsideGuardBand,
     /// A vertex depth is outside `[0, DEPTH_MAX]`, or is NaN/infinite.
     DepthOutOfRange,
+    /// A mesh face names a vertex beyond the mesh, or beyond the vertex
+    /// cache given to the scene.
+    MeshIndexOutOfRange,
     /// The frame width is zero or above the row capacity `W`, or the height
     /// is zero or above [`MAX_FRAME_SIZE`](crate::fixed::MAX_FRAME_SIZE).
     BadFrameSize,
@@ -57,6 +60,9 @@ impl fmt::Display for Error {
             Error::VertexOutOfRange => f.write_str("polygon names a vertex that does not exist"),
             Error::OutsideGuardBand => f.write_str("vertex outside the guard band or not finite"),
             Error::DepthOutOfRange => f.write_str("vertex depth outside [0, 1] or not finite"),
+            Error::MeshIndexOutOfRange => {
+                f.write_str("mesh face names a vertex beyond the mesh or the vertex cache")
+            }
             Error::BadFrameSize => f.write_str("frame width or height is zero or too large"),
         }
     }

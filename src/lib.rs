@@ -33,18 +33,22 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+pub mod clip;
 pub mod depth;
 pub mod error;
 pub mod fixed;
+pub mod geometry;
 pub mod mesh;
 pub mod obj;
 pub mod scanline;
+pub mod scene;
+pub mod shade;
 pub mod sink;
 pub mod vertex;
 
 pub use depth::{Depth16, Depth24, DepthFormat};
 pub use error::{Error, RenderError};
-pub use scanline::{Admission, FrameStats, Renderer};
+pub use scanline::{Admission, FrameStats, PolygonTables, Renderer};
 pub use sink::{DrawTargetSink, FnSink, RowSink};
 pub use vertex::ScreenVertex;
 

@@ -39,6 +39,23 @@ use crate::sink::RowSink;
 use crate::vertex::ScreenVertex;
 use edge::{ActiveEdge, EdgeEntry, edge_rows};
 use plane::Plane;
+pub(crate) use plane::twice_area;
+
+/// What scene building needs from a renderer: its frame, its vertex table
+/// and its polygon table. [`Renderer`] implements it for every
+/// configuration, so [`crate::scene`] needs none of the capacities.
+pub trait PolygonTables<C> {
+    /// Frame width in pixels.
+    fn frame_width(&self) -> u16;
+    /// Frame height in pixels.
+    fn frame_height(&self) -> u16;
+    /// Adds a vertex; see [`Renderer::push_vertex`].
+    fn add_vertex(&mut self, vertex: ScreenVertex) -> Result<u16, Error>;
+    /// A vertex added before.
+    fn get_vertex(&self, index: u16) -> Option<ScreenVertex>;
+    /// Offers a polygon; see [`Renderer::push_polygon`].
+    fn add_polygon(&mut self, corners: &[u16], color: C) -> Result<Admission, Error>;
+}
 
 /// What happened to a polygon offered to the tables.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -54,6 +71,10 @@ pub enum Admission {
 /// Counts for one rendered frame.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct FrameStats {
+    /// Vertices in the vertex table.
+    pub vertices: u32,
+    /// Polygon corners stored (the edge-table capacity they need).
+    pub corners: u32,
     /// Polygons in the polygon table.
     pub polygons: u32,
     /// Edges in the edge table (non-horizontal, visible).
@@ -68,6 +89,24 @@ pub struct FrameStats {
     pub off_screen: u32,
     /// Polygons offered but left out as zero-area.
     pub degenerate: u32,
+}
+
+impl FrameStats {
+    /// Bytes a renderer with colour `C` and depth `D` needs for a scene with
+    /// these counts in a frame `width` wide: the two rows, the vertex,
+    /// polygon, corner and edge tables, and the active tables at their
+    /// peaks. Capacities set to these counts make a renderer of about this
+    /// size (plus a few bytes of bookkeeping).
+    pub fn ram_bytes<C, D: DepthFormat>(&self, width: usize) -> usize {
+        use core::mem::size_of;
+        let n = |count: u32| count as usize;
+        width * (size_of::<C>() + size_of::<D::Value>())
+            + n(self.vertices) * size_of::<ScreenVertex>()
+            + n(self.polygons) * size_of::<PolygonEntry<C>>()
+            + n(self.corners) * (size_of::<u16>() + size_of::<EdgeEntry>())
+            + n(self.peak_active_polygons) * size_of::<ActivePolygon<C>>()
+            + n(self.peak_active_edges) * size_of::<ActiveEdge>()
+    }
 }
 
 /// Polygon-table entry.
@@ -244,6 +283,11 @@ impl<
         self.polygons.len()
     }
 
+    /// Vertex `index` of the vertex table.
+    pub fn vertex(&self, index: u16) -> Option<ScreenVertex> {
+        self.vertices.get(usize::from(index)).copied()
+    }
+
     /// Adds a vertex and returns its index for [`Self::push_polygon`].
     pub fn push_vertex(&mut self, vertex: ScreenVertex) -> Result<u16, Error> {
         vertex.check()?;
@@ -392,6 +436,8 @@ impl<
         self.active_polygons.clear();
         self.active_edges.clear();
         let mut stats = FrameStats {
+            vertices: self.vertices.len() as u32,
+            corners: self.corners.len() as u32,
             polygons: self.polygons.len() as u32,
             edges: self.edges.len() as u32,
             off_screen: self.off_screen,
@@ -508,6 +554,39 @@ impl<
                 *row_value += *dz_dy;
             }
         }
+    }
+}
+
+impl<
+    C: Copy,
+    D: DepthFormat,
+    const W: usize,
+    const V: usize,
+    const P: usize,
+    const E: usize,
+    const AP: usize,
+    const AE: usize,
+    const N: usize,
+> PolygonTables<C> for Renderer<C, D, W, V, P, E, AP, AE, N>
+{
+    fn frame_width(&self) -> u16 {
+        self.width
+    }
+
+    fn frame_height(&self) -> u16 {
+        self.height
+    }
+
+    fn add_vertex(&mut self, vertex: ScreenVertex) -> Result<u16, Error> {
+        self.push_vertex(vertex)
+    }
+
+    fn get_vertex(&self, index: u16) -> Option<ScreenVertex> {
+        self.vertex(index)
+    }
+
+    fn add_polygon(&mut self, corners: &[u16], color: C) -> Result<Admission, Error> {
+        self.push_polygon(corners, color)
     }
 }
 
