@@ -1,1 +1,704 @@
-//! Wavefront OBJ reader (placeholder; being written).
+//! Wavefront OBJ reader: `no_std`, no allocation, straight from a byte
+//! slice, so `include_bytes!("model.obj")` works on a microcontroller.
+//!
+//! Three ways in, all over the same line parser:
+//!
+//! - [`ObjReader`] streams [`Statement`]s, one per non-blank line, with no
+//!   storage beyond one face (at most `N` corners).
+//! - [`ObjMesh`] fills fixed-capacity arrays in the layout of
+//!   [`StaticMesh`] and implements [`Mesh`].
+//! - [`count`] only counts, to size an [`ObjMesh`] or check a file on the
+//!   host.
+//!
+//! ```
+//! use zline::mesh::Mesh;
+//! use zline::obj::ObjMesh;
+//!
+//! let bytes = b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nf -4 -2 -1\n";
+//! // Up to 8 vertices, 16 corners, 4 faces, 4 corners per face.
+//! let mesh = ObjMesh::<8, 16, 4, 4>::parse(bytes).unwrap();
+//! assert_eq!((mesh.vertex_count(), mesh.face_count()), (4, 2));
+//! assert_eq!(mesh.face(1), &[0, 2, 3]);
+//! ```
+//!
+//! # Syntax
+//!
+//! - `v x y z` is a vertex; numbers after `z` (`w`, vertex colours) are
+//!   ignored. Coordinates must be finite: `nan` and `inf` are errors.
+//! - `f` lists 3 or more corners, each `v`, `v/vt`, `v//vn` or `v/vt/vn`.
+//!   Only `v` is used, but `vt` and `vn` must be integers or empty.
+//!   Positive indices count from 1 and may name any `v` line of the file,
+//!   even a later one; negative ones count back from the last vertex
+//!   defined before the face (`-1` is that vertex).
+//! - Every other statement (`vt`, `vn`, `o`, `g`, `s`, `usemtl`,
+//!   `mtllib`, `l`, `p`, unknown keywords) is skipped without looking at
+//!   its arguments; [`Statement::Other`] names its keyword.
+//! - `#` starts a comment up to the end of the line. Comment bytes are
+//!   never decoded, so they need not be UTF-8.
+//! - Lines end with LF or CRLF; the last one may have no line end. Spaces
+//!   and tabs separate tokens; blank lines are skipped.
+//! - Line continuation with `\` is not supported: the `\` token is then an
+//!   error, never silently dropped.
+//!
+//! The first error ends the input; it carries its 1-based line number.
+
+use core::fmt;
+
+use heapless::Vec;
+
+use crate::mesh::{Mesh, StaticMesh, face_of};
+
+/// Most vertices a file may define: corners are `u16`.
+pub const MAX_VERTICES: usize = 1 << 16;
+
+/// A malformed line, or one that does not fit.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ObjError {
+    /// 1-based line number.
+    pub line: u32,
+    /// What is wrong with the line.
+    pub kind: ObjErrorKind,
+}
+
+/// What is wrong with a line.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ObjErrorKind {
+    /// A coordinate or index is not a number, is not ASCII, or (for a
+    /// coordinate) is NaN or infinite.
+    BadNumber,
+    /// A `v` line has fewer than three coordinates.
+    MissingCoordinate,
+    /// A face corner is not `v`, `v/vt`, `v//vn` or `v/vt/vn`.
+    BadCorner,
+    /// A vertex index is 0, beyond the file's vertices, or (negative)
+    /// before the first vertex.
+    IndexOutOfRange,
+    /// A face has fewer than three corners.
+    TooFewCorners,
+    /// A face has more corners than the const parameter `N` allows.
+    TooManyCorners,
+    /// Fixed-capacity storage is full.
+    CapacityExceeded(Capacity),
+    /// The file defines more than [`MAX_VERTICES`] vertices.
+    TooManyVertices,
+}
+
+/// Which fixed-capacity store of an [`ObjMesh`] is full.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Capacity {
+    /// Positions (const parameter `V`).
+    Vertices,
+    /// Corners of all faces (const parameter `C`).
+    Corners,
+    /// Faces (const parameter `F`).
+    Faces,
+}
+
+impl fmt::Display for Capacity {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Capacity::Vertices => "vertex",
+            Capacity::Corners => "corner",
+            Capacity::Faces => "face",
+        })
+    }
+}
+
+impl fmt::Display for ObjErrorKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ObjErrorKind::BadNumber => f.write_str("bad or non-finite number"),
+            ObjErrorKind::MissingCoordinate => f.write_str("vertex has fewer than 3 coordinates"),
+            ObjErrorKind::BadCorner => f.write_str("face corner is not v, v/vt, v//vn or v/vt/vn"),
+            ObjErrorKind::IndexOutOfRange => f.write_str("vertex index out of range"),
+            ObjErrorKind::TooFewCorners => f.write_str("face has fewer than 3 corners"),
+            ObjErrorKind::TooManyCorners => f.write_str("face has too many corners"),
+            ObjErrorKind::CapacityExceeded(c) => write!(f, "{c} capacity exceeded"),
+            ObjErrorKind::TooManyVertices => f.write_str("more than 65536 vertices"),
+        }
+    }
+}
+
+impl fmt::Display for ObjError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "OBJ line {}: {}", self.line, self.kind)
+    }
+}
+
+impl core::error::Error for ObjError {}
+
+/// Lines of the input with their 1-based numbers, comments cut off.
+#[derive(Debug, Clone)]
+struct Lines<'a> {
+    rest: &'a [u8],
+    done: bool,
+    number: u32,
+}
+
+impl<'a> Lines<'a> {
+    fn new(bytes: &'a [u8]) -> Self {
+        Self {
+            rest: bytes,
+            done: bytes.is_empty(),
+            number: 0,
+        }
+    }
+}
+
+impl<'a> Iterator for Lines<'a> {
+    type Item = (u32, &'a [u8]);
+
+    fn next(&mut self) -> Option<Self::Item> {
+        if self.done {
+            return None;
+        }
+        let mut parts = self.rest.splitn(2, |&b| b == b'\n');
+        let line = parts.next().unwrap_or(&[]);
+        match parts.next() {
+            Some(rest) if !rest.is_empty() => self.rest = rest,
+            _ => self.done = true,
+        }
+        self.number = self.number.saturating_add(1);
+        Some((self.number, strip_comment(line)))
+    }
+}
+
+/// The part of `line` before any `#`.
+fn strip_comment(line: &[u8]) -> &[u8] {
+    line.split(|&b| b == b'#').next().unwrap_or(&[])
+}
+
+/// Whitespace-separated tokens (spaces, tabs, a CR before the LF).
+fn tokens(line: &[u8]) -> impl Iterator<Item = &[u8]> {
+    line.split(u8::is_ascii_whitespace)
+        .filter(|token| !token.is_empty())
+}
+
+/// A finite `f32`.
+fn parse_coordinate(token: &[u8]) -> Result<f32, ObjErrorKind> {
+    let value: f32 = ascii(token)?.parse().map_err(|_| ObjErrorKind::BadNumber)?;
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(ObjErrorKind::BadNumber)
+    }
+}
+
+/// A decimal integer with optional sign.
+fn parse_integer(token: &[u8]) -> Result<i64, ObjErrorKind> {
+    ascii(token)?.parse().map_err(|_| ObjErrorKind::BadNumber)
+}
+
+fn ascii(token: &[u8]) -> Result<&str, ObjErrorKind> {
+    if !token.is_ascii() {
+        return Err(ObjErrorKind::BadNumber);
+    }
+    core::str::from_utf8(token).map_err(|_| ObjErrorKind::BadNumber)
+}
+
+/// The (unresolved, 1-based or negative) vertex index of a face corner,
+/// after checking its `vt` and `vn` parts.
+fn corner_index(token: &[u8]) -> Result<i64, ObjErrorKind> {
+    let mut parts = token.split(|&b| b == b'/');
+    let vertex = parts.next().unwrap_or(&[]);
+    if vertex.is_empty() {
+        return Err(ObjErrorKind::BadCorner);
+    }
+    let index = parse_integer(vertex)?;
+    for (k, part) in parts.enumerate() {
+        if k >= 2 {
+            return Err(ObjErrorKind::BadCorner);
+        }
+        if !part.is_empty() {
+            parse_integer(part)?;
+        }
+    }
+    Ok(index)
+}
+
+/// 0-based vertex index of an OBJ index, given the vertices defined so far
+/// (`seen`) and in the whole file (`total`).
+fn resolve(index: i64, seen: usize, total: usize) -> Result<u16, ObjErrorKind> {
+    let resolved = if index > 0 {
+        usize::try_from(index - 1).ok().filter(|&i| i < total)
+    } else {
+        usize::try_from(index.unsigned_abs())
+            .ok()
+            .filter(|&back| back > 0)
+            .and_then(|back| seen.checked_sub(back))
+    };
+    let resolved = resolved.ok_or(ObjErrorKind::IndexOutOfRange)?;
+    u16::try_from(resolved).map_err(|_| ObjErrorKind::TooManyVertices)
+}
+
+/// One parsed line, before the face corners are stored anywhere.
+enum Parsed<'a> {
+    Vertex([f32; 3]),
+    Face,
+    Other(&'a [u8]),
+}
+
+/// The line parser shared by [`ObjReader`] and [`count`]: face corners go
+/// to a callback, so each caller decides where they are stored.
+#[derive(Debug, Clone)]
+struct Parser<'a> {
+    lines: Lines<'a>,
+    total_vertices: usize,
+    seen_vertices: usize,
+    line: u32,
+    failed: bool,
+}
+
+impl<'a> Parser<'a> {
+    fn new(bytes: &'a [u8]) -> Self {
+        let total_vertices = Lines::new(bytes)
+            .filter(|(_, line)| tokens(line).next() == Some(b"v"))
+            .count();
+        Self {
+            lines: Lines::new(bytes),
+            total_vertices,
+            seen_vertices: 0,
+            line: 0,
+            failed: false,
+        }
+    }
+
+    fn next_with(
+        &mut self,
+        corner: &mut impl FnMut(u16) -> Result<(), ObjErrorKind>,
+    ) -> Option<Result<Parsed<'a>, ObjError>> {
+        if self.failed {
+            return None;
+        }
+        let (line, keyword, mut args) = self.lines.by_ref().find_map(|(number, text)| {
+            let mut words = tokens(text);
+            words.next().map(|keyword| (number, keyword, words))
+        })?;
+        self.line = line;
+        let parsed = match keyword {
+            b"v" => self.vertex(&mut args).map(Parsed::Vertex),
+            b"f" => self.face(&mut args, corner).map(|()| Parsed::Face),
+            other => Ok(Parsed::Other(other)),
+        };
+        Some(parsed.map_err(|kind| {
+            self.failed = true;
+            ObjError { line, kind }
+        }))
+    }
+
+    fn vertex<'t>(
+        &mut self,
+        args: &mut impl Iterator<Item = &'t [u8]>,
+    ) -> Result<[f32; 3], ObjErrorKind> {
+        if self.seen_vertices >= MAX_VERTICES {
+            return Err(ObjErrorKind::TooManyVertices);
+        }
+        let mut position = [0.0; 3];
+        for coordinate in &mut position {
+            let token = args.next().ok_or(ObjErrorKind::MissingCoordinate)?;
+            *coordinate = parse_coordinate(token)?;
+        }
+        self.seen_vertices += 1;
+        Ok(position)
+    }
+
+    fn face<'t>(
+        &self,
+        args: &mut impl Iterator<Item = &'t [u8]>,
+        corner: &mut impl FnMut(u16) -> Result<(), ObjErrorKind>,
+    ) -> Result<(), ObjErrorKind> {
+        let mut corners = 0usize;
+        for token in args {
+            let index = corner_index(token)?;
+            corner(resolve(index, self.seen_vertices, self.total_vertices)?)?;
+            corners += 1;
+        }
+        if corners < 3 {
+            return Err(ObjErrorKind::TooFewCorners);
+        }
+        Ok(())
+    }
+}
+
+/// One statement of an OBJ file.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Statement<'a, const N: usize> {
+    /// A `v` line: the position.
+    Vertex([f32; 3]),
+    /// An `f` line: its corners as 0-based vertex indices.
+    Face(Vec<u16, N>),
+    /// Any other statement, skipped: its keyword (for example `b"vt"`,
+    /// `b"vn"` or `b"usemtl"`), as raw bytes.
+    Other(&'a [u8]),
+}
+
+/// Streams the statements of an OBJ file, one per non-blank line; faces
+/// hold at most `N` corners.
+///
+/// [`ObjReader::new`] makes one cheap pass over the input to count the
+/// `v` lines, so that positive indices can be checked against the whole
+/// file. After an error the iterator ends.
+///
+/// ```
+/// use zline::obj::{ObjReader, Statement};
+///
+/// let bytes = b"v 0 0 0\nvt 0 0\nv 1 0 0\nv 0 1 0\nf 1/1 2/1 3/1\n";
+/// let mut reader = ObjReader::<4>::new(bytes);
+/// let mut texcoords = 0;
+/// while let Some(statement) = reader.next() {
+///     match statement.unwrap() {
+///         Statement::Vertex(p) => assert!(p[2] == 0.0),
+///         Statement::Face(corners) => assert_eq!((reader.line(), &corners[..]), (5, &[0, 1, 2][..])),
+///         Statement::Other(keyword) => texcoords += usize::from(keyword == b"vt"),
+///     }
+/// }
+/// assert_eq!(texcoords, 1);
+/// ```
+#[derive(Debug, Clone)]
+pub struct ObjReader<'a, const N: usize> {
+    parser: Parser<'a>,
+}
+
+impl<'a, const N: usize> ObjReader<'a, N> {
+    /// A reader over a whole OBJ file.
+    pub fn new(bytes: &'a [u8]) -> Self {
+        Self {
+            parser: Parser::new(bytes),
+        }
+    }
+
+    /// 1-based line number of the statement (or error) last returned; 0
+    /// before the first.
+    pub fn line(&self) -> u32 {
+        self.parser.line
+    }
+
+    /// Number of `v` lines in the whole file.
+    pub fn vertex_total(&self) -> usize {
+        self.parser.total_vertices
+    }
+}
+
+impl<'a, const N: usize> Iterator for ObjReader<'a, N> {
+    type Item = Result<Statement<'a, N>, ObjError>;
+
+    fn next(&mut self) -> Option<Self::Item> {
+        let mut face = Vec::<u16, N>::new();
+        let parsed = self
+            .parser
+            .next_with(&mut |index| face.push(index).map_err(|_| ObjErrorKind::TooManyCorners))?;
+        Some(parsed.map(|parsed| match parsed {
+            Parsed::Vertex(position) => Statement::Vertex(position),
+            Parsed::Face => Statement::Face(face),
+            Parsed::Other(keyword) => Statement::Other(keyword),
+        }))
+    }
+}
+
+impl<const N: usize> core::iter::FusedIterator for ObjReader<'_, N> {}
+
+/// Line counts of an OBJ file, from [`count`]: exactly what an
+/// [`ObjMesh`] needs (`V >= vertices`, `C >= corners`, `F >= faces`,
+/// `N >= max_corners`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct ObjCounts {
+    /// `v` lines.
+    pub vertices: usize,
+    /// `vt` lines.
+    pub texcoords: usize,
+    /// `vn` lines.
+    pub normals: usize,
+    /// `f` lines.
+    pub faces: usize,
+    /// Corners of all faces.
+    pub corners: usize,
+    /// Triangles after fan-splitting every face: corners − 2 per face.
+    pub triangles: usize,
+    /// Most corners of any face (0 without faces).
+    pub max_corners: usize,
+}
+
+impl ObjCounts {
+    fn add_face(&mut self, corners: usize) {
+        self.faces += 1;
+        self.corners = self.corners.saturating_add(corners);
+        self.triangles = self.triangles.saturating_add(corners.saturating_sub(2));
+        self.max_corners = self.max_corners.max(corners);
+    }
+
+    fn add(&mut self, parsed: &Parsed<'_>, corners: usize) {
+        match parsed {
+            Parsed::Vertex(_) => self.vertices += 1,
+            Parsed::Face => self.add_face(corners),
+            Parsed::Other(b"vt") => self.texcoords += 1,
+            Parsed::Other(b"vn") => self.normals += 1,
+            Parsed::Other(_) => {}
+        }
+    }
+}
+
+/// Checks a whole OBJ file like [`ObjMesh::parse`] and counts its
+/// statements, without storing anything and with no limit on corners per
+/// face.
+///
+/// ```
+/// let counts = zline::obj::count(b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n").unwrap();
+/// assert_eq!((counts.vertices, counts.faces, counts.triangles), (4, 1, 2));
+/// ```
+pub fn count(bytes: &[u8]) -> Result<ObjCounts, ObjError> {
+    let mut parser = Parser::new(bytes);
+    let mut counts = ObjCounts::default();
+    loop {
+        let mut corners = 0usize;
+        let Some(parsed) = parser.next_with(&mut |_| {
+            corners += 1;
+            Ok(())
+        }) else {
+            return Ok(counts);
+        };
+        counts.add(&parsed?, corners);
+    }
+}
+
+/// An OBJ mesh in fixed-capacity storage: up to `V` vertices, `C` corners
+/// in all, `F` faces and `N` corners per face. Same layout as
+/// [`StaticMesh`].
+///
+/// It is large (`12 V + 2 C + 4 F` bytes and a little more), so on a
+/// microcontroller keep it in a `static` cell rather than on the stack and
+/// fill it with [`ObjMesh::load`]. Its contents are always a valid mesh:
+/// a failed load leaves it empty.
+#[derive(Debug, Clone)]
+pub struct ObjMesh<const V: usize, const C: usize, const F: usize, const N: usize> {
+    positions: Vec<[f32; 3], V>,
+    corners: Vec<u16, C>,
+    face_starts: Vec<u32, F>,
+    texcoords: usize,
+    normals: usize,
+}
+
+impl<const V: usize, const C: usize, const F: usize, const N: usize> Default
+    for ObjMesh<V, C, F, N>
+{
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// The empty mesh, for the impossible case that [`ObjMesh`] holds an
+/// invalid one.
+const EMPTY: StaticMesh<'static> = match StaticMesh::new(&[], &[], &[]) {
+    Ok(mesh) => mesh,
+    Err(_) => panic!("the empty mesh is valid"),
+};
+
+impl<const V: usize, const C: usize, const F: usize, const N: usize> ObjMesh<V, C, F, N> {
+    /// An empty mesh.
+    pub const fn new() -> Self {
+        Self {
+            positions: Vec::new(),
+            corners: Vec::new(),
+            face_starts: Vec::new(),
+            texcoords: 0,
+            normals: 0,
+        }
+    }
+
+    /// Parses a whole OBJ file. Too much data for the capacities is
+    /// [`ObjErrorKind::CapacityExceeded`] at the first line that does not
+    /// fit.
+    pub fn parse(bytes: &[u8]) -> Result<Self, ObjError> {
+        let mut mesh = Self::new();
+        mesh.load(bytes)?;
+        Ok(mesh)
+    }
+
+    /// Replaces the contents with a whole OBJ file, in place (see
+    /// [`ObjMesh::parse`]). On error the mesh is left empty.
+    pub fn load(&mut self, bytes: &[u8]) -> Result<(), ObjError> {
+        self.clear();
+        let result = self.fill(bytes);
+        if result.is_err() {
+            self.clear();
+        }
+        result
+    }
+
+    fn clear(&mut self) {
+        self.positions.clear();
+        self.corners.clear();
+        self.face_starts.clear();
+        self.texcoords = 0;
+        self.normals = 0;
+    }
+
+    fn fill(&mut self, bytes: &[u8]) -> Result<(), ObjError> {
+        let mut reader = ObjReader::<N>::new(bytes);
+        while let Some(statement) = reader.next() {
+            self.add(statement?).map_err(|capacity| ObjError {
+                line: reader.line(),
+                kind: ObjErrorKind::CapacityExceeded(capacity),
+            })?;
+        }
+        Ok(())
+    }
+
+    fn add(&mut self, statement: Statement<'_, N>) -> Result<(), Capacity> {
+        match statement {
+            Statement::Vertex(position) => self
+                .positions
+                .push(position)
+                .map_err(|_| Capacity::Vertices),
+            Statement::Face(corners) => {
+                let start = u32::try_from(self.corners.len()).map_err(|_| Capacity::Corners)?;
+                self.face_starts.push(start).map_err(|_| Capacity::Faces)?;
+                self.corners
+                    .extend_from_slice(&corners)
+                    .map_err(|_| Capacity::Corners)
+            }
+            Statement::Other(b"vt") => {
+                self.texcoords += 1;
+                Ok(())
+            }
+            Statement::Other(b"vn") => {
+                self.normals += 1;
+                Ok(())
+            }
+            Statement::Other(_) => Ok(()),
+        }
+    }
+
+    /// All positions.
+    pub fn positions(&self) -> &[[f32; 3]] {
+        &self.positions
+    }
+
+    /// All corners (0-based vertex indices), face after face.
+    pub fn corners(&self) -> &[u16] {
+        &self.corners
+    }
+
+    /// Where each face starts in [`ObjMesh::corners`].
+    pub fn face_starts(&self) -> &[u32] {
+        &self.face_starts
+    }
+
+    /// Number of `vt` lines read (and skipped).
+    pub fn texcoord_count(&self) -> usize {
+        self.texcoords
+    }
+
+    /// Number of `vn` lines read (and skipped).
+    pub fn normal_count(&self) -> usize {
+        self.normals
+    }
+
+    /// The same mesh as a [`StaticMesh`] borrowing this one's arrays.
+    ///
+    /// The contents were checked while parsing, so the check in
+    /// [`StaticMesh::new`] cannot fail; if it ever did, this returns an
+    /// empty mesh rather than panicking.
+    pub fn as_static(&self) -> StaticMesh<'_> {
+        StaticMesh::new(&self.positions, &self.corners, &self.face_starts).unwrap_or(EMPTY)
+    }
+}
+
+impl<const V: usize, const C: usize, const F: usize, const N: usize> Mesh for ObjMesh<V, C, F, N> {
+    fn vertex_count(&self) -> usize {
+        self.positions.len()
+    }
+
+    fn position(&self, index: usize) -> [f32; 3] {
+        self.positions[index]
+    }
+
+    fn face_count(&self) -> usize {
+        self.face_starts.len()
+    }
+
+    fn face(&self, index: usize) -> &[u16] {
+        face_of(&self.corners, &self.face_starts, index)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lines_number_and_strip() {
+        let mut lines = Lines::new(b"a # x\r\n\nb\xff#\xc4\xe3\nc");
+        assert_eq!(lines.next(), Some((1, &b"a "[..])));
+        assert_eq!(lines.next(), Some((2, &b""[..])));
+        assert_eq!(lines.next(), Some((3, &b"b\xff"[..])));
+        assert_eq!(lines.next(), Some((4, &b"c"[..])));
+        assert_eq!(lines.next(), None);
+        assert_eq!(Lines::new(b"").count(), 0);
+        assert_eq!(Lines::new(b"x\n").count(), 1);
+        assert_eq!(Lines::new(b"\n").count(), 1);
+    }
+
+    #[test]
+    fn tokens_split_on_spaces_tabs_cr() {
+        let t: [&[u8]; 3] = [b"f", b"1", b"2/3"];
+        assert!(tokens(b" \tf  1\t2/3\r").eq(t));
+        assert_eq!(tokens(b" \t\r").count(), 0);
+    }
+
+    #[test]
+    fn numbers() {
+        assert_eq!(parse_coordinate(b"-1.5e2"), Ok(-150.0));
+        assert_eq!(parse_coordinate(b".5"), Ok(0.5));
+        for bad in [
+            &b"nan"[..],
+            b"inf",
+            b"-inf",
+            b"1e39",
+            b"",
+            b"1.0.0",
+            b"\xff",
+            b"\xef\xbc\x91",
+        ] {
+            assert_eq!(parse_coordinate(bad), Err(ObjErrorKind::BadNumber));
+        }
+        assert_eq!(parse_integer(b"-12"), Ok(-12));
+        assert_eq!(parse_integer(b"1.0"), Err(ObjErrorKind::BadNumber));
+    }
+
+    #[test]
+    fn corners() {
+        assert_eq!(corner_index(b"7"), Ok(7));
+        assert_eq!(corner_index(b"7/2"), Ok(7));
+        assert_eq!(corner_index(b"-7//2"), Ok(-7));
+        assert_eq!(corner_index(b"7/2/3"), Ok(7));
+        assert_eq!(corner_index(b"7/2/3/4"), Err(ObjErrorKind::BadCorner));
+        assert_eq!(corner_index(b"/2"), Err(ObjErrorKind::BadCorner));
+        assert_eq!(corner_index(b"7/x"), Err(ObjErrorKind::BadNumber));
+    }
+
+    #[test]
+    fn resolution() {
+        assert_eq!(resolve(1, 0, 3), Ok(0));
+        assert_eq!(resolve(3, 0, 3), Ok(2));
+        assert_eq!(resolve(4, 0, 3), Err(ObjErrorKind::IndexOutOfRange));
+        assert_eq!(resolve(0, 2, 3), Err(ObjErrorKind::IndexOutOfRange));
+        assert_eq!(resolve(-1, 2, 3), Ok(1));
+        assert_eq!(resolve(-2, 2, 3), Ok(0));
+        assert_eq!(resolve(-3, 2, 3), Err(ObjErrorKind::IndexOutOfRange));
+        assert_eq!(resolve(i64::MIN, 2, 3), Err(ObjErrorKind::IndexOutOfRange));
+        assert_eq!(resolve(i64::MAX, 2, 3), Err(ObjErrorKind::IndexOutOfRange));
+        assert_eq!(
+            resolve(70_000, 0, 70_000),
+            Err(ObjErrorKind::TooManyVertices)
+        );
+    }
+
+    #[test]
+    fn as_static_matches() {
+        let mesh = ObjMesh::<4, 8, 2, 4>::parse(b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3").unwrap();
+        let s = mesh.as_static();
+        assert_eq!(s.positions(), mesh.positions());
+        assert_eq!(s.corners(), &[0, 1, 2]);
+        assert_eq!(s.face_starts(), &[0]);
+    }
+}
