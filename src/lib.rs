@@ -33,12 +33,17 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+#[cfg(feature = "std")]
+extern crate std;
+
 pub mod clip;
 pub mod depth;
 pub mod error;
 pub mod fixed;
 pub mod geometry;
 pub mod mesh;
+#[cfg(feature = "std")]
+pub mod methods;
 pub mod obj;
 pub mod scanline;
 pub mod scene;

@@ -214,35 +214,53 @@ fn polygons_crossing_every_screen_side() {
     assert_eq!(render::<Depth24>(8, &with_back), sides.replace('.', "G"));
 }
 
-/// Coplanar faces: on exactly equal depth the polygon added first wins,
-/// whatever their rows.
+/// Coplanar faces: on exactly equal depth the polygon that starts on an
+/// earlier row keeps the pixel; among polygons starting on the same row,
+/// the one added first.
 #[test]
-fn coplanar_faces_first_added_wins() {
+fn coplanar_faces_earlier_row_then_first_added_wins() {
     let upper = rect(2.0, 1.0, 10.0, 5.0, 0.5);
     let lower = rect(6.0, 3.0, 14.0, 7.0, 0.5);
-    let expected = art("
+    let upper_wins = art("
         ................
         ..AAAAAAAA......
         ..AAAAAAAA......
         ..AAAAAAAABBBB..
         ..AAAAAAAABBBB..
-        ......BBBBBBBB..
-        ......BBBBBBBB..
-        ................
-    ");
-    assert_eq!(render::<Depth16>(8, &[(&upper, 1), (&lower, 2)]), expected);
-    let lower_first = art("
-        ................
-        ..AAAAAAAA......
-        ..AAAAAAAA......
-        ..AAAABBBBBBBB..
-        ..AAAABBBBBBBB..
         ......BBBBBBBB..
         ......BBBBBBBB..
         ................
     ");
     assert_eq!(
-        render::<Depth24>(8, &[(&lower, 2), (&upper, 1)]),
-        lower_first
+        render::<Depth16>(8, &[(&upper, 1), (&lower, 2)]),
+        upper_wins
     );
+    assert_eq!(
+        render::<Depth24>(8, &[(&lower, 2), (&upper, 1)]),
+        upper_wins
+    );
+    // Same first row: insertion order decides.
+    let tall = rect(6.0, 1.0, 14.0, 7.0, 0.5);
+    let a_first = art("
+        ................
+        ..AAAAAAAABBBB..
+        ..AAAAAAAABBBB..
+        ..AAAAAAAABBBB..
+        ..AAAAAAAABBBB..
+        ......BBBBBBBB..
+        ......BBBBBBBB..
+        ................
+    ");
+    let b_first = art("
+        ................
+        ..AAAABBBBBBBB..
+        ..AAAABBBBBBBB..
+        ..AAAABBBBBBBB..
+        ..AAAABBBBBBBB..
+        ......BBBBBBBB..
+        ......BBBBBBBB..
+        ................
+    ");
+    assert_eq!(render::<Depth16>(8, &[(&upper, 1), (&tall, 2)]), a_first);
+    assert_eq!(render::<Depth24>(8, &[(&tall, 2), (&upper, 1)]), b_first);
 }

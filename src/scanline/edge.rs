@@ -69,8 +69,9 @@ pub(crate) fn edge_rows(
 /// Active-edge-table entry: an edge crossing the current scanline.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct ActiveEdge {
-    /// Id of the polygon the edge belongs to.
-    pub polygon: u32,
+    /// Next edge of the same polygon (or next free entry), an index into
+    /// the active edge pool.
+    pub next: u32,
     /// First pixel at or right of the crossing on the current row.
     pub x: i32,
     /// One past the last row the edge covers.
@@ -87,16 +88,17 @@ pub(crate) struct ActiveEdge {
 
 impl ActiveEdge {
     /// Starts stepping an edge at `row`, its first visible row, until
-    /// `end_row`, one past its last.
+    /// `end_row`, one past its last; `next` links it into its polygon's
+    /// list.
     ///
     /// Inside the guard band `dy < 2^22` sub-pixel steps, so `den < 2^30`
     /// and every per-row quantity fits `i32`; the set-up products fit `i64`.
     pub fn start(
-        polygon: u32,
         top: ScreenVertex,
         bottom: ScreenVertex,
         row: u16,
         end_row: u16,
+        next: u32,
     ) -> Self {
         let dx = i64::from(bottom.x) - i64::from(top.x);
         let dy = i64::from(bottom.y) - i64::from(top.y);
@@ -112,7 +114,7 @@ impl ActiveEdge {
         let step = dx.div_euclid(dy);
         let step_remainder = s * dx - step * den;
         Self {
-            polygon,
+            next,
             x: x as i32,
             end_row,
             remainder: remainder as i32,

@@ -143,11 +143,17 @@ enum SpanDepth {
 /// Active-polygon-table entry.
 #[derive(Debug, Clone, Copy)]
 struct ActivePolygon<C> {
-    id: u32,
+    /// Position in the sorted polygon table: the APT stays sorted by it.
+    position: u32,
     end_row: u16,
+    /// Head of this polygon's list of active edges ([`NO_EDGE`] if none).
+    first_edge: u32,
     color: C,
     depth: SpanDepth,
 }
+
+/// End of an active-edge list.
+const NO_EDGE: u32 = u32::MAX;
 
 /// A scanline z-buffer renderer with fixed capacities.
 ///
@@ -188,7 +194,12 @@ pub struct Renderer<
     corners: Vec<u16, E>,
     edges: Vec<EdgeEntry, E>,
     active_polygons: Vec<ActivePolygon<C>, AP>,
+    /// Pool of active edges; each active polygon links its own.
     active_edges: Vec<ActiveEdge, AE>,
+    /// Head of the list of free pool entries.
+    free_edge: u32,
+    /// Edges currently active.
+    live_edges: u32,
     depth_row: [D::Value; W],
     color_row: [C; W],
     next_id: u32,
@@ -239,6 +250,8 @@ impl<
             edges: Vec::new(),
             active_polygons: Vec::new(),
             active_edges: Vec::new(),
+            free_edge: NO_EDGE,
+            live_edges: 0,
             depth_row: [D::CLEAR; W],
             color_row: [background; W],
             next_id: 0,
@@ -402,8 +415,9 @@ impl<
             .map(|&i| self.vertices[usize::from(i)])
     }
 
-    /// Sorts the polygon table by first row and builds the edge table
-    /// from it, sorted by first row.
+    /// Sorts the polygon table by first row and builds the edge table:
+    /// the edges that start below their polygon's first row (the others
+    /// enter the active edge table with their polygon), sorted by first row.
     fn build_edge_table(&mut self) -> Result<(), Error> {
         self.polygons.sort_unstable_by_key(|p| (p.first_row, p.id));
         self.edges.clear();
@@ -412,8 +426,11 @@ impl<
             for corner in 0..usize::from(polygon.corner_count) {
                 let entry = EdgeEntry::new(position, corner);
                 let (top, bottom) = edge_ends(&self.polygons, &self.corners, &self.vertices, entry);
-                let rows = edge_rows(top, bottom);
-                if rows.is_some_and(|(_, _, first, end)| first.max(0) < end.min(height)) {
+                let Some((_, _, first, end)) = edge_rows(top, bottom) else {
+                    continue;
+                };
+                let first = first.max(0);
+                if first < end.min(height) && first > i32::from(polygon.first_row) {
                     self.edges.push(entry).map_err(|_| Error::EdgeTableFull)?;
                 }
             }
@@ -435,27 +452,25 @@ impl<
         self.build_edge_table()?;
         self.active_polygons.clear();
         self.active_edges.clear();
+        self.free_edge = NO_EDGE;
+        self.live_edges = 0;
         let mut stats = FrameStats {
             vertices: self.vertices.len() as u32,
             corners: self.corners.len() as u32,
             polygons: self.polygons.len() as u32,
-            edges: self.edges.len() as u32,
+            edges: 0,
             off_screen: self.off_screen,
             degenerate: self.degenerate,
             ..FrameStats::default()
         };
         let (mut next_polygon, mut next_edge) = (0usize, 0usize);
         for row in 0..self.height {
-            while let Some(polygon) = self
+            while self
                 .polygons
                 .get(next_polygon)
-                .filter(|p| p.first_row == row)
+                .is_some_and(|p| p.first_row == row)
             {
-                let active = self.activate_polygon(polygon, row);
-                let at = self.active_polygons.partition_point(|a| a.id < active.id);
-                self.active_polygons
-                    .insert(at, active)
-                    .map_err(|_| Error::ActivePolygonsFull { row })?;
+                stats.edges += self.activate_polygon(next_polygon, row)?;
                 next_polygon += 1;
             }
             while let Some(&entry) = self.edges.get(next_edge) {
@@ -463,17 +478,19 @@ impl<
                 if EdgeEntry::first_row(top.y) != row {
                     break;
                 }
-                let polygon = self.polygons[entry.position()].id;
-                let end_row = first_sample_at_or_after(bottom.y).min(i32::from(self.height)) as u16;
-                self.active_edges
-                    .push(ActiveEdge::start(polygon, top, bottom, row, end_row))
-                    .map_err(|_| Error::ActiveEdgesFull { row })?;
+                let position = entry.position() as u32;
+                let slot = self
+                    .active_polygons
+                    .binary_search_by_key(&position, |a| a.position)
+                    .map_err(|_| Error::ActivePolygonsFull { row })?;
+                self.activate_edge(slot, top, bottom, row)?;
+                stats.edges += 1;
                 next_edge += 1;
             }
             stats.peak_active_polygons = stats
                 .peak_active_polygons
                 .max(self.active_polygons.len() as u32);
-            stats.peak_active_edges = stats.peak_active_edges.max(self.active_edges.len() as u32);
+            stats.peak_active_edges = stats.peak_active_edges.max(self.live_edges);
 
             stats.spans += self.scan_row(row);
             let width = usize::from(self.width);
@@ -484,10 +501,13 @@ impl<
         Ok(stats)
     }
 
-    /// Computes the APT entry of a polygon entering at `row`.
-    fn activate_polygon(&self, polygon: &PolygonEntry<C>, row: u16) -> ActivePolygon<C> {
+    /// Moves the polygon at `position` in the polygon table into the APT at
+    /// `row`, with its plane gradients and the edges that start on this
+    /// row; returns how many edges entered.
+    fn activate_polygon(&mut self, position: usize, row: u16) -> Result<u32, Error> {
+        let polygon = self.polygons[position];
         // Non-zero area was checked when the polygon entered the table.
-        let plane = Plane::new(self.polygon_corners(polygon));
+        let plane = Plane::new(self.polygon_corners(&polygon));
         let depth = match plane.map(|p| (p, p.gradients())) {
             Some((plane, Some((dz_dx, dz_dy)))) => SpanDepth::Stepped {
                 dz_dx,
@@ -501,12 +521,57 @@ impl<
                 row_value: i64::MAX,
             },
         };
-        ActivePolygon {
-            id: polygon.id,
-            end_row: polygon.end_row,
-            color: polygon.color,
-            depth,
+        self.active_polygons
+            .push(ActivePolygon {
+                position: position as u32,
+                end_row: polygon.end_row,
+                first_edge: NO_EDGE,
+                color: polygon.color,
+                depth,
+            })
+            .map_err(|_| Error::ActivePolygonsFull { row })?;
+        let slot = self.active_polygons.len() - 1;
+        let mut entered = 0;
+        for corner in 0..usize::from(polygon.corner_count) {
+            let entry = EdgeEntry::new(position, corner);
+            let (top, bottom) = edge_ends(&self.polygons, &self.corners, &self.vertices, entry);
+            if top.y != bottom.y
+                && EdgeEntry::first_row(top.y) == row
+                && first_sample_at_or_after(bottom.y) > i32::from(row)
+            {
+                self.activate_edge(slot, top, bottom, row)?;
+                entered += 1;
+            }
         }
+        Ok(entered)
+    }
+
+    /// Starts an edge at `row` and links it to the active polygon at `slot`.
+    fn activate_edge(
+        &mut self,
+        slot: usize,
+        top: ScreenVertex,
+        bottom: ScreenVertex,
+        row: u16,
+    ) -> Result<(), Error> {
+        let end_row = first_sample_at_or_after(bottom.y).min(i32::from(self.height)) as u16;
+        let polygon = &mut self.active_polygons[slot];
+        let edge = ActiveEdge::start(top, bottom, row, end_row, polygon.first_edge);
+        let index = if self.free_edge != NO_EDGE {
+            let index = self.free_edge;
+            self.free_edge = self.active_edges[index as usize].next;
+            self.active_edges[index as usize] = edge;
+            index
+        } else {
+            let index = self.active_edges.len() as u32;
+            self.active_edges
+                .push(edge)
+                .map_err(|_| Error::ActiveEdgesFull { row })?;
+            index
+        };
+        polygon.first_edge = index;
+        self.live_edges += 1;
+        Ok(())
     }
 
     /// Resolves visibility on one row into the row buffers; returns the
@@ -515,16 +580,21 @@ impl<
         let width = usize::from(self.width);
         self.depth_row[..width].fill(D::CLEAR);
         self.color_row[..width].fill(self.background);
-        sort_active_edges(&mut self.active_edges);
         let mut spans = 0;
-        let mut edges = self.active_edges.as_slice();
         for polygon in &self.active_polygons {
-            let count = edges.iter().take_while(|e| e.polygon == polygon.id).count();
-            let (own, rest) = edges.split_at(count);
-            edges = rest;
-            for pair in own.chunks_exact(2) {
-                let start = pair[0].x.clamp(0, width as i32) as usize;
-                let end = pair[1].x.clamp(0, width as i32) as usize;
+            // This polygon's crossings, sorted: pairs of them are spans.
+            let mut crossings: Vec<i32, N> = Vec::new();
+            let mut index = polygon.first_edge;
+            while let Some(edge) = self.active_edges.get(index as usize) {
+                if crossings.push(edge.x).is_err() {
+                    break;
+                }
+                index = edge.next;
+            }
+            crossings.sort_unstable();
+            for pair in crossings.chunks_exact(2) {
+                let start = pair[0].clamp(0, width as i32) as usize;
+                let end = pair[1].clamp(0, width as i32) as usize;
                 if start < end {
                     spans += 1;
                     fill_span::<C, D>(
@@ -540,13 +610,27 @@ impl<
         spans
     }
 
-    /// Steps the active tables down to `next_row`, dropping finished
-    /// entries.
+    /// Steps the active tables down to `next_row`: edges that ended are
+    /// unlinked and freed, the others step; finished polygons leave.
     fn advance(&mut self, next_row: u16) {
-        self.active_edges.retain(|e| e.end_row > next_row);
-        self.active_edges.iter_mut().for_each(ActiveEdge::advance);
-        self.active_polygons.retain(|p| p.end_row > next_row);
         for polygon in &mut self.active_polygons {
+            let (mut previous, mut index) = (NO_EDGE, polygon.first_edge);
+            while let Some(edge) = self.active_edges.get_mut(index as usize) {
+                let next = edge.next;
+                if edge.end_row > next_row {
+                    edge.advance();
+                    previous = index;
+                } else {
+                    edge.next = self.free_edge;
+                    self.free_edge = index;
+                    self.live_edges -= 1;
+                    match self.active_edges.get_mut(previous as usize) {
+                        Some(p) => p.next = next,
+                        None => polygon.first_edge = next,
+                    }
+                }
+                index = next;
+            }
             if let SpanDepth::Stepped {
                 dz_dy, row_value, ..
             } = &mut polygon.depth
@@ -554,6 +638,7 @@ impl<
                 *row_value += *dz_dy;
             }
         }
+        self.active_polygons.retain(|p| p.end_row > next_row);
     }
 }
 
@@ -603,18 +688,6 @@ fn edge_ends<C>(
     let a = vertices[usize::from(corners[start + entry.corner()])];
     let b = vertices[usize::from(corners[start + (entry.corner() + 1) % count])];
     if a.y < b.y { (a, b) } else { (b, a) }
-}
-
-/// Keeps the AET sorted by (polygon id, x). Insertion sort: between rows
-/// the order barely changes, so this is linear in practice.
-fn sort_active_edges(edges: &mut [ActiveEdge]) {
-    for i in 1..edges.len() {
-        let mut j = i;
-        while j > 0 && (edges[j - 1].polygon, edges[j - 1].x) > (edges[j].polygon, edges[j].x) {
-            edges.swap(j - 1, j);
-            j -= 1;
-        }
-    }
 }
 
 /// Depth-tests and writes one span: pixels `x0 .. x0 + depths.len()` of

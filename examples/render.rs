@@ -1,0 +1,342 @@
+//! Headless render of an OBJ mesh in the reference view, by the scanline
+//! core or by the float64 reference.
+//!
+//! ```sh
+//! cargo run --release --example render -- MODEL.obj [options]
+//! ```
+//!
+//! Options (defaults in brackets):
+//! * `--size WxH` [320x240]
+//! * `--yaw DEG` [30] and `--pitch DEG` [20]
+//! * `--shade flat|lambert|depth|id` [lambert]
+//! * `--cull none|back` [none]
+//! * `--depth z16|z24` [z24]
+//! * `--method scanline|reference` [scanline]
+//! * `--out FILE.png`: the frame as PNG (through embedded-graphics-simulator,
+//!   no SDL)
+//! * `--ids FILE.bin`: W·H little-endian u32, row-major from the top: the
+//!   visible face id (0-based index among the `f` lines), or 0xFFFFFFFF
+//! * `--stats`: `key=value` lines: timing over repeated frames, table
+//!   counts, RAM
+//! * `--frames N` [15]: timed frames after 3 warm-up frames
+//!
+//! The view: positions normalised to the unit sphere about their bounding
+//! box centre, rotated `Rx(pitch) · Ry(yaw)`, eye at (0, 0, 3) looking down
+//! -Z, 45° vertical field of view, near 0.1, far 10 (see
+//! `zline::scene::reference_model` and `zline::methods::ReferenceView`).
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::Instant;
+
+use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
+use embedded_graphics::prelude::*;
+use embedded_graphics::primitives::Rectangle;
+use embedded_graphics_simulator::{OutputSettings, SimulatorDisplay};
+use zline::methods::{BACKGROUND, HostMesh, HostScanline, ReferenceFrame, ReferenceView};
+use zline::scene::{Camera, Cull, reference_model};
+use zline::shade::Shading;
+use zline::{Depth16, Depth24, DepthFormat, FrameStats};
+
+/// Parsed command line.
+#[derive(Debug)]
+struct Options {
+    model: PathBuf,
+    width: u16,
+    height: u16,
+    yaw: f32,
+    pitch: f32,
+    shade: Shading,
+    cull: Cull,
+    depth: String,
+    reference: bool,
+    out: Option<PathBuf>,
+    ids: Option<PathBuf>,
+    stats: bool,
+    frames: usize,
+}
+
+fn parse_args(args: &[String]) -> Result<Options, String> {
+    let mut o = Options {
+        model: PathBuf::new(),
+        width: 320,
+        height: 240,
+        yaw: 30.0,
+        pitch: 20.0,
+        shade: Shading::lambert(),
+        cull: Cull::None,
+        depth: "z24".into(),
+        reference: false,
+        out: None,
+        ids: None,
+        stats: false,
+        frames: 15,
+    };
+    let mut model = None;
+    let mut it = args.iter();
+    while let Some(arg) = it.next() {
+        let mut value = || it.next().ok_or_else(|| format!("{arg} needs a value"));
+        match arg.as_str() {
+            "--size" => (o.width, o.height) = parse_size(value()?)?,
+            "--yaw" => o.yaw = parse_angle(arg, value()?)?,
+            "--pitch" => o.pitch = parse_angle(arg, value()?)?,
+            "--shade" => {
+                o.shade = match value()?.as_str() {
+                    "flat" => Shading::Flat(Rgb888::new(200, 190, 170)),
+                    "lambert" => Shading::lambert(),
+                    "depth" => Shading::Depth {
+                        near: 2.0,
+                        far: 4.0,
+                    },
+                    "id" => Shading::FaceId,
+                    s => return Err(format!("--shade: unknown '{s}' (flat, lambert, depth, id)")),
+                }
+            }
+            "--cull" => {
+                o.cull = match value()?.as_str() {
+                    "none" => Cull::None,
+                    "back" => Cull::Back,
+                    s => return Err(format!("--cull: unknown '{s}' (none, back)")),
+                }
+            }
+            "--depth" => {
+                o.depth = value()?.clone();
+                if o.depth != "z16" && o.depth != "z24" {
+                    return Err(format!("--depth: unknown '{}' (z16, z24)", o.depth));
+                }
+            }
+            "--method" => {
+                o.reference = match value()?.as_str() {
+                    "scanline" => false,
+                    "reference" => true,
+                    s => return Err(format!("--method: unknown '{s}' (scanline, reference)")),
+                }
+            }
+            "--out" => o.out = Some(value()?.into()),
+            "--ids" => o.ids = Some(value()?.into()),
+            "--frames" => {
+                o.frames = value()?
+                    .parse()
+                    .ok()
+                    .filter(|&n| n > 0)
+                    .ok_or("--frames: expected a positive whole number")?
+            }
+            "--stats" => o.stats = true,
+            s if s.starts_with("--") => return Err(format!("unknown option {s}")),
+            s if model.is_none() => model = Some(PathBuf::from(s)),
+            s => return Err(format!("unexpected argument {s}")),
+        }
+    }
+    o.model = model.ok_or("missing MODEL.obj")?;
+    Ok(o)
+}
+
+fn parse_size(s: &str) -> Result<(u16, u16), String> {
+    let bad = || format!("--size: expected WxH with each side 1 to 4096, got '{s}'");
+    let (w, h) = s.split_once('x').ok_or_else(bad)?;
+    let side = |v: &str| v.parse::<u16>().ok().filter(|&n| (1..=4096).contains(&n));
+    Ok((side(w).ok_or_else(bad)?, side(h).ok_or_else(bad)?))
+}
+
+fn parse_angle(name: &str, s: &str) -> Result<f32, String> {
+    s.parse::<f32>()
+        .ok()
+        .filter(|a| a.is_finite())
+        .ok_or_else(|| format!("{name}: expected degrees, got '{s}'"))
+}
+
+/// A rendered frame, whichever method made it.
+struct Output {
+    faces: Vec<u32>,
+    colors: Vec<Rgb888>,
+    times_ms: Vec<f64>,
+    stats: Vec<(String, String)>,
+}
+
+fn median(times: &mut [f64]) -> f64 {
+    times.sort_by(f64::total_cmp);
+    times[times.len() / 2]
+}
+
+fn run_scanline<D: DepthFormat>(o: &Options, mesh: &HostMesh) -> Result<Output, String>
+where
+    D::Value: Into<u32>,
+{
+    let mut host = HostScanline::<D>::new(o.width, o.height).map_err(|e| e.to_string())?;
+    let model = reference_model(mesh, o.yaw, o.pitch);
+    let camera = Camera::reference(o.width, o.height);
+    let mut times = Vec::new();
+    let mut last = None;
+    for k in 0..3 + o.frames {
+        let start = Instant::now();
+        let result = host
+            .render(mesh, &model, &camera, o.cull, &o.shade)
+            .map_err(|e| format!("render: {e}"))?;
+        if k >= 3 {
+            times.push(start.elapsed().as_secs_f64() * 1e3);
+        }
+        last = Some(result);
+    }
+    let (draw, frame) = last.ok_or("no frame rendered")?;
+    let cache_bytes = 2 * mesh.positions.len();
+    let ram = frame.ram_bytes::<Rgb565, D>(usize::from(o.width)) + cache_bytes;
+    let s = |k: &str, v: &dyn ToString| (k.to_string(), v.to_string());
+    let FrameStats {
+        vertices,
+        corners,
+        polygons,
+        edges,
+        peak_active_polygons,
+        peak_active_edges,
+        spans,
+        ..
+    } = frame;
+    let stats = vec![
+        s("depth", &D::NAME),
+        s("faces", &draw.faces),
+        s("polygons", &polygons),
+        s("edges", &edges),
+        s("vertices", &vertices),
+        s("corners", &corners),
+        s("peak_active_polygons", &peak_active_polygons),
+        s("peak_active_edges", &peak_active_edges),
+        s("spans", &spans),
+        s("back_faces", &draw.back_faces),
+        s("outside", &draw.outside),
+        s("clipped", &draw.clipped),
+        s("off_screen", &draw.off_screen),
+        s("degenerate", &draw.degenerate),
+        s("non_finite", &draw.non_finite),
+        s("ram_bytes", &ram),
+    ];
+    let f = host.frame();
+    Ok(Output {
+        faces: f.faces.clone(),
+        colors: f.colors.clone(),
+        times_ms: times,
+        stats,
+    })
+}
+
+fn run_reference(o: &Options, mesh: &HostMesh) -> Output {
+    let view = ReferenceView {
+        width: usize::from(o.width),
+        height: usize::from(o.height),
+        yaw_deg: f64::from(o.yaw),
+        pitch_deg: f64::from(o.pitch),
+        cull_back: o.cull == Cull::Back,
+    };
+    let mut times = Vec::new();
+    let mut frame = None;
+    for k in 0..1 + o.frames.min(3) {
+        let start = Instant::now();
+        frame = Some(ReferenceFrame::render(mesh, &view));
+        if k >= 1 {
+            times.push(start.elapsed().as_secs_f64() * 1e3);
+        }
+    }
+    let frame = frame.unwrap_or_else(|| ReferenceFrame::render(mesh, &view));
+    let colors = frame
+        .ids
+        .iter()
+        .map(|&id| {
+            frame
+                .face_info(id)
+                .map_or(Rgb888::BLACK, |f| o.shade.color(&f))
+        })
+        .collect();
+    let drawn: std::collections::HashSet<u32> = frame
+        .ids
+        .iter()
+        .copied()
+        .filter(|&i| i != BACKGROUND)
+        .collect();
+    let stats = vec![
+        ("method".into(), "reference".into()),
+        ("visible_faces".into(), drawn.len().to_string()),
+    ];
+    Output {
+        faces: frame.ids,
+        colors,
+        times_ms: times,
+        stats,
+    }
+}
+
+fn write_outputs(o: &Options, out: &Output) -> Result<(), String> {
+    if let Some(path) = &o.out {
+        let size = Size::new(u32::from(o.width), u32::from(o.height));
+        let mut display = SimulatorDisplay::<Rgb888>::new(size);
+        for (y, row) in out.colors.chunks(usize::from(o.width)).enumerate() {
+            let area = Rectangle::new(Point::new(0, y as i32), Size::new(size.width, 1));
+            display
+                .fill_contiguous(&area, row.iter().copied())
+                .map_err(|e| format!("{e:?}"))?;
+        }
+        display
+            .to_rgb_output_image(&OutputSettings::default())
+            .save_png(path)
+            .map_err(|e| format!("{}: {e}", path.display()))?;
+    }
+    if let Some(path) = &o.ids {
+        let bytes: Vec<u8> = out.faces.iter().flat_map(|id| id.to_le_bytes()).collect();
+        std::fs::write(path, bytes).map_err(|e| format!("{}: {e}", path.display()))?;
+    }
+    Ok(())
+}
+
+fn run(args: &[String]) -> Result<(), String> {
+    let o = parse_args(args)?;
+    let bytes = std::fs::read(&o.model).map_err(|e| format!("{}: {e}", o.model.display()))?;
+    let mesh = HostMesh::from_obj(&bytes).map_err(|e| format!("{}: {e}", o.model.display()))?;
+    if mesh.positions.is_empty() {
+        return Err(format!("{}: no vertices", o.model.display()));
+    }
+    let mut out = match (o.reference, o.depth.as_str()) {
+        (true, _) => run_reference(&o, &mesh),
+        (false, "z16") => run_scanline::<Depth16>(&o, &mesh)?,
+        (false, _) => run_scanline::<Depth24>(&o, &mesh)?,
+    };
+    write_outputs(&o, &out)?;
+    if o.stats {
+        println!(
+            "method={}",
+            if o.reference { "reference" } else { "scanline" }
+        );
+        println!("width={}\nheight={}", o.width, o.height);
+        println!("frames={}", out.times_ms.len());
+        println!("frame_ms_median={:.3}", median(&mut out.times_ms));
+        for (k, v) in &out.stats {
+            println!("{k}={v}");
+        }
+        let covered = out.faces.iter().filter(|&&f| f != BACKGROUND).count();
+        println!("covered_pixels={covered}");
+        println!(
+            "zbuffer_framebuffer_bytes={}",
+            usize::from(o.width) * usize::from(o.height) * 4
+        );
+    }
+    Ok(())
+}
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    // The host renderer is built on the stack before it moves to the heap.
+    let worker = std::thread::Builder::new()
+        .stack_size(512 << 20)
+        .spawn(move || run(&args));
+    match worker.map(|w| w.join()) {
+        Ok(Ok(Ok(()))) => ExitCode::SUCCESS,
+        Ok(Ok(Err(message))) => {
+            eprintln!("render: {message}");
+            eprintln!(
+                "usage: render MODEL.obj [--size WxH] [--yaw DEG] [--pitch DEG] [--shade flat|lambert|depth|id] [--cull none|back] [--depth z16|z24] [--method scanline|reference] [--out FILE.png] [--ids FILE.bin] [--stats] [--frames N]"
+            );
+            ExitCode::from(2)
+        }
+        _ => {
+            eprintln!("render: internal failure");
+            ExitCode::FAILURE
+        }
+    }
+}

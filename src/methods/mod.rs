@@ -1,0 +1,14 @@
+//! Host-side comparison renderers and checks (feature `std`): a float64
+//! reference renderer, the accuracy comparison against it, and a mesh in
+//! growable storage for loading large OBJ files. None of this is needed by
+//! the core.
+
+mod accuracy;
+mod host_mesh;
+mod reference;
+mod scanline_host;
+
+pub use accuracy::{Comparison, compare};
+pub use host_mesh::HostMesh;
+pub use reference::{BACKGROUND, ReferenceFrame, ReferenceView};
+pub use scanline_host::{HostFrame, HostPixel, HostRenderer, HostScanline};

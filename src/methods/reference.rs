@@ -1,0 +1,329 @@
+//! A float64 reference renderer for the reference view: exact per-pixel
+//! visibility, to measure the scanline core against.
+//!
+//! Everything is in `f64` and computed directly from the view's definition
+//! (it shares no matrices with the `f32` pipeline):
+//! * positions are normalised (bounding-box centre `c`, largest distance
+//!   `r`: `p' = (p - c) / r`), rotated `p'' = Rx(pitch) · Ry(yaw) · p'`, and
+//!   seen from the eye at (0, 0, 3) looking down -Z, 45° vertical field of
+//!   view, near 0.1, far 10;
+//! * each face is clipped to the near and far planes in view space and
+//!   projected; pixel `(i, j)` is covered when its sample `(i + 0.5, j + 0.5)`
+//!   is inside the projected face by the even-odd rule (top-left on ties),
+//!   so concave faces are exact;
+//! * depth is the distance along the view axis at which the pixel's ray
+//!   meets the face's plane (Newell normal in view space); the nearest
+//!   face wins, and on an exact tie the lower face id.
+
+use std::vec;
+use std::vec::Vec;
+
+use crate::geometry::Vec3;
+use crate::mesh::Mesh;
+use crate::scene::FaceInfo;
+
+/// Face id of pixels no face covers.
+pub const BACKGROUND: u32 = u32::MAX;
+
+const NEAR: f64 = 0.1;
+const FAR: f64 = 10.0;
+const EYE_DISTANCE: f64 = 3.0;
+const FOV_Y_DEG: f64 = 45.0;
+
+/// The reference view of a mesh.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ReferenceView {
+    /// Frame width in pixels.
+    pub width: usize,
+    /// Frame height in pixels.
+    pub height: usize,
+    /// Rotation about +Y, degrees.
+    pub yaw_deg: f64,
+    /// Rotation about +X (after yaw), degrees.
+    pub pitch_deg: f64,
+    /// Leave out faces whose projection runs clockwise on screen.
+    pub cull_back: bool,
+}
+
+type V3 = [f64; 3];
+
+/// A face as the reference sees it.
+#[derive(Debug, Clone)]
+struct Face {
+    /// Projected corners after near/far clipping, in pixels.
+    screen: Vec<[f64; 2]>,
+    /// View-space plane: `normal · p = offset`.
+    normal: V3,
+    offset: f64,
+    /// Counter-clockwise as the viewer sees it.
+    front: bool,
+    /// Mean view-axis distance of the corners.
+    mean_depth: f64,
+}
+
+/// A frame rendered by the reference: face id and depth per pixel, and the
+/// faces' geometry for measuring other renderers against it.
+#[derive(Debug, Clone)]
+pub struct ReferenceFrame {
+    /// Frame width.
+    pub width: usize,
+    /// Frame height.
+    pub height: usize,
+    /// Visible face per pixel, row-major from the top; [`BACKGROUND`] where
+    /// none.
+    pub ids: Vec<u32>,
+    /// Depth (view-axis distance) of the visible face per pixel;
+    /// infinity for background.
+    pub depths: Vec<f64>,
+    faces: Vec<Option<Face>>,
+    tan_half: f64,
+    aspect: f64,
+}
+
+fn sub(a: V3, b: V3) -> V3 {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn dot(a: V3, b: V3) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+impl ReferenceFrame {
+    /// Renders `mesh` in the reference view.
+    pub fn render<M: Mesh + ?Sized>(mesh: &M, view: &ReferenceView) -> Self {
+        let positions = view_positions(mesh, view);
+        let mut frame = Self {
+            width: view.width,
+            height: view.height,
+            ids: vec![BACKGROUND; view.width * view.height],
+            depths: vec![f64::INFINITY; view.width * view.height],
+            faces: Vec::with_capacity(mesh.face_count()),
+            tan_half: (FOV_Y_DEG / 2.0).to_radians().tan(),
+            aspect: view.width as f64 / view.height as f64,
+        };
+        for f in 0..mesh.face_count() {
+            let corners: Vec<V3> = mesh
+                .face(f)
+                .iter()
+                .map(|&i| positions[usize::from(i)])
+                .collect();
+            let face = frame.face(&corners, view.cull_back);
+            if let Some(face) = &face {
+                frame.draw(f as u32, face);
+            }
+            frame.faces.push(face);
+        }
+        frame
+    }
+
+    /// Clips, projects and culls one face.
+    fn face(&self, corners: &[V3], cull_back: bool) -> Option<Face> {
+        let mut normal = [0.0; 3];
+        for (k, &p) in corners.iter().enumerate() {
+            let q = corners[(k + 1) % corners.len()];
+            normal[0] += (p[1] - q[1]) * (p[2] + q[2]);
+            normal[1] += (p[2] - q[2]) * (p[0] + q[0]);
+            normal[2] += (p[0] - q[0]) * (p[1] + q[1]);
+        }
+        let clipped = clip_depth(corners);
+        if clipped.len() < 3 {
+            return None;
+        }
+        let screen: Vec<[f64; 2]> = clipped.iter().map(|&p| self.project(p)).collect();
+        let area: f64 = (0..screen.len())
+            .map(|k| {
+                let (a, b) = (screen[k], screen[(k + 1) % screen.len()]);
+                a[0] * b[1] - b[0] * a[1]
+            })
+            .sum();
+        if area == 0.0 || (cull_back && area > 0.0) {
+            return None;
+        }
+        Some(Face {
+            screen,
+            normal,
+            offset: dot(normal, corners[0]),
+            front: area < 0.0,
+            mean_depth: -corners.iter().map(|p| p[2]).sum::<f64>() / corners.len() as f64,
+        })
+    }
+
+    fn project(&self, p: V3) -> [f64; 2] {
+        let d = -p[2];
+        let x = p[0] / (d * self.tan_half * self.aspect);
+        let y = p[1] / (d * self.tan_half);
+        [
+            (x + 1.0) * 0.5 * self.width as f64,
+            (1.0 - y) * 0.5 * self.height as f64,
+        ]
+    }
+
+    /// Direction of pixel `(i, j)`'s ray in view space, with z = -1.
+    fn ray(&self, i: usize, j: usize) -> V3 {
+        let x = (i as f64 + 0.5) / self.width as f64 * 2.0 - 1.0;
+        let y = 1.0 - (j as f64 + 0.5) / self.height as f64 * 2.0;
+        [x * self.tan_half * self.aspect, y * self.tan_half, -1.0]
+    }
+
+    fn draw(&mut self, id: u32, face: &Face) {
+        let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
+        for p in &face.screen {
+            (x0, x1, y0, y1) = (x0.min(p[0]), x1.max(p[0]), y0.min(p[1]), y1.max(p[1]));
+        }
+        let range = |lo: f64, hi: f64, n: usize| {
+            let first = (lo - 0.5).ceil().max(0.0) as usize;
+            let last = ((hi - 0.5).floor() + 1.0).clamp(0.0, n as f64) as usize;
+            first..last
+        };
+        for j in range(y0, y1, self.height) {
+            for i in range(x0, x1, self.width) {
+                if !inside(&face.screen, i as f64 + 0.5, j as f64 + 0.5) {
+                    continue;
+                }
+                let Some(depth) = plane_depth(face, self.ray(i, j)) else {
+                    continue;
+                };
+                let k = j * self.width + i;
+                if depth < self.depths[k] {
+                    self.depths[k] = depth;
+                    self.ids[k] = id;
+                }
+            }
+        }
+    }
+
+    /// Depth of face `id`'s plane along pixel `(i, j)`'s ray, whether or
+    /// not the face covers the pixel; `None` for culled or clipped-away
+    /// faces and rays parallel to the plane.
+    pub fn face_depth(&self, id: u32, i: usize, j: usize) -> Option<f64> {
+        let face = self.faces.get(id as usize)?.as_ref()?;
+        plane_depth(face, self.ray(i, j))
+    }
+
+    /// What a shader knows of face `id` (for colouring reference frames
+    /// like the scanline's); `None` for culled or clipped-away faces.
+    pub fn face_info(&self, id: u32) -> Option<FaceInfo> {
+        let face = self.faces.get(id as usize)?.as_ref()?;
+        let n = face.normal;
+        let len = dot(n, n).sqrt();
+        let unit = if len > 0.0 { n.map(|v| v / len) } else { n };
+        Some(FaceInfo {
+            face: id,
+            normal: Vec3::new(unit[0] as f32, unit[1] as f32, unit[2] as f32),
+            front: face.front,
+            view_depth: face.mean_depth as f32,
+        })
+    }
+
+    /// Distance in pixels from pixel `(i, j)`'s sample to the boundary of
+    /// face `id`'s projection; infinity for background, culled or
+    /// clipped-away faces.
+    pub fn boundary_distance(&self, id: u32, i: usize, j: usize) -> f64 {
+        let Some(Some(face)) = self.faces.get(id as usize) else {
+            return f64::INFINITY;
+        };
+        let s = [i as f64 + 0.5, j as f64 + 0.5];
+        (0..face.screen.len())
+            .map(|k| segment_distance(s, face.screen[k], face.screen[(k + 1) % face.screen.len()]))
+            .fold(f64::INFINITY, f64::min)
+    }
+}
+
+/// Normalised, rotated, view-space positions of every vertex.
+fn view_positions<M: Mesh + ?Sized>(mesh: &M, view: &ReferenceView) -> Vec<V3> {
+    let p = |i: usize| mesh.position(i).map(f64::from);
+    let n = mesh.vertex_count();
+    let (mut lo, mut hi) = ([f64::MAX; 3], [f64::MIN; 3]);
+    for i in 0..n {
+        let v = p(i);
+        for a in 0..3 {
+            lo[a] = lo[a].min(v[a]);
+            hi[a] = hi[a].max(v[a]);
+        }
+    }
+    let c = [
+        (lo[0] + hi[0]) / 2.0,
+        (lo[1] + hi[1]) / 2.0,
+        (lo[2] + hi[2]) / 2.0,
+    ];
+    let r = (0..n)
+        .map(|i| dot(sub(p(i), c), sub(p(i), c)).sqrt())
+        .fold(0.0f64, f64::max);
+    let r = if r > 0.0 { r } else { 1.0 };
+    let (sy, cy) = view.yaw_deg.to_radians().sin_cos();
+    let (sx, cx) = view.pitch_deg.to_radians().sin_cos();
+    (0..n)
+        .map(|i| {
+            let q = sub(p(i), c).map(|v| v / r);
+            // Ry(yaw), then Rx(pitch), then the eye at (0, 0, 3).
+            let y = [cy * q[0] + sy * q[2], q[1], -sy * q[0] + cy * q[2]];
+            let x = [y[0], cx * y[1] - sx * y[2], sx * y[1] + cx * y[2]];
+            [x[0], x[1], x[2] - EYE_DISTANCE]
+        })
+        .collect()
+}
+
+/// Sutherland-Hodgman against the near (`-z >= NEAR`) and far (`-z <= FAR`)
+/// planes in view space.
+fn clip_depth(corners: &[V3]) -> Vec<V3> {
+    let near = |p: V3| -p[2] - NEAR;
+    let far = |p: V3| FAR + p[2];
+    let mut poly = corners.to_vec();
+    for plane in [&near as &dyn Fn(V3) -> f64, &far] {
+        let mut out = Vec::with_capacity(poly.len() + 1);
+        for k in 0..poly.len() {
+            let (a, b) = (poly[(k + poly.len() - 1) % poly.len()], poly[k]);
+            let (da, db) = (plane(a), plane(b));
+            if (da >= 0.0) != (db >= 0.0) {
+                let t = da / (da - db);
+                out.push([
+                    a[0] + (b[0] - a[0]) * t,
+                    a[1] + (b[1] - a[1]) * t,
+                    a[2] + (b[2] - a[2]) * t,
+                ]);
+            }
+            if db >= 0.0 {
+                out.push(b);
+            }
+        }
+        poly = out;
+        if poly.is_empty() {
+            break;
+        }
+    }
+    poly
+}
+
+/// Even-odd test with the half-open rule: an edge counts when it spans
+/// `y` (top inclusive) and crosses at or left of `x`.
+fn inside(poly: &[[f64; 2]], x: f64, y: f64) -> bool {
+    let mut odd = false;
+    for k in 0..poly.len() {
+        let (a, b) = (poly[k], poly[(k + 1) % poly.len()]);
+        if (a[1] <= y) != (b[1] <= y) {
+            let cross = a[0] + (y - a[1]) * (b[0] - a[0]) / (b[1] - a[1]);
+            if cross <= x {
+                odd = !odd;
+            }
+        }
+    }
+    odd
+}
+
+fn plane_depth(face: &Face, ray: V3) -> Option<f64> {
+    let denom = dot(face.normal, ray);
+    let t = face.offset / denom;
+    (denom != 0.0 && t.is_finite() && t > 0.0).then_some(t)
+}
+
+fn segment_distance(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    let len2 = dx * dx + dy * dy;
+    let t = if len2 > 0.0 {
+        (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let (ex, ey) = (a[0] + dx * t - p[0], a[1] + dy * t - p[1]);
+    (ex * ex + ey * ey).sqrt()
+}

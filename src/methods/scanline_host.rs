@@ -1,0 +1,134 @@
+//! The scanline core with host-sized capacities, for the render and
+//! accuracy tools: faces up to 262,144 polygons and 65,534 table vertices,
+//! frames up to 4096 wide.
+
+use std::boxed::Box;
+use std::vec;
+use std::vec::Vec;
+
+use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
+
+use super::reference::BACKGROUND;
+use crate::depth::DepthFormat;
+use crate::error::{Error, RenderError};
+use crate::geometry::Mat4;
+use crate::mesh::Mesh;
+use crate::scanline::{FrameStats, Renderer};
+use crate::scene::{Camera, Cull, DrawStats, VertexCache, draw_mesh};
+use crate::shade::Shading;
+use crate::sink::FnSink;
+
+/// What the host renderer stores per pixel: the face and its colour.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct HostPixel {
+    /// Face id, or [`BACKGROUND`].
+    pub face: u32,
+    /// Shaded colour.
+    pub color: Rgb888,
+}
+
+/// The core with capacities for any mesh in `../shared/meshes`.
+pub type HostRenderer<D> =
+    Renderer<HostPixel, D, 4096, 65536, 262_144, 786_432, 32_768, 65_536, 32>;
+
+/// A finished frame: face id and colour per pixel, row-major from the top.
+#[derive(Debug, Clone, PartialEq)]
+pub struct HostFrame {
+    /// Width in pixels.
+    pub width: usize,
+    /// Height in pixels.
+    pub height: usize,
+    /// Face id per pixel ([`BACKGROUND`] for none).
+    pub faces: Vec<u32>,
+    /// Colour per pixel.
+    pub colors: Vec<Rgb888>,
+    /// Depth per pixel as stored by the format, widened to `u32`.
+    pub depths: Vec<u32>,
+}
+
+/// The scanline core on the heap with its vertex cache.
+pub struct HostScanline<D: DepthFormat> {
+    renderer: Box<HostRenderer<D>>,
+    cache: Box<VertexCache<65536>>,
+    frame: HostFrame,
+}
+
+impl<D: DepthFormat> HostScanline<D>
+where
+    D::Value: Into<u32>,
+{
+    /// A renderer for `width` x `height` frames. The renderer is about
+    /// 20 MB and is built on the stack before it moves to the heap: call
+    /// this on a thread with a large stack.
+    pub fn new(width: u16, height: u16) -> Result<Self, Error> {
+        let background = HostPixel {
+            face: BACKGROUND,
+            color: Rgb888::BLACK,
+        };
+        let renderer = Box::new(HostRenderer::<D>::with_size(width, height, background)?);
+        let (w, h) = (usize::from(width), usize::from(height));
+        Ok(Self {
+            renderer,
+            cache: Box::new(VertexCache::new()),
+            frame: HostFrame {
+                width: w,
+                height: h,
+                faces: vec![BACKGROUND; w * h],
+                colors: vec![Rgb888::BLACK; w * h],
+                depths: vec![0; w * h],
+            },
+        })
+    }
+
+    /// Draws one whole frame: clears the tables, runs the scene pipeline
+    /// and the scanline core, and copies each finished row into
+    /// [`Self::frame`].
+    pub fn render<M: Mesh + ?Sized>(
+        &mut self,
+        mesh: &M,
+        model: &Mat4,
+        camera: &Camera,
+        cull: Cull,
+        shading: &Shading,
+    ) -> Result<(DrawStats, FrameStats), Error> {
+        self.renderer.clear();
+        self.cache.clear();
+        let draw = draw_mesh(
+            &mut *self.renderer,
+            &mut *self.cache,
+            mesh,
+            model,
+            camera,
+            cull,
+            |f| HostPixel {
+                face: f.face,
+                color: shading.color(f),
+            },
+        )?;
+        let frame = &mut self.frame;
+        let w = frame.width;
+        let stats = self
+            .renderer
+            .render(&mut FnSink(
+                |y: u16, row: &[HostPixel], depth: &[D::Value]| {
+                    let start = usize::from(y) * w;
+                    for (k, (p, z)) in row.iter().zip(depth).enumerate() {
+                        frame.faces[start + k] = p.face;
+                        frame.colors[start + k] = p.color;
+                        frame.depths[start + k] = (*z).into();
+                    }
+                    Ok::<(), core::convert::Infallible>(())
+                },
+            ))
+            .map_err(|e| match e {
+                RenderError::Table(e) => e,
+                RenderError::Sink(never) => match never {},
+            })?;
+        Ok((draw, stats))
+    }
+
+    /// The last frame rendered.
+    pub fn frame(&self) -> &HostFrame {
+        &self.frame
+    }
+}
