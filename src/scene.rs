@@ -140,7 +140,7 @@ pub struct FaceInfo {
     pub normal: Vec3,
     /// Whether the face's front (counter-clockwise side) faces the viewer.
     pub front: bool,
-    /// Mean view-space distance of the face's corners along the view axis.
+    /// View-space distance of the face's centroid along the view axis.
     pub view_depth: f32,
 }
 
@@ -256,7 +256,7 @@ impl Frame {
     /// whether its front faces the viewer. Screen y points down, so a
     /// counter-clockwise face (seen by the viewer) has negative area.
     fn facing(&self, corners: &[ScreenVertex]) -> (bool, bool) {
-        let front = twice_area(corners.iter().copied()) < 0;
+        let front = twice_area(corners) < 0;
         (front || self.cull == Cull::None, front)
     }
 
@@ -273,37 +273,24 @@ impl Frame {
         x1 < 0 || y1 < 0 || x0 >= w || y0 >= h
     }
 
-    fn face_info<M: Mesh + ?Sized>(
-        &self,
-        mesh: &M,
-        face: usize,
-        front: bool,
-        depths: impl Iterator<Item = f32>,
-    ) -> FaceInfo {
+    /// Normal (Newell, model space, turned into view space) and the view
+    /// distance of the face's centroid.
+    fn face_info<M: Mesh + ?Sized>(&self, mesh: &M, face: usize, front: bool) -> FaceInfo {
         let corners = mesh.face(face);
-        let mut n = Vec3::default();
-        for (k, &a) in corners.iter().enumerate() {
-            let b = corners[(k + 1) % corners.len()];
-            let (p, q) = (
-                Vec3::from_array(mesh.position(usize::from(a))),
-                Vec3::from_array(mesh.position(usize::from(b))),
-            );
-            n = n + Vec3::new(
-                (p.y - q.y) * (p.z + q.z),
-                (p.z - q.z) * (p.x + q.x),
-                (p.x - q.x) * (p.y + q.y),
-            );
+        let position =
+            |k: usize| Vec3::from_array(mesh.position(usize::from(corners[k % corners.len()])));
+        let (mut n, mut sum) = (Vec3::default(), Vec3::default());
+        for k in 0..corners.len() {
+            let (p, q) = (position(k), position(k + 1));
+            n = n + p.cross(q);
+            sum = sum + p;
         }
-        let (mut sum, mut count) = (0.0f32, 0u32);
-        for d in depths {
-            sum += d;
-            count += 1;
-        }
+        let centroid = sum * (1.0 / corners.len().max(1) as f32);
         FaceInfo {
             face: face as u32,
             normal: self.model_view.transform_vector(n).normalized(),
             front,
-            view_depth: sum / count.max(1) as f32,
+            view_depth: -self.model_view.transform_point(centroid).z,
         }
     }
 }
@@ -401,10 +388,7 @@ fn draw_face<C: Copy, T: PolygonTables<C> + ?Sized, M: Mesh + ?Sized, const VM: 
         };
         ids.push(id).map_err(|_| Error::TooManyCorners)?;
     }
-    let depths = indices
-        .iter()
-        .filter_map(|&i| frame.clip_position(mesh, usize::from(i)).map(|p| p.w));
-    let color = shade(&frame.face_info(mesh, face, front, depths));
+    let color = shade(&frame.face_info(mesh, face, front));
     count(stats, tables.add_polygon(&ids, color)?);
     Ok(())
 }
@@ -509,7 +493,7 @@ fn draw_clipped<C: Copy, T: PolygonTables<C> + ?Sized, M: Mesh + ?Sized>(
         ids.push(tables.add_vertex(*v)?)
             .map_err(|_| Error::TooManyCorners)?;
     }
-    let color = shade(&frame.face_info(mesh, face, front, clipped.iter().map(|p| p.w)));
+    let color = shade(&frame.face_info(mesh, face, front));
     count(stats, tables.add_polygon(&ids, color)?);
     Ok(())
 }

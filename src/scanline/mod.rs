@@ -329,13 +329,15 @@ impl<
         {
             return Err(Error::VertexOutOfRange);
         }
-        let vertices = &self.vertices;
-        let corner_vertices = corners.iter().map(|&i| vertices[usize::from(i)]);
-        if plane::twice_area(corner_vertices.clone()) == 0 {
+        let corner_vertices: Vec<ScreenVertex, N> = corners
+            .iter()
+            .map(|&i| self.vertices[usize::from(i)])
+            .collect();
+        if plane::twice_area(&corner_vertices) == 0 {
             self.degenerate += 1;
             return Ok(Admission::Degenerate);
         }
-        let Some((first_row, end_row)) = self.visible_rows(corner_vertices) else {
+        let Some((first_row, end_row)) = self.visible_rows(corner_vertices.iter().copied()) else {
             self.off_screen += 1;
             return Ok(Admission::OffScreen);
         };
@@ -507,7 +509,8 @@ impl<
     fn activate_polygon(&mut self, position: usize, row: u16) -> Result<u32, Error> {
         let polygon = self.polygons[position];
         // Non-zero area was checked when the polygon entered the table.
-        let plane = Plane::new(self.polygon_corners(&polygon));
+        let corners: Vec<ScreenVertex, N> = self.polygon_corners(&polygon).collect();
+        let plane = Plane::new(&corners);
         let depth = match plane.map(|p| (p, p.gradients())) {
             Some((plane, Some((dz_dx, dz_dy)))) => SpanDepth::Stepped {
                 dz_dx,

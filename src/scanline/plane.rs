@@ -32,15 +32,29 @@ pub(crate) struct Plane {
 }
 
 /// Twice the signed area of the polygon projected on the screen (`c` of
-/// Newell's normal), in square sub-pixel steps.
-pub(crate) fn twice_area(corners: impl Iterator<Item = ScreenVertex> + Clone) -> i64 {
-    newell(corners).2
+/// Newell's normal), in square sub-pixel steps; positive when the corners
+/// run counter-clockwise with y pointing up.
+pub(crate) fn twice_area(corners: &[ScreenVertex]) -> i64 {
+    let Some(&origin) = corners.first() else {
+        return 0;
+    };
+    let mut area = 0i64;
+    let (x0, y0) = (i64::from(origin.x), i64::from(origin.y));
+    for pair in corners.windows(2).skip(1) {
+        // Fan from corner 0: the sum of the triangles' cross products.
+        let (ax, ay) = (i64::from(pair[0].x) - x0, i64::from(pair[0].y) - y0);
+        let (bx, by) = (i64::from(pair[1].x) - x0, i64::from(pair[1].y) - y0);
+        area += ax * by - bx * ay;
+    }
+    area
 }
 
-fn newell(corners: impl Iterator<Item = ScreenVertex> + Clone) -> (i64, i64, i64, ScreenVertex) {
-    let mut first = corners.clone();
-    let origin = first.next().unwrap_or_default();
-    let rel = move |v: ScreenVertex| {
+/// Newell's normal `(a, b, c)` of the corners, relative to corner 0 so
+/// every product stays small. For a triangle it is the cross product of
+/// two edges.
+fn newell(corners: &[ScreenVertex]) -> (i64, i64, i64, ScreenVertex) {
+    let origin = corners.first().copied().unwrap_or_default();
+    let rel = |v: ScreenVertex| {
         (
             i64::from(v.x) - i64::from(origin.x),
             i64::from(v.y) - i64::from(origin.y),
@@ -48,20 +62,21 @@ fn newell(corners: impl Iterator<Item = ScreenVertex> + Clone) -> (i64, i64, i64
         )
     };
     let (mut a, mut b, mut c) = (0i64, 0i64, 0i64);
-    let next = corners.clone().skip(1).chain(corners.clone().take(1));
-    for (p, q) in corners.zip(next) {
-        let (px, py, pz) = rel(p);
-        let (qx, qy, qz) = rel(q);
-        a += (py - qy) * (pz + qz);
-        b += (pz - qz) * (px + qx);
-        c += (px - qx) * (py + qy);
+    // With corner 0 at the origin, Newell's sum is the fan of cross
+    // products p_k × p_(k+1).
+    for pair in corners.windows(2).skip(1) {
+        let (px, py, pz) = rel(pair[0]);
+        let (qx, qy, qz) = rel(pair[1]);
+        a += py * qz - pz * qy;
+        b += pz * qx - px * qz;
+        c += px * qy - py * qx;
     }
     (a, b, c, origin)
 }
 
 impl Plane {
     /// The plane of a polygon; `None` when its projected area is zero.
-    pub fn new(corners: impl Iterator<Item = ScreenVertex> + Clone) -> Option<Self> {
+    pub fn new(corners: &[ScreenVertex]) -> Option<Self> {
         let (a, b, c, origin) = newell(corners);
         (c != 0).then_some(Self { a, b, c, origin })
     }
