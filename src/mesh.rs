@@ -142,6 +142,46 @@ impl Mesh for StaticMesh<'_> {
     }
 }
 
+/// Largest deviation from planar, relative to the face's size, for which a
+/// face is drawn as one polygon.
+pub const PLANARITY_TOLERANCE: f32 = 1e-3;
+
+/// Whether face `index` is planar: every corner lies within
+/// [`PLANARITY_TOLERANCE`] times the face's radius of the plane through its
+/// centroid with its Newell normal. Triangles always are.
+///
+/// A face that is not planar has no single plane, so the pipeline (and the
+/// float64 reference) draw it as the fan of triangles from its first corner,
+/// as OBJ loaders usually do. A planar face is drawn whole, so a concave
+/// planar face stays exact.
+pub fn is_planar<M: Mesh + ?Sized>(mesh: &M, index: usize) -> bool {
+    let corners = mesh.face(index);
+    if corners.len() <= 3 {
+        return true;
+    }
+    let p = |k: usize| mesh.position(usize::from(corners[k % corners.len()]));
+    let mut normal = [0.0f32; 3];
+    let mut centroid = [0.0f32; 3];
+    for k in 0..corners.len() {
+        let (a, b) = (p(k), p(k + 1));
+        normal[0] += (a[1] - b[1]) * (a[2] + b[2]);
+        normal[1] += (a[2] - b[2]) * (a[0] + b[0]);
+        normal[2] += (a[0] - b[0]) * (a[1] + b[1]);
+        for axis in 0..3 {
+            centroid[axis] += a[axis] / corners.len() as f32;
+        }
+    }
+    let length = libm::sqrtf(normal.iter().map(|v| v * v).sum());
+    let (mut radius, mut deviation) = (0.0f32, 0.0f32);
+    for k in 0..corners.len() {
+        let d = [0, 1, 2].map(|axis| p(k)[axis] - centroid[axis]);
+        radius = radius.max(libm::sqrtf(d.iter().map(|v| v * v).sum()));
+        deviation = deviation.max((d[0] * normal[0] + d[1] * normal[1] + d[2] * normal[2]).abs());
+    }
+    // deviation / length is the distance from the plane.
+    length > 0.0 && deviation <= PLANARITY_TOLERANCE * radius * length
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -166,5 +206,16 @@ mod tests {
         let m = StaticMesh::new(&P, &[0, 1, 2, 0, 2, 3], &[0, 3]).unwrap();
         assert_eq!((m.face(0), m.face(1)), (&[0, 1, 2][..], &[0, 2, 3][..]));
         assert_eq!(m.face_count(), 2);
+    }
+
+    #[test]
+    fn planarity() {
+        let flat = StaticMesh::new(&P, &[0, 1, 2, 3], &[0]).unwrap();
+        assert!(is_planar(&flat, 0));
+        const BENT: [[f32; 3]; 4] = [[0.0; 3], [1.0, 0.0, 0.0], [1.0, 1.0, 0.1], [0.0, 1.0, 0.0]];
+        let bent = StaticMesh::new(&BENT, &[0, 1, 2, 3], &[0]).unwrap();
+        assert!(!is_planar(&bent, 0));
+        let tri = StaticMesh::new(&BENT, &[0, 1, 2], &[0]).unwrap();
+        assert!(is_planar(&tri, 0));
     }
 }

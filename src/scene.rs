@@ -22,6 +22,10 @@
 //! 7. **Shading**: the face's colour comes from a closure over [`FaceInfo`],
 //!    for example [`Shading::color`](crate::shade::Shading::color).
 //!
+//! A face that is not planar ([`is_planar`]) has no single plane. It goes
+//! through these steps as the fan of triangles from its first corner, each
+//! with the face's id.
+//!
 //! Depth handed to the core is `z_ndc` mapped to `[0, 1]`. It is affine in
 //! screen space, so the core's plane stepping is exact.
 
@@ -31,7 +35,7 @@ use crate::clip::{self, FRUSTUM};
 use crate::error::Error;
 use crate::fixed::SUBPIXEL_STEPS;
 use crate::geometry::{Mat4, Vec3, Vec4, radians};
-use crate::mesh::Mesh;
+use crate::mesh::{Mesh, is_planar};
 use crate::scanline::{Admission, PolygonTables, twice_area};
 use crate::vertex::ScreenVertex;
 
@@ -163,6 +167,9 @@ pub struct DrawStats {
     pub degenerate: u32,
     /// Faces skipped for a non-finite corner.
     pub non_finite: u32,
+    /// Non-planar faces drawn as fans of triangles
+    /// ([`is_planar`](crate::mesh::is_planar)).
+    pub split: u32,
 }
 
 /// Where each mesh vertex went in the vertex table this frame: 2 bytes per
@@ -194,6 +201,16 @@ impl<const VM: usize> Default for VertexCache<VM> {
     fn default() -> Self {
         Self::new()
     }
+}
+
+/// A polygon to draw for a face: the face itself, or one triangle of its
+/// fan.
+#[derive(Debug, Clone, Copy)]
+struct FacePart<'a> {
+    /// Index of the face in the mesh.
+    face: usize,
+    /// Its corners, as mesh vertex indices.
+    corners: &'a [u16],
 }
 
 /// One corner of the face being processed.
@@ -275,8 +292,8 @@ impl Frame {
 
     /// Normal (Newell, model space, turned into view space) and the view
     /// distance of the face's centroid.
-    fn face_info<M: Mesh + ?Sized>(&self, mesh: &M, face: usize, front: bool) -> FaceInfo {
-        let corners = mesh.face(face);
+    fn face_info<M: Mesh + ?Sized>(&self, mesh: &M, part: FacePart<'_>, front: bool) -> FaceInfo {
+        let corners = part.corners;
         let position =
             |k: usize| Vec3::from_array(mesh.position(usize::from(corners[k % corners.len()])));
         let (mut n, mut sum) = (Vec3::default(), Vec3::default());
@@ -287,7 +304,7 @@ impl Frame {
         }
         let centroid = sum * (1.0 / corners.len().max(1) as f32);
         FaceInfo {
-            face: face as u32,
+            face: part.face as u32,
             normal: self.model_view.transform_vector(n).normalized(),
             front,
             view_depth: -self.model_view.transform_point(centroid).z,
@@ -326,7 +343,21 @@ where
         ..DrawStats::default()
     };
     for face in 0..mesh.face_count() {
-        draw_face(tables, cache, mesh, &frame, face, &mut stats, &mut shade)?;
+        let corners = mesh.face(face);
+        if corners.len() > 3 && !is_planar(mesh, face) {
+            stats.split += 1;
+            for k in 1..corners.len() - 1 {
+                let triangle = [corners[0], corners[k], corners[k + 1]];
+                let part = FacePart {
+                    face,
+                    corners: &triangle,
+                };
+                draw_face(tables, cache, mesh, &frame, part, &mut stats, &mut shade)?;
+            }
+        } else {
+            let part = FacePart { face, corners };
+            draw_face(tables, cache, mesh, &frame, part, &mut stats, &mut shade)?;
+        }
     }
     Ok(stats)
 }
@@ -336,11 +367,11 @@ fn draw_face<C: Copy, T: PolygonTables<C> + ?Sized, M: Mesh + ?Sized, const VM: 
     cache: &mut VertexCache<VM>,
     mesh: &M,
     frame: &Frame,
-    face: usize,
+    part: FacePart<'_>,
     stats: &mut DrawStats,
     shade: &mut impl FnMut(&FaceInfo) -> C,
 ) -> Result<(), Error> {
-    let indices = mesh.face(face);
+    let indices = part.corners;
     if indices.len() > MAX_FACE_CORNERS {
         return Err(Error::TooManyCorners);
     }
@@ -361,7 +392,7 @@ fn draw_face<C: Copy, T: PolygonTables<C> + ?Sized, M: Mesh + ?Sized, const VM: 
         corners.push(corner).map_err(|_| Error::TooManyCorners)?;
     }
     if corners.iter().any(|c| matches!(c, Corner::Clip)) {
-        return draw_clipped(tables, mesh, frame, face, stats, shade);
+        return draw_clipped(tables, mesh, frame, part, stats, shade);
     }
     let screen: Vec<ScreenVertex, MAX_FACE_CORNERS> = corners
         .iter()
@@ -388,7 +419,7 @@ fn draw_face<C: Copy, T: PolygonTables<C> + ?Sized, M: Mesh + ?Sized, const VM: 
         };
         ids.push(id).map_err(|_| Error::TooManyCorners)?;
     }
-    let color = shade(&frame.face_info(mesh, face, front));
+    let color = shade(&frame.face_info(mesh, part, front));
     count(stats, tables.add_polygon(&ids, color)?);
     Ok(())
 }
@@ -446,12 +477,12 @@ fn draw_clipped<C: Copy, T: PolygonTables<C> + ?Sized, M: Mesh + ?Sized>(
     tables: &mut T,
     mesh: &M,
     frame: &Frame,
-    face: usize,
+    part: FacePart<'_>,
     stats: &mut DrawStats,
     shade: &mut impl FnMut(&FaceInfo) -> C,
 ) -> Result<(), Error> {
     let mut points: Vec<Vec4, MAX_FACE_CORNERS> = Vec::new();
-    for &index in mesh.face(face) {
+    for &index in part.corners {
         let Some(p) = frame.clip_position(mesh, usize::from(index)) else {
             stats.non_finite += 1;
             return Ok(());
@@ -493,7 +524,7 @@ fn draw_clipped<C: Copy, T: PolygonTables<C> + ?Sized, M: Mesh + ?Sized>(
         ids.push(tables.add_vertex(*v)?)
             .map_err(|_| Error::TooManyCorners)?;
     }
-    let color = shade(&frame.face_info(mesh, face, front));
+    let color = shade(&frame.face_info(mesh, part, front));
     count(stats, tables.add_polygon(&ids, color)?);
     Ok(())
 }

@@ -13,13 +13,15 @@
 //!   so concave faces are exact;
 //! * depth is the distance along the view axis at which the pixel's ray
 //!   meets the face's plane (Newell normal in view space); the nearest
-//!   face wins, and on an exact tie the lower face id.
+//!   face wins, and on an exact tie the lower face id;
+//! * a face that is not planar ([`is_planar`], the same test the pipeline
+//!   uses) is the fan of triangles from its first corner.
 
 use std::vec;
 use std::vec::Vec;
 
 use crate::geometry::Vec3;
-use crate::mesh::Mesh;
+use crate::mesh::{Mesh, is_planar};
 use crate::scene::FaceInfo;
 
 /// Face id of pixels no face covers.
@@ -75,7 +77,9 @@ pub struct ReferenceFrame {
     /// Depth (view-axis distance) of the visible face per pixel;
     /// infinity for background.
     pub depths: Vec<f64>,
-    faces: Vec<Option<Face>>,
+    /// The drawn parts of each face: the face itself, or the triangles of
+    /// its fan when it is not planar; empty when culled or clipped away.
+    faces: Vec<Vec<Face>>,
     tan_half: f64,
     aspect: f64,
 }
@@ -107,11 +111,21 @@ impl ReferenceFrame {
                 .iter()
                 .map(|&i| positions[usize::from(i)])
                 .collect();
-            let face = frame.face(&corners, view.cull_back);
-            if let Some(face) = &face {
-                frame.draw(f as u32, face);
+            let outlines: Vec<Vec<V3>> = if corners.len() > 3 && !is_planar(mesh, f) {
+                (1..corners.len() - 1)
+                    .map(|k| vec![corners[0], corners[k], corners[k + 1]])
+                    .collect()
+            } else {
+                vec![corners]
+            };
+            let parts: Vec<Face> = outlines
+                .iter()
+                .filter_map(|p| frame.face(p, view.cull_back))
+                .collect();
+            for part in &parts {
+                frame.draw(f as u32, part);
             }
-            frame.faces.push(face);
+            frame.faces.push(parts);
         }
         frame
     }
@@ -192,18 +206,29 @@ impl ReferenceFrame {
         }
     }
 
-    /// Depth of face `id`'s plane along pixel `(i, j)`'s ray, whether or
-    /// not the face covers the pixel; `None` for culled or clipped-away
-    /// faces and rays parallel to the plane.
+    /// The drawn part of face `id` that covers pixel `(i, j)`'s sample, or
+    /// else the part whose boundary is nearest to it.
+    fn part(&self, id: u32, i: usize, j: usize) -> Option<&Face> {
+        let parts = self.faces.get(id as usize)?;
+        let (x, y) = (i as f64 + 0.5, j as f64 + 0.5);
+        parts.iter().find(|p| inside(&p.screen, x, y)).or_else(|| {
+            parts
+                .iter()
+                .min_by(|a, b| part_distance(a, x, y).total_cmp(&part_distance(b, x, y)))
+        })
+    }
+
+    /// Depth of face `id`'s plane (of the part at the pixel) along pixel
+    /// `(i, j)`'s ray, whether or not the face covers the pixel; `None` for
+    /// culled or clipped-away faces and rays parallel to the plane.
     pub fn face_depth(&self, id: u32, i: usize, j: usize) -> Option<f64> {
-        let face = self.faces.get(id as usize)?.as_ref()?;
-        plane_depth(face, self.ray(i, j))
+        plane_depth(self.part(id, i, j)?, self.ray(i, j))
     }
 
     /// What a shader knows of face `id` (for colouring reference frames
     /// like the scanline's); `None` for culled or clipped-away faces.
     pub fn face_info(&self, id: u32) -> Option<FaceInfo> {
-        let face = self.faces.get(id as usize)?.as_ref()?;
+        let face = self.faces.get(id as usize)?.first()?;
         let n = face.normal;
         let len = dot(n, n).sqrt();
         let unit = if len > 0.0 { n.map(|v| v / len) } else { n };
@@ -216,17 +241,29 @@ impl ReferenceFrame {
     }
 
     /// Distance in pixels from pixel `(i, j)`'s sample to the boundary of
-    /// face `id`'s projection; infinity for background, culled or
+    /// face `id`'s drawn parts; infinity for background, culled or
     /// clipped-away faces.
     pub fn boundary_distance(&self, id: u32, i: usize, j: usize) -> f64 {
-        let Some(Some(face)) = self.faces.get(id as usize) else {
-            return f64::INFINITY;
-        };
-        let s = [i as f64 + 0.5, j as f64 + 0.5];
-        (0..face.screen.len())
-            .map(|k| segment_distance(s, face.screen[k], face.screen[(k + 1) % face.screen.len()]))
-            .fold(f64::INFINITY, f64::min)
+        let (x, y) = (i as f64 + 0.5, j as f64 + 0.5);
+        self.faces.get(id as usize).map_or(f64::INFINITY, |parts| {
+            parts
+                .iter()
+                .map(|p| part_distance(p, x, y))
+                .fold(f64::INFINITY, f64::min)
+        })
     }
+}
+
+fn part_distance(face: &Face, x: f64, y: f64) -> f64 {
+    (0..face.screen.len())
+        .map(|k| {
+            segment_distance(
+                [x, y],
+                face.screen[k],
+                face.screen[(k + 1) % face.screen.len()],
+            )
+        })
+        .fold(f64::INFINITY, f64::min)
 }
 
 /// Normalised, rotated, view-space positions of every vertex.
