@@ -1,0 +1,137 @@
+//! The exact table sizes a mesh needs over a set of views, to set a
+//! firmware's capacities, and the RAM the renderer then takes.
+//!
+//! ```sh
+//! cargo run --release --example needs -- MODEL.obj [--size WxH] [--cull none|back] [--pitch DEG] [--views N]
+//! ```
+//!
+//! Views: `N` yaw angles evenly spread over a full turn (default 36) at the
+//! given pitch (default 20), in the reference view. For each count it
+//! prints the largest over all views, then a `Renderer` type with those
+//! capacities (Rgb565 colour, z16 and z24) and its RAM next to a full-frame
+//! 16-bit z-buffer plus Rgb565 framebuffer.
+
+use std::process::ExitCode;
+
+use embedded_graphics::pixelcolor::Rgb565;
+use zline::methods::{HostMesh, HostScanline};
+use zline::scene::{Camera, Cull, reference_model};
+use zline::shade::Shading;
+use zline::{Depth16, Depth24, FrameStats};
+
+fn run(args: &[String]) -> Result<(), String> {
+    let (mut path, mut size, mut cull, mut pitch, mut views) =
+        (None, (240u16, 240u16), Cull::None, 20.0f32, 36usize);
+    let mut it = args.iter();
+    while let Some(a) = it.next() {
+        let mut value = || it.next().ok_or_else(|| format!("{a} needs a value"));
+        match a.as_str() {
+            "--size" => {
+                let v = value()?;
+                let (w, h) = v.split_once('x').ok_or("--size needs WxH")?;
+                size = (
+                    w.parse().map_err(|_| "bad width")?,
+                    h.parse().map_err(|_| "bad height")?,
+                );
+            }
+            "--cull" => {
+                cull = if value()? == "back" {
+                    Cull::Back
+                } else {
+                    Cull::None
+                }
+            }
+            "--pitch" => pitch = value()?.parse().map_err(|_| "bad pitch")?,
+            "--views" => {
+                views = value()?
+                    .parse()
+                    .ok()
+                    .filter(|&n| n > 0)
+                    .ok_or("bad view count")?
+            }
+            s if path.is_none() && !s.starts_with("--") => path = Some(s.to_string()),
+            s => return Err(format!("unexpected argument {s}")),
+        }
+    }
+    let path = path.ok_or(
+        "usage: needs MODEL.obj [--size WxH] [--cull none|back] [--pitch DEG] [--views N]",
+    )?;
+    let bytes = std::fs::read(&path).map_err(|e| format!("{path}: {e}"))?;
+    let mesh = HostMesh::from_obj(&bytes).map_err(|e| format!("{path}: {e}"))?;
+    let mut host = HostScanline::<Depth16>::new(size.0, size.1).map_err(|e| e.to_string())?;
+    let camera = Camera::reference(size.0, size.1);
+    let mut peak = FrameStats::default();
+    let max_corners = mesh_max_corners(&mesh);
+    for k in 0..views {
+        let yaw = 360.0 * k as f32 / views as f32;
+        let model = reference_model(&mesh, yaw, pitch);
+        let (_, s) = host
+            .render(&mesh, &model, &camera, cull, &Shading::FaceId)
+            .map_err(|e| e.to_string())?;
+        peak.vertices = peak.vertices.max(s.vertices);
+        peak.polygons = peak.polygons.max(s.polygons);
+        peak.corners = peak.corners.max(s.corners);
+        peak.edges = peak.edges.max(s.edges);
+        peak.peak_active_polygons = peak.peak_active_polygons.max(s.peak_active_polygons);
+        peak.peak_active_edges = peak.peak_active_edges.max(s.peak_active_edges);
+    }
+    let w = usize::from(size.0);
+    println!("mesh={path}");
+    println!(
+        "views={views} pitch={pitch} size={}x{} cull={cull:?}",
+        size.0, size.1
+    );
+    println!("vertices={}", peak.vertices);
+    println!("polygons={}", peak.polygons);
+    println!("corners={}", peak.corners);
+    println!("edges={}", peak.edges);
+    println!("peak_active_polygons={}", peak.peak_active_polygons);
+    println!("peak_active_edges={}", peak.peak_active_edges);
+    println!("vertex_cache_bytes={}", 2 * mesh.positions.len());
+    let z16 = peak.ram_bytes::<Rgb565, Depth16>(w) + 2 * mesh.positions.len();
+    let z24 = peak.ram_bytes::<Rgb565, Depth24>(w) + 2 * mesh.positions.len();
+    println!("ram_bytes_z16={z16}");
+    println!("ram_bytes_z24={z24}");
+    println!(
+        "full_frame_z16_plus_rgb565_bytes={}",
+        w * usize::from(size.1) * 4
+    );
+    println!(
+        "type Zr = zline::Renderer<Rgb565, zline::Depth16, {w}, {}, {}, {}, {}, {}, {}>; // VertexCache<{}>",
+        peak.vertices,
+        peak.polygons,
+        peak.corners,
+        peak.peak_active_polygons,
+        peak.peak_active_edges,
+        max_corners,
+        mesh.positions.len()
+    );
+    Ok(())
+}
+
+/// Most corners of one face, plus the six clipping can add.
+fn mesh_max_corners(mesh: &HostMesh) -> usize {
+    use zline::mesh::Mesh;
+    (0..mesh.face_count())
+        .map(|f| mesh.face(f).len() + 6)
+        .max()
+        .unwrap_or(9)
+}
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let worker = std::thread::Builder::new()
+        .stack_size(512 << 20)
+        .spawn(move || run(&args));
+    match worker.map(|w| w.join()) {
+        Ok(Ok(Ok(()))) => ExitCode::SUCCESS,
+        Ok(Ok(Err(message))) => {
+            eprintln!("needs: {message}");
+            ExitCode::from(2)
+        }
+        _ => {
+            eprintln!("needs: internal failure");
+            ExitCode::FAILURE
+        }
+    }
+}
