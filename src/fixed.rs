@@ -95,6 +95,29 @@ pub(crate) fn div_round_i128(num: i128, den: i128) -> i128 {
     (2 * num + den).div_euclid(2 * den)
 }
 
+/// `num · 2^16 / den` rounded to the nearest integer (ties towards +inf),
+/// exactly, for any non-zero `den`.
+///
+/// When `num` fits `i64` and `|den| < 2^45` (every triangle inside the
+/// guard band) this takes two `i64` divisions, `q = num / den` and the
+/// fraction `round(r · 2^16 / den)` from the remainder `0 <= r < den`,
+/// instead of one `i128` division.
+pub(crate) fn div_round_q16(num: i128, den: i64) -> i128 {
+    const FAST_DEN: u64 = 1 << 45;
+    if let Ok(n) = i64::try_from(num)
+        && den.unsigned_abs() < FAST_DEN
+        && n != i64::MIN
+        && den != 0
+    {
+        let (n, d) = if den < 0 { (-n, -den) } else { (n, den) };
+        let (q, r) = (n.div_euclid(d), n.rem_euclid(d));
+        // r < 2^45, so 2·r·2^16 < 2^62.
+        let fraction = ((r << 17) + d).div_euclid(2 * d);
+        return (i128::from(q) << 16) + i128::from(fraction);
+    }
+    div_round_i128(num << 16, i128::from(den))
+}
+
 /// First pixel whose sample point lies at or to the right of sub-pixel
 /// coordinate `x` (`ceil((x - HALF_PIXEL) / SUBPIXEL_STEPS)`). The same
 /// function gives the first row at or below a sub-pixel y.
@@ -127,6 +150,23 @@ mod tests {
         assert_eq!(div_round_i128(-5, 2), -2);
         assert_eq!(div_round_i128(5, -2), -2);
         assert_eq!(div_round_i128(7, 3), 2);
+        // The i64 path agrees with the i128 one, ties and signs included.
+        for (num, den) in [
+            (5i128, 2i64),
+            (-5, 2),
+            (5, -2),
+            (7, 3),
+            (-(1 << 61), 12345),
+            (1 << 70, 3),
+            (3, -(1 << 50)),
+            (-1, 1 << 17),
+        ] {
+            assert_eq!(
+                div_round_q16(num, den),
+                div_round_i128(num << 16, i128::from(den)),
+                "{num} / {den}"
+            );
+        }
     }
 
     #[test]

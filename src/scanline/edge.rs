@@ -17,38 +17,37 @@
 use crate::fixed::{HALF_PIXEL, SUBPIXEL_STEPS, div_ceil_i64, first_sample_at_or_after};
 use crate::vertex::ScreenVertex;
 
-/// Edge-table entry, packed in 4 bytes: the polygon's position in the
-/// (sorted) polygon table and which of its corners the edge starts from.
-/// The edge runs from that corner to the next one around the polygon; its
-/// bucket, the first visible row, follows from its upper end.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// Edge-table entry, packed in 4 bytes: the row where edges of a polygon
+/// start below its first row (high 12 bits, the bucket), and the polygon's
+/// position in the sorted polygon table (low 20 bits). Sorting the entries
+/// as integers sorts them by bucket. One entry stands for every edge of the
+/// polygon that starts on that row.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
 pub(crate) struct EdgeEntry(u32);
 
-/// Bits of [`EdgeEntry`] holding the corner (polygons have at most 256).
-const CORNER_BITS: u32 = 8;
+/// Bits of [`EdgeEntry`] holding the polygon's position.
+const POSITION_BITS: u32 = 20;
 /// Largest polygon table the packing can address.
-pub(crate) const MAX_POLYGONS: usize = 1 << (32 - CORNER_BITS);
+pub(crate) const MAX_POLYGONS: usize = 1 << POSITION_BITS;
 
 impl EdgeEntry {
-    /// The edge leaving corner `corner` of the polygon at `position` in the
-    /// polygon table.
-    pub fn new(position: usize, corner: usize) -> Self {
-        debug_assert!(position < MAX_POLYGONS && corner < 1 << CORNER_BITS);
-        Self(((position as u32) << CORNER_BITS) | corner as u32)
+    /// Edges of the polygon at `position` starting on `row` (below 4096).
+    pub fn new(row: u16, position: usize) -> Self {
+        debug_assert!(position < MAX_POLYGONS && u32::from(row) < 1 << (32 - POSITION_BITS));
+        Self((u32::from(row) << POSITION_BITS) | position as u32)
+    }
+
+    /// The row the edges start on.
+    pub fn row(self) -> u16 {
+        (self.0 >> POSITION_BITS) as u16
     }
 
     /// Position of the polygon in the polygon table.
     pub fn position(self) -> usize {
-        (self.0 >> CORNER_BITS) as usize
+        (self.0 & ((1 << POSITION_BITS) - 1)) as usize
     }
 
-    /// Corner the edge starts from.
-    pub fn corner(self) -> usize {
-        (self.0 & ((1 << CORNER_BITS) - 1)) as usize
-    }
-
-    /// First visible row of an edge whose top vertex is at sub-pixel `top_y`:
-    /// the bucket it is sorted into.
+    /// First visible row of an edge whose top vertex is at sub-pixel `top_y`.
     pub fn first_row(top_y: i32) -> u16 {
         first_sample_at_or_after(top_y).clamp(0, i32::from(u16::MAX)) as u16
     }

@@ -112,8 +112,6 @@ impl FrameStats {
 /// Polygon-table entry.
 #[derive(Debug, Clone, Copy)]
 struct PolygonEntry<C> {
-    /// Id: order of insertion. Equal depths resolve to the smaller id.
-    id: u32,
     /// First corner in the corner list.
     corner_start: u32,
     /// Number of corners.
@@ -232,7 +230,7 @@ impl<
             assert!(W > 0 && W <= MAX_FRAME_SIZE, "W must be 1..=4096");
             assert!(V <= 1 << 16, "V must be at most 65536");
             assert!(N >= 3 && N <= 256, "N must be 3..=256");
-            assert!(P <= edge::MAX_POLYGONS, "P must be at most 2^24");
+            assert!(P <= edge::MAX_POLYGONS, "P must be at most 2^20");
         }
         if width == 0 || usize::from(width) > W {
             return Err(Error::BadFrameSize);
@@ -348,7 +346,6 @@ impl<
             return Err(Error::EdgeTableFull);
         }
         let entry = PolygonEntry {
-            id: self.next_id,
             corner_start: self.corners.len() as u32,
             corner_count: corners.len() as u16,
             first_row,
@@ -363,7 +360,7 @@ impl<
             .push(entry)
             .map_err(|_| Error::PolygonTableFull)?;
         self.next_id += 1;
-        Ok(Admission::Queued(entry.id))
+        Ok(Admission::Queued(self.next_id - 1))
     }
 
     /// Adds the polygon's corners to the vertex table and the polygon to
@@ -418,29 +415,28 @@ impl<
     }
 
     /// Sorts the polygon table by first row and builds the edge table:
-    /// the edges that start below their polygon's first row (the others
-    /// enter the active edge table with their polygon), sorted by first row.
+    /// for each polygon, the rows below its first row where some of its
+    /// edges start (the others enter the active edge table with their
+    /// polygon), sorted by row.
     fn build_edge_table(&mut self) -> Result<(), Error> {
-        self.polygons.sort_unstable_by_key(|p| (p.first_row, p.id));
+        self.polygons
+            .sort_unstable_by_key(|p| (p.first_row, p.corner_start));
         self.edges.clear();
         let height = i32::from(self.height);
         for (position, polygon) in self.polygons.iter().enumerate() {
             for corner in 0..usize::from(polygon.corner_count) {
-                let entry = EdgeEntry::new(position, corner);
-                let (top, bottom) = edge_ends(&self.polygons, &self.corners, &self.vertices, entry);
+                let (top, bottom) = edge_ends(polygon, &self.corners, &self.vertices, corner);
                 let Some((_, _, first, end)) = edge_rows(top, bottom) else {
                     continue;
                 };
                 let first = first.max(0);
                 if first < end.min(height) && first > i32::from(polygon.first_row) {
+                    let entry = EdgeEntry::new(first as u16, position);
                     self.edges.push(entry).map_err(|_| Error::EdgeTableFull)?;
                 }
             }
         }
-        let (polygons, corners, vertices) = (&self.polygons, &self.corners, &self.vertices);
-        self.edges.sort_unstable_by_key(|&e| {
-            EdgeEntry::first_row(edge_ends(polygons, corners, vertices, e).0.y)
-        });
+        self.edges.sort_unstable();
         Ok(())
     }
 
@@ -475,19 +471,19 @@ impl<
                 stats.edges += self.activate_polygon(next_polygon, row)?;
                 next_polygon += 1;
             }
-            while let Some(&entry) = self.edges.get(next_edge) {
-                let (top, bottom) = edge_ends(&self.polygons, &self.corners, &self.vertices, entry);
-                if EdgeEntry::first_row(top.y) != row {
-                    break;
+            let mut previous = None;
+            while let Some(&entry) = self.edges.get(next_edge).filter(|e| e.row() == row) {
+                next_edge += 1;
+                if previous == Some(entry) {
+                    continue; // Several edges of one polygon start on this row.
                 }
+                previous = Some(entry);
                 let position = entry.position() as u32;
                 let slot = self
                     .active_polygons
                     .binary_search_by_key(&position, |a| a.position)
                     .map_err(|_| Error::ActivePolygonsFull { row })?;
-                self.activate_edge(slot, top, bottom, row)?;
-                stats.edges += 1;
-                next_edge += 1;
+                stats.edges += self.activate_edges(slot, row)?;
             }
             stats.peak_active_polygons = stats
                 .peak_active_polygons
@@ -533,15 +529,18 @@ impl<
                 depth,
             })
             .map_err(|_| Error::ActivePolygonsFull { row })?;
-        let slot = self.active_polygons.len() - 1;
+        self.activate_edges(self.active_polygons.len() - 1, row)
+    }
+
+    /// Starts every edge of the active polygon at `slot` whose first
+    /// visible row is `row`; returns how many.
+    fn activate_edges(&mut self, slot: usize, row: u16) -> Result<u32, Error> {
+        let polygon = self.polygons[self.active_polygons[slot].position as usize];
         let mut entered = 0;
         for corner in 0..usize::from(polygon.corner_count) {
-            let entry = EdgeEntry::new(position, corner);
-            let (top, bottom) = edge_ends(&self.polygons, &self.corners, &self.vertices, entry);
-            if top.y != bottom.y
-                && EdgeEntry::first_row(top.y) == row
-                && first_sample_at_or_after(bottom.y) > i32::from(row)
-            {
+            let (top, bottom) = edge_ends(&polygon, &self.corners, &self.vertices, corner);
+            let starts_here = top.y != bottom.y && EdgeEntry::first_row(top.y) == row;
+            if starts_here && first_sample_at_or_after(bottom.y) > i32::from(row) {
                 self.activate_edge(slot, top, bottom, row)?;
                 entered += 1;
             }
@@ -678,18 +677,17 @@ impl<
     }
 }
 
-/// Upper and lower end of an edge-table entry.
+/// Upper and lower end of the edge leaving corner `corner` of `polygon`.
 fn edge_ends<C>(
-    polygons: &[PolygonEntry<C>],
+    polygon: &PolygonEntry<C>,
     corners: &[u16],
     vertices: &[ScreenVertex],
-    entry: EdgeEntry,
+    corner: usize,
 ) -> (ScreenVertex, ScreenVertex) {
-    let polygon = &polygons[entry.position()];
     let start = polygon.corner_start as usize;
     let count = usize::from(polygon.corner_count);
-    let a = vertices[usize::from(corners[start + entry.corner()])];
-    let b = vertices[usize::from(corners[start + (entry.corner() + 1) % count])];
+    let a = vertices[usize::from(corners[start + corner])];
+    let b = vertices[usize::from(corners[start + (corner + 1) % count])];
     if a.y < b.y { (a, b) } else { (b, a) }
 }
 

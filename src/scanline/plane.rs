@@ -14,7 +14,7 @@
 //! `2^-17 · (1 + rows stepped + pixels stepped)` input steps plus the
 //! format's final rounding (see [`crate::depth`]).
 
-use crate::fixed::{HALF_PIXEL, PLANE_FRAC_BITS, SUBPIXEL_BITS, SUBPIXEL_STEPS, div_round_i128};
+use crate::fixed::{HALF_PIXEL, PLANE_FRAC_BITS, SUBPIXEL_BITS, SUBPIXEL_STEPS, div_round_q16};
 use crate::vertex::ScreenVertex;
 
 /// A gradient of this magnitude (plane units per pixel) or more changes
@@ -86,8 +86,7 @@ impl Plane {
     pub fn value_at(&self, x: i32, y: i32) -> i64 {
         let dx = i128::from(x) - i128::from(self.origin.x);
         let dy = i128::from(y) - i128::from(self.origin.y);
-        let num = -(i128::from(self.a) * dx + i128::from(self.b) * dy) << PLANE_FRAC_BITS;
-        let offset = div_round_i128(num, i128::from(self.c));
+        let offset = div_round_q16(-(i128::from(self.a) * dx + i128::from(self.b) * dy), self.c);
         let value = (i128::from(self.origin.z) << PLANE_FRAC_BITS) + offset;
         value.clamp(i128::from(i64::MIN), i128::from(i64::MAX)) as i64
     }
@@ -102,8 +101,7 @@ impl Plane {
 
     /// `-coef / c` per pixel in plane units, rounded; `None` when steep.
     fn gradient(&self, coef: i64) -> Option<i64> {
-        let num = -i128::from(coef) << (SUBPIXEL_BITS + PLANE_FRAC_BITS);
-        let g = div_round_i128(num, i128::from(self.c));
+        let g = div_round_q16(-i128::from(coef) << SUBPIXEL_BITS, self.c);
         (g.abs() < i128::from(STEEP_GRADIENT)).then_some(g as i64)
     }
 
