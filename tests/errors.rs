@@ -77,16 +77,40 @@ fn active_tables_full_stop_the_frame_at_the_row() {
     );
     assert_eq!(rows, [0, 1, 2, 3], "rows above the overflow were delivered");
 
-    // Enough polygons but only 4 active edges (each triangle brings 2).
-    let mut r: Renderer<u32, Depth16, 16, 16, 4, 16, 4, 4, 4> = Renderer::new(16, 0).unwrap();
+    // Triangles keep their two active edges inline: AE = 0 is enough.
+    let mut r: Renderer<u32, Depth16, 16, 16, 4, 16, 4, 0, 8> = Renderer::new(16, 0).unwrap();
     r.push_polygon_vertices(&tri(0.0, 4.0), 1).unwrap();
     r.push_polygon_vertices(&tri(5.0, 4.0), 2).unwrap();
-    r.push_polygon_vertices(&tri(10.0, 4.0), 3).unwrap();
+    let stats = r
+        .render(&mut FnSink(|_: u16, _: &[u32], _: &[u16]| Ok::<(), ()>(())))
+        .unwrap();
+    assert_eq!((stats.peak_active_edges, stats.peak_pooled_edges), (4, 0));
+
+    // A U shape crosses rows 1..5 four times: two edges go to the pool,
+    // which holds one.
+    let u = [
+        vtx(1.0, 1.0, 0.5),
+        vtx(5.0, 1.0, 0.5),
+        vtx(5.0, 6.0, 0.5),
+        vtx(9.0, 6.0, 0.5),
+        vtx(9.0, 1.0, 0.5),
+        vtx(13.0, 1.0, 0.5),
+        vtx(13.0, 9.0, 0.5),
+        vtx(1.0, 9.0, 0.5),
+    ];
+    let mut r: Renderer<u32, Depth16, 16, 16, 4, 16, 4, 1, 8> = Renderer::new(16, 0).unwrap();
+    r.push_polygon_vertices(&u, 1).unwrap();
     let result = r.render(&mut FnSink(|_: u16, _: &[u32], _: &[u16]| Ok::<(), ()>(())));
     assert_eq!(
         result,
-        Err(RenderError::Table(Error::ActiveEdgesFull { row: 4 }))
+        Err(RenderError::Table(Error::ActiveEdgesFull { row: 1 }))
     );
+    let mut r: Renderer<u32, Depth16, 16, 16, 4, 16, 4, 2, 8> = Renderer::new(16, 0).unwrap();
+    r.push_polygon_vertices(&u, 1).unwrap();
+    let stats = r
+        .render(&mut FnSink(|_: u16, _: &[u32], _: &[u16]| Ok::<(), ()>(())))
+        .unwrap();
+    assert_eq!((stats.peak_active_edges, stats.peak_pooled_edges), (4, 2));
 }
 
 #[test]

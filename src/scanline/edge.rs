@@ -86,6 +86,17 @@ pub(crate) struct ActiveEdge {
 }
 
 impl ActiveEdge {
+    /// A placeholder for unused slots.
+    pub const EMPTY: Self = Self {
+        next: u32::MAX,
+        x: 0,
+        end_row: 0,
+        remainder: 0,
+        step: 0,
+        step_remainder: 0,
+        den: 1,
+    };
+
     /// Starts stepping an edge at `row`, its first visible row, until
     /// `end_row`, one past its last; `next` links it into its polygon's
     /// list.

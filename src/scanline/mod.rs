@@ -27,6 +27,7 @@
 //!
 //! Only one row of depth and one of colour exist: nothing is frame-sized.
 
+mod active;
 mod edge;
 mod plane;
 
@@ -37,6 +38,7 @@ use crate::error::{Error, RenderError};
 use crate::fixed::{MAX_FRAME_SIZE, first_sample_at_or_after};
 use crate::sink::RowSink;
 use crate::vertex::ScreenVertex;
+use active::{ActivePolygon, Crossings, EdgePool, SpanDepth};
 use edge::{ActiveEdge, EdgeEntry, edge_rows};
 use plane::Plane;
 pub(crate) use plane::twice_area;
@@ -83,6 +85,10 @@ pub struct FrameStats {
     pub peak_active_polygons: u32,
     /// Largest number of edges active on one row.
     pub peak_active_edges: u32,
+    /// Largest number of those held in the edge pool, beyond each
+    /// polygon's inline pair: what the capacity `AE` must hold (zero for
+    /// triangles and other convex polygons).
+    pub peak_pooled_edges: u32,
     /// Spans filled.
     pub spans: u32,
     /// Polygons offered but left out as off-screen.
@@ -105,7 +111,7 @@ impl FrameStats {
             + n(self.polygons) * size_of::<PolygonEntry<C>>()
             + n(self.corners) * (size_of::<u16>() + size_of::<EdgeEntry>())
             + n(self.peak_active_polygons) * size_of::<ActivePolygon<C>>()
-            + n(self.peak_active_edges) * size_of::<ActiveEdge>()
+            + n(self.peak_pooled_edges) * size_of::<ActiveEdge>()
     }
 }
 
@@ -122,36 +128,6 @@ struct PolygonEntry<C> {
     end_row: u16,
     color: C,
 }
-
-/// How an active polygon produces depth along a span.
-#[derive(Debug, Clone, Copy)]
-enum SpanDepth {
-    /// Gradients in plane units per pixel and the plane value at the sample
-    /// point of column 0 on the current row (it may lie outside the polygon;
-    /// only its sum with `dz_dx · x` at a covered pixel is stored).
-    Stepped {
-        dz_dx: i64,
-        dz_dy: i64,
-        row_value: i64,
-    },
-    /// Edge-on polygon: exact evaluation at each pixel.
-    Exact(Plane),
-}
-
-/// Active-polygon-table entry.
-#[derive(Debug, Clone, Copy)]
-struct ActivePolygon<C> {
-    /// Position in the sorted polygon table: the APT stays sorted by it.
-    position: u32,
-    end_row: u16,
-    /// Head of this polygon's list of active edges ([`NO_EDGE`] if none).
-    first_edge: u32,
-    color: C,
-    depth: SpanDepth,
-}
-
-/// End of an active-edge list.
-const NO_EDGE: u32 = u32::MAX;
 
 /// A scanline z-buffer renderer with fixed capacities.
 ///
@@ -192,12 +168,12 @@ pub struct Renderer<
     corners: Vec<u16, E>,
     edges: Vec<EdgeEntry, E>,
     active_polygons: Vec<ActivePolygon<C>, AP>,
-    /// Pool of active edges; each active polygon links its own.
-    active_edges: Vec<ActiveEdge, AE>,
-    /// Head of the list of free pool entries.
-    free_edge: u32,
-    /// Edges currently active.
-    live_edges: u32,
+    /// Active edges beyond each active polygon's pair.
+    edge_pool: EdgePool<AE>,
+    /// APT entries whose polygon has finished, awaiting compaction.
+    dead_polygons: usize,
+    /// The row being scanned (compaction keeps entries live on it).
+    current_row: u16,
     depth_row: [D::Value; W],
     color_row: [C; W],
     next_id: u32,
@@ -247,9 +223,9 @@ impl<
             corners: Vec::new(),
             edges: Vec::new(),
             active_polygons: Vec::new(),
-            active_edges: Vec::new(),
-            free_edge: NO_EDGE,
-            live_edges: 0,
+            edge_pool: EdgePool::new(),
+            dead_polygons: 0,
+            current_row: 0,
             depth_row: [D::CLEAR; W],
             color_row: [background; W],
             next_id: 0,
@@ -404,14 +380,11 @@ impl<
         (!columns.is_empty() && !rows.is_empty()).then_some((rows.start as u16, rows.end as u16))
     }
 
-    fn polygon_corners(
-        &self,
+    fn polygon_corners<'a>(
+        &'a self,
         polygon: &PolygonEntry<C>,
-    ) -> impl Iterator<Item = ScreenVertex> + Clone + '_ {
-        let start = polygon.corner_start as usize;
-        self.corners[start..start + usize::from(polygon.corner_count)]
-            .iter()
-            .map(|&i| self.vertices[usize::from(i)])
+    ) -> impl Iterator<Item = ScreenVertex> + Clone + 'a {
+        entry_corners(polygon, &self.corners, &self.vertices)
     }
 
     /// Sorts the polygon table by first row and builds the edge table:
@@ -419,8 +392,7 @@ impl<
     /// edges start (the others enter the active edge table with their
     /// polygon), sorted by row.
     fn build_edge_table(&mut self) -> Result<(), Error> {
-        self.polygons
-            .sort_unstable_by_key(|p| (p.first_row, p.corner_start));
+        self.sort_polygon_table()?;
         self.edges.clear();
         let height = i32::from(self.height);
         for (position, polygon) in self.polygons.iter().enumerate() {
@@ -440,6 +412,39 @@ impl<
         Ok(())
     }
 
+    /// Sorts the polygon table by (first row, insertion order). The keys
+    /// `(row << 20) | index` are sorted as integers in the edge table's
+    /// storage (not built yet; it holds at least one entry per polygon,
+    /// since each has three corners or more), then the permutation is
+    /// applied in place, cycle by cycle.
+    fn sort_polygon_table(&mut self) -> Result<(), Error> {
+        self.edges.clear();
+        for (index, polygon) in self.polygons.iter().enumerate() {
+            let key = EdgeEntry::new(polygon.first_row, index);
+            self.edges.push(key).map_err(|_| Error::EdgeTableFull)?;
+        }
+        self.edges.sort_unstable();
+        // Position k must receive the polygon at `edges[k].position()`.
+        for start in 0..self.polygons.len() {
+            if self.edges[start].position() == start {
+                continue;
+            }
+            let saved = self.polygons[start];
+            let mut at = start;
+            loop {
+                let from = self.edges[at].position();
+                self.edges[at] = EdgeEntry::new(0, at);
+                if from == start {
+                    self.polygons[at] = saved;
+                    break;
+                }
+                self.polygons[at] = self.polygons[from];
+                at = from;
+            }
+        }
+        Ok(())
+    }
+
     /// Scans the frame top to bottom and sends every row to `sink`, one
     /// call per row. The tables are kept, so the same scene can be
     /// rendered again; call [`Self::clear`] before building the next one.
@@ -449,9 +454,9 @@ impl<
     {
         self.build_edge_table()?;
         self.active_polygons.clear();
-        self.active_edges.clear();
-        self.free_edge = NO_EDGE;
-        self.live_edges = 0;
+        self.edge_pool.clear();
+        self.dead_polygons = 0;
+        self.current_row = 0;
         let mut stats = FrameStats {
             vertices: self.vertices.len() as u32,
             corners: self.corners.len() as u32,
@@ -485,10 +490,10 @@ impl<
                     .map_err(|_| Error::ActivePolygonsFull { row })?;
                 stats.edges += self.activate_edges(slot, row)?;
             }
-            stats.peak_active_polygons = stats
-                .peak_active_polygons
-                .max(self.active_polygons.len() as u32);
-            stats.peak_active_edges = stats.peak_active_edges.max(self.live_edges);
+            let live_polygons = (self.active_polygons.len() - self.dead_polygons) as u32;
+            stats.peak_active_polygons = stats.peak_active_polygons.max(live_polygons);
+            stats.peak_active_edges = stats.peak_active_edges.max(self.edge_pool.live);
+            stats.peak_pooled_edges = stats.peak_pooled_edges.max(self.edge_pool.pooled);
 
             stats.spans += self.scan_row(row);
             let width = usize::from(self.width);
@@ -504,76 +509,61 @@ impl<
     /// row; returns how many edges entered.
     fn activate_polygon(&mut self, position: usize, row: u16) -> Result<u32, Error> {
         let polygon = self.polygons[position];
-        // Non-zero area was checked when the polygon entered the table.
-        let corners: Vec<ScreenVertex, N> = self.polygon_corners(&polygon).collect();
-        let plane = Plane::new(&corners);
-        let depth = match plane.map(|p| (p, p.gradients())) {
+        let depth = match self.plane(&polygon).map(|p| (p, p.gradients())) {
             Some((plane, Some((dz_dx, dz_dy)))) => SpanDepth::Stepped {
                 dz_dx,
                 dz_dy,
                 row_value: plane.value_at_pixel(0, i32::from(row)),
             },
-            Some((plane, None)) => SpanDepth::Exact(plane),
-            None => SpanDepth::Stepped {
-                dz_dx: 0,
-                dz_dy: 0,
-                row_value: i64::MAX,
-            },
+            // Non-zero area was checked when the polygon entered the table.
+            Some((_, None)) | None => SpanDepth::Exact,
         };
+        if self.active_polygons.is_full() {
+            self.compact_active_polygons();
+        }
+        let entry = ActivePolygon::new(position as u32, polygon.end_row, polygon.color, depth);
         self.active_polygons
-            .push(ActivePolygon {
-                position: position as u32,
-                end_row: polygon.end_row,
-                first_edge: NO_EDGE,
-                color: polygon.color,
-                depth,
-            })
+            .push(entry)
             .map_err(|_| Error::ActivePolygonsFull { row })?;
         self.activate_edges(self.active_polygons.len() - 1, row)
+    }
+
+    /// The exact plane of a polygon-table entry; `None` for zero area.
+    fn plane(&self, polygon: &PolygonEntry<C>) -> Option<Plane> {
+        let corners: Vec<ScreenVertex, N> = self.polygon_corners(polygon).collect();
+        Plane::new(&corners)
     }
 
     /// Starts every edge of the active polygon at `slot` whose first
     /// visible row is `row`; returns how many.
     fn activate_edges(&mut self, slot: usize, row: u16) -> Result<u32, Error> {
-        let polygon = self.polygons[self.active_polygons[slot].position as usize];
+        let polygon = &self.polygons[self.active_polygons[slot].position as usize];
+        let corners: Vec<ScreenVertex, N> = self.polygon_corners(polygon).collect();
+        let end_limit = i32::from(self.height);
         let mut entered = 0;
-        for corner in 0..usize::from(polygon.corner_count) {
-            let (top, bottom) = edge_ends(&polygon, &self.corners, &self.vertices, corner);
+        let next = corners.iter().skip(1).chain(corners.first());
+        for (&a, &b) in corners.iter().zip(next) {
+            let (top, bottom) = if a.y < b.y { (a, b) } else { (b, a) };
             let starts_here = top.y != bottom.y && EdgeEntry::first_row(top.y) == row;
-            if starts_here && first_sample_at_or_after(bottom.y) > i32::from(row) {
-                self.activate_edge(slot, top, bottom, row)?;
+            let end_row = first_sample_at_or_after(bottom.y).min(end_limit);
+            if starts_here && end_row > i32::from(row) {
+                let edge = ActiveEdge::start(top, bottom, row, end_row as u16, active::NO_EDGE);
+                self.active_polygons[slot]
+                    .add_edge(edge, &mut self.edge_pool)
+                    .map_err(|()| Error::ActiveEdgesFull { row })?;
                 entered += 1;
             }
         }
         Ok(entered)
     }
 
-    /// Starts an edge at `row` and links it to the active polygon at `slot`.
-    fn activate_edge(
-        &mut self,
-        slot: usize,
-        top: ScreenVertex,
-        bottom: ScreenVertex,
-        row: u16,
-    ) -> Result<(), Error> {
-        let end_row = first_sample_at_or_after(bottom.y).min(i32::from(self.height)) as u16;
-        let polygon = &mut self.active_polygons[slot];
-        let edge = ActiveEdge::start(top, bottom, row, end_row, polygon.first_edge);
-        let index = if self.free_edge != NO_EDGE {
-            let index = self.free_edge;
-            self.free_edge = self.active_edges[index as usize].next;
-            self.active_edges[index as usize] = edge;
-            index
-        } else {
-            let index = self.active_edges.len() as u32;
-            self.active_edges
-                .push(edge)
-                .map_err(|_| Error::ActiveEdgesFull { row })?;
-            index
-        };
-        polygon.first_edge = index;
-        self.live_edges += 1;
-        Ok(())
+    /// Drops the APT entries of finished polygons, keeping the order.
+    fn compact_active_polygons(&mut self) {
+        if self.dead_polygons > 0 {
+            let row = self.current_row;
+            self.active_polygons.retain(|p| p.end_row > row);
+            self.dead_polygons = 0;
+        }
     }
 
     /// Resolves visibility on one row into the row buffers; returns the
@@ -583,29 +573,47 @@ impl<
         self.depth_row[..width].fill(D::CLEAR);
         self.color_row[..width].fill(self.background);
         let mut spans = 0;
+        let (depth_row, color_row) = (&mut self.depth_row, &mut self.color_row);
         for polygon in &self.active_polygons {
-            // This polygon's crossings, sorted: pairs of them are spans.
-            let mut crossings: Vec<i32, N> = Vec::new();
-            let mut index = polygon.first_edge;
-            while let Some(edge) = self.active_edges.get(index as usize) {
-                if crossings.push(edge.x).is_err() {
-                    break;
-                }
-                index = edge.next;
+            if polygon.end_row <= row {
+                continue;
             }
-            crossings.sort_unstable();
-            for pair in crossings.chunks_exact(2) {
-                let start = pair[0].clamp(0, width as i32) as usize;
-                let end = pair[1].clamp(0, width as i32) as usize;
+            let source = match polygon.depth {
+                SpanDepth::Stepped {
+                    dz_dx, row_value, ..
+                } => SpanSource::Stepped { dz_dx, row_value },
+                SpanDepth::Exact => {
+                    let entry = &self.polygons[polygon.position as usize];
+                    let corners: Vec<ScreenVertex, N> =
+                        entry_corners(entry, &self.corners, &self.vertices).collect();
+                    match Plane::new(&corners) {
+                        Some(plane) => SpanSource::Exact(plane, row),
+                        None => continue,
+                    }
+                }
+            };
+            let mut fill = |start: i32, end: i32| {
+                let (start, end) = (
+                    start.clamp(0, width as i32) as usize,
+                    end.clamp(0, width as i32) as usize,
+                );
                 if start < end {
                     spans += 1;
                     fill_span::<C, D>(
-                        &mut self.depth_row[start..end],
-                        &mut self.color_row[start..end],
+                        &mut depth_row[start..end],
+                        &mut color_row[start..end],
                         start as i32,
-                        row,
-                        polygon,
+                        polygon.color,
+                        &source,
                     );
+                }
+            };
+            match polygon.crossings::<N, AE>(&self.edge_pool) {
+                Crossings::Pair(left, right) => fill(left, right),
+                Crossings::Sorted(xs) => {
+                    for pair in xs.chunks_exact(2) {
+                        fill(pair[0], pair[1]);
+                    }
                 }
             }
         }
@@ -613,34 +621,27 @@ impl<
     }
 
     /// Steps the active tables down to `next_row`: edges that ended are
-    /// unlinked and freed, the others step; finished polygons leave.
+    /// dropped, the others step; finished polygons are counted dead and
+    /// swept out once they are half the table (or when it fills up).
     fn advance(&mut self, next_row: u16) {
+        self.current_row = next_row;
         for polygon in &mut self.active_polygons {
-            let (mut previous, mut index) = (NO_EDGE, polygon.first_edge);
-            while let Some(edge) = self.active_edges.get_mut(index as usize) {
-                let next = edge.next;
-                if edge.end_row > next_row {
-                    edge.advance();
-                    previous = index;
-                } else {
-                    edge.next = self.free_edge;
-                    self.free_edge = index;
-                    self.live_edges -= 1;
-                    match self.active_edges.get_mut(previous as usize) {
-                        Some(p) => p.next = next,
-                        None => polygon.first_edge = next,
-                    }
-                }
-                index = next;
+            if polygon.end_row < next_row {
+                continue; // Already dead.
             }
-            if let SpanDepth::Stepped {
+            polygon.advance_edges(next_row, &mut self.edge_pool);
+            if polygon.end_row == next_row {
+                self.dead_polygons += 1;
+            } else if let SpanDepth::Stepped {
                 dz_dy, row_value, ..
             } = &mut polygon.depth
             {
                 *row_value += *dz_dy;
             }
         }
-        self.active_polygons.retain(|p| p.end_row > next_row);
+        if self.dead_polygons * 2 > self.active_polygons.len() {
+            self.compact_active_polygons();
+        }
     }
 }
 
@@ -677,6 +678,18 @@ impl<
     }
 }
 
+/// The corners of a polygon-table entry, as vertices.
+fn entry_corners<'a, C>(
+    polygon: &PolygonEntry<C>,
+    corners: &'a [u16],
+    vertices: &'a [ScreenVertex],
+) -> impl Iterator<Item = ScreenVertex> + Clone + 'a {
+    let start = polygon.corner_start as usize;
+    corners[start..start + usize::from(polygon.corner_count)]
+        .iter()
+        .map(move |&i| vertices[usize::from(i)])
+}
+
 /// Upper and lower end of the edge leaving corner `corner` of `polygon`.
 fn edge_ends<C>(
     polygon: &PolygonEntry<C>,
@@ -691,16 +704,22 @@ fn edge_ends<C>(
     if a.y < b.y { (a, b) } else { (b, a) }
 }
 
-/// Depth-tests and writes one span: pixels `x0 .. x0 + depths.len()` of
-/// `row`.
+/// Where a span's depths come from.
+enum SpanSource {
+    /// From the row's plane value at column 0 and the gradient.
+    Stepped { dz_dx: i64, row_value: i64 },
+    /// Exactly from the plane, at each pixel of the row.
+    Exact(Plane, u16),
+}
+
+/// Depth-tests and writes one span: pixels `x0 .. x0 + depths.len()`.
 fn fill_span<C: Copy, D: DepthFormat>(
     depths: &mut [D::Value],
     colors: &mut [C],
     x0: i32,
-    row: u16,
-    polygon: &ActivePolygon<C>,
+    color: C,
+    source: &SpanSource,
 ) {
-    let color = polygon.color;
     let write = |depth: D::Value, stored: &mut D::Value, pixel: &mut C| {
         if depth < *stored {
             *stored = depth;
@@ -709,10 +728,8 @@ fn fill_span<C: Copy, D: DepthFormat>(
     };
     let len = depths.len() as u32;
     let pixels = depths.iter_mut().zip(colors.iter_mut());
-    match polygon.depth {
-        SpanDepth::Stepped {
-            dz_dx, row_value, ..
-        } => {
+    match *source {
+        SpanSource::Stepped { dz_dx, row_value } => {
             // Re-evaluated from the plane at every span start: the error
             // is the gradient's rounding times the column, never drift from
             // earlier spans.
@@ -730,7 +747,7 @@ fn fill_span<C: Copy, D: DepthFormat>(
                 }
             }
         }
-        SpanDepth::Exact(plane) => {
+        SpanSource::Exact(plane, row) => {
             for (k, (stored, pixel)) in pixels.enumerate() {
                 let value = plane.value_at_pixel(x0 + k as i32, i32::from(row));
                 write(D::quantize(value), stored, pixel);
