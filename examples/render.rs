@@ -5,6 +5,9 @@
 //! cargo run --release --example render -- MODEL.obj [options]
 //! ```
 //!
+//! `MODEL` is an OBJ file or `shape:NAME` for a built-in mesh
+//! (`torus-knot`, `icosphere`, `boxes`, `terrain`).
+//!
 //! Options (defaults in brackets):
 //! * `--size WxH` [320x240]
 //! * `--yaw DEG` [30] and `--pitch DEG` [20]
@@ -33,7 +36,7 @@ use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use embedded_graphics_simulator::{OutputSettings, SimulatorDisplay};
-use zline::methods::{BACKGROUND, HostMesh, HostScanline, ReferenceFrame, ReferenceView};
+use zline::methods::{BACKGROUND, HostMesh, HostScanline, ReferenceFrame, ReferenceView, shapes};
 use zline::scene::{Camera, Cull, reference_model};
 use zline::shade::Shading;
 use zline::{Depth16, Depth24, DepthFormat, FrameStats};
@@ -285,10 +288,24 @@ fn write_outputs(o: &Options, out: &Output) -> Result<(), String> {
     Ok(())
 }
 
+/// An OBJ file, or `shape:NAME` for a built-in mesh.
+fn load_model(path: &std::path::Path) -> Result<HostMesh, String> {
+    let text = path.to_string_lossy();
+    if let Some(name) = text.strip_prefix("shape:") {
+        return shapes::by_name(name).ok_or_else(|| {
+            format!(
+                "unknown shape '{name}' (one of {})",
+                shapes::NAMES.join(", ")
+            )
+        });
+    }
+    let bytes = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    HostMesh::from_obj(&bytes).map_err(|e| format!("{}: {e}", path.display()))
+}
+
 fn run(args: &[String]) -> Result<(), String> {
     let o = parse_args(args)?;
-    let bytes = std::fs::read(&o.model).map_err(|e| format!("{}: {e}", o.model.display()))?;
-    let mesh = HostMesh::from_obj(&bytes).map_err(|e| format!("{}: {e}", o.model.display()))?;
+    let mesh = load_model(&o.model)?;
     if mesh.positions.is_empty() {
         return Err(format!("{}: no vertices", o.model.display()));
     }

@@ -6,9 +6,12 @@
 mod accuracy;
 mod host_mesh;
 mod reference;
+mod rust_source;
 mod scanline_host;
+pub mod shapes;
 
 pub use accuracy::{Comparison, compare};
 pub use host_mesh::HostMesh;
 pub use reference::{BACKGROUND, ReferenceFrame, ReferenceView};
+pub use rust_source::static_mesh_source;
 pub use scanline_host::{HostFrame, HostPixel, HostRenderer, HostScanline};

@@ -1,0 +1,83 @@
+//! Writing a mesh as Rust statics, so that it stays in flash: the
+//! generator behind `examples/obj2rust.rs` and the firmware build scripts.
+
+use std::fmt::Write as _;
+use std::format;
+use std::string::{String, ToString};
+use std::vec::Vec;
+
+use super::HostMesh;
+
+/// Rust source defining `pub static NAME: zline::mesh::StaticMesh<'static>`
+/// and its three arrays (`NAME_POSITIONS`, `NAME_CORNERS`,
+/// `NAME_FACE_STARTS`). The mesh goes through the `const`
+/// `StaticMesh::new`, so a broken one fails at compile time. Floats are
+/// written so they read back bit for bit. `origin` names the source in a
+/// comment. `Err` when `name` is not a Rust identifier.
+pub fn static_mesh_source(mesh: &HostMesh, name: &str, origin: &str) -> Result<String, String> {
+    check_name(name)?;
+    let origin = origin.replace(char::is_control, "?");
+    let HostMesh {
+        positions,
+        corners,
+        face_starts,
+    } = mesh;
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "// Generated from {origin}: {} vertices, {} faces, {} corners. Do not edit.\n",
+        positions.len(),
+        face_starts.len(),
+        corners.len()
+    );
+    let _ = writeln!(
+        out,
+        "const {name}_POSITIONS: [[f32; 3]; {}] = [\n{}];\n",
+        positions.len(),
+        rows(positions, 1, |p| format!(
+            "[{:?}, {:?}, {:?}]",
+            p[0], p[1], p[2]
+        ))
+    );
+    let _ = writeln!(
+        out,
+        "const {name}_CORNERS: [u16; {}] = [\n{}];\n",
+        corners.len(),
+        rows(corners, 16, u16::to_string)
+    );
+    let _ = writeln!(
+        out,
+        "const {name}_FACE_STARTS: [u32; {}] = [\n{}];\n",
+        face_starts.len(),
+        rows(face_starts, 16, u32::to_string)
+    );
+    let _ = writeln!(
+        out,
+        "/// Mesh from {origin}, checked at compile time.\n\
+         pub static {name}: zline::mesh::StaticMesh<'static> = match zline::mesh::StaticMesh::new(\n    \
+         &{name}_POSITIONS,\n    &{name}_CORNERS,\n    &{name}_FACE_STARTS,\n) {{\n    \
+         Ok(mesh) => mesh,\n    Err(_) => panic!(\"{name}: invalid mesh\"),\n}};"
+    );
+    Ok(out)
+}
+
+fn check_name(name: &str) -> Result<(), String> {
+    let mut chars = name.chars();
+    let first_ok = chars
+        .next()
+        .is_some_and(|c| c.is_ascii_alphabetic() || c == '_');
+    if first_ok && chars.all(|c| c.is_ascii_alphanumeric() || c == '_') && name != "_" {
+        Ok(())
+    } else {
+        Err(format!("NAME {name:?} is not a Rust identifier"))
+    }
+}
+
+fn rows<T>(items: &[T], per_line: usize, show: impl Fn(&T) -> String) -> String {
+    let mut out = String::new();
+    for chunk in items.chunks(per_line) {
+        let line: Vec<String> = chunk.iter().map(&show).collect();
+        let _ = writeln!(out, "    {},", line.join(", "));
+    }
+    out
+}
