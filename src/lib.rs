@@ -54,7 +54,7 @@ pub mod vertex;
 pub use depth::{Depth16, Depth24, DepthFormat};
 pub use error::{Error, RenderError};
 pub use scanline::{Admission, FrameStats, PolygonTables, Renderer};
-pub use sink::{DrawTargetSink, FnSink, RowSink};
+pub use sink::{Crc32Sink, DrawTargetSink, FnSink, RowSink};
 pub use vertex::ScreenVertex;
 
 /// Compiles the README's code examples as doctests.

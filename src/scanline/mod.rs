@@ -195,23 +195,23 @@ impl<
 {
     /// An empty renderer for frames `W` wide and `height` tall, clearing
     /// to `background`.
-    pub fn new(height: u16, background: C) -> Result<Self, Error> {
+    pub const fn new(height: u16, background: C) -> Result<Self, Error> {
         Self::with_size(W as u16, height, background)
     }
 
     /// An empty renderer for frames `width` (at most `W`) by `height`
     /// pixels, clearing to `background`.
-    pub fn with_size(width: u16, height: u16, background: C) -> Result<Self, Error> {
+    pub const fn with_size(width: u16, height: u16, background: C) -> Result<Self, Error> {
         const {
             assert!(W > 0 && W <= MAX_FRAME_SIZE, "W must be 1..=4096");
             assert!(V <= 1 << 16, "V must be at most 65536");
             assert!(N >= 3 && N <= 256, "N must be 3..=256");
             assert!(P <= edge::MAX_POLYGONS, "P must be at most 2^20");
         }
-        if width == 0 || usize::from(width) > W {
+        if width == 0 || width as usize > W {
             return Err(Error::BadFrameSize);
         }
-        if height == 0 || usize::from(height) > MAX_FRAME_SIZE {
+        if height == 0 || height as usize > MAX_FRAME_SIZE {
             return Err(Error::BadFrameSize);
         }
         Ok(Self {
