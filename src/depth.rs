@@ -80,17 +80,19 @@ impl DepthFormat for Depth16 {
     fn span(start: i64, step: i64, len: u32) -> Option<(i32, i32)> {
         // Bias by half a step so that truncation rounds to nearest.
         let first = shift_round(start, Z16_SHIFT) + (1 << (Z16_ACC_FRAC - 1));
-        let step = shift_round(step, Z16_SHIFT);
-        let last = first.checked_add(step.checked_mul(i64::from(len) - 1)?)?;
+        // The step fits i32 (|step| < 2^40 plane units) and len <= 4096,
+        // so the product cannot overflow i64.
+        let step = i32::try_from(shift_round(step, Z16_SHIFT)).ok()?;
+        let last = first + i64::from(step) * (i64::from(len) - 1);
         let limit = 1i64 << 31;
         let in_range = |v: i64| (0..limit).contains(&v);
         // The span loop advances once more after the last pixel: that value
         // is never stored but must not overflow the accumulator either.
-        let after = i32::try_from(last + step).is_ok();
+        let after = i32::try_from(last + i64::from(step)).is_ok();
         if in_range(first) && in_range(last) && after {
             // Both ends fit, and the accumulator is affine in the pixel
             // index, so every pixel in between fits as well.
-            Some((i32::try_from(first).ok()?, i32::try_from(step).ok()?))
+            Some((i32::try_from(first).ok()?, step))
         } else {
             None
         }

@@ -156,30 +156,42 @@ pub const PLANARITY_TOLERANCE: f32 = 1e-3;
 /// planar face stays exact.
 pub fn is_planar<M: Mesh + ?Sized>(mesh: &M, index: usize) -> bool {
     let corners = mesh.face(index);
-    if corners.len() <= 3 {
+    let count = corners.len();
+    if count <= 3 {
         return true;
     }
-    let p = |k: usize| mesh.position(usize::from(corners[k % corners.len()]));
-    let mut normal = [0.0f32; 3];
-    let mut centroid = [0.0f32; 3];
-    for k in 0..corners.len() {
-        let (a, b) = (p(k), p(k + 1));
-        normal[0] += (a[1] - b[1]) * (a[2] + b[2]);
-        normal[1] += (a[2] - b[2]) * (a[0] + b[0]);
-        normal[2] += (a[0] - b[0]) * (a[1] + b[1]);
+    // Relative to corner 0, everything scaled by `count` so the centroid
+    // needs no division; compared squared, so no square root either.
+    let p = |k: usize| {
+        let (a, o) = (
+            mesh.position(usize::from(corners[k])),
+            mesh.position(usize::from(corners[0])),
+        );
+        [a[0] - o[0], a[1] - o[1], a[2] - o[2]]
+    };
+    let (mut normal, mut sum) = ([0.0f32; 3], [0.0f32; 3]);
+    for k in 1..count {
+        let (a, b) = (p(k), p((k + 1) % count));
+        normal[0] += a[1] * b[2] - a[2] * b[1];
+        normal[1] += a[2] * b[0] - a[0] * b[2];
+        normal[2] += a[0] * b[1] - a[1] * b[0];
         for axis in 0..3 {
-            centroid[axis] += a[axis] / corners.len() as f32;
+            sum[axis] += a[axis];
         }
     }
-    let length = libm::sqrtf(normal.iter().map(|v| v * v).sum());
-    let (mut radius, mut deviation) = (0.0f32, 0.0f32);
-    for k in 0..corners.len() {
-        let d = [0, 1, 2].map(|axis| p(k)[axis] - centroid[axis]);
-        radius = radius.max(libm::sqrtf(d.iter().map(|v| v * v).sum()));
-        deviation = deviation.max((d[0] * normal[0] + d[1] * normal[1] + d[2] * normal[2]).abs());
+    let n = count as f32;
+    let (mut radius2, mut deviation2) = (0.0f32, 0.0f32);
+    for k in 0..count {
+        let q = p(k);
+        // count · (corner - centroid)
+        let d = [q[0] * n - sum[0], q[1] * n - sum[1], q[2] * n - sum[2]];
+        radius2 = radius2.max(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        let along = d[0] * normal[0] + d[1] * normal[1] + d[2] * normal[2];
+        deviation2 = deviation2.max(along * along);
     }
-    // deviation / length is the distance from the plane.
-    length > 0.0 && deviation <= PLANARITY_TOLERANCE * radius * length
+    let length2 = normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2];
+    // distance = along / |normal| <= tolerance · radius, squared.
+    length2 > 0.0 && deviation2 <= PLANARITY_TOLERANCE * PLANARITY_TOLERANCE * radius2 * length2
 }
 
 #[cfg(test)]

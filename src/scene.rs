@@ -117,10 +117,13 @@ pub fn bounding_sphere<M: Mesh + ?Sized>(mesh: &M) -> (Vec3, f32) {
         hi = Vec3::new(hi.x.max(p.x), hi.y.max(p.y), hi.z.max(p.z));
     }
     let centre = (lo + hi) * 0.5;
-    let radius = (0..count)
-        .map(|i| (Vec3::from_array(mesh.position(i)) - centre).length())
+    let radius2 = (0..count)
+        .map(|i| {
+            let d = Vec3::from_array(mesh.position(i)) - centre;
+            d.dot(d)
+        })
         .fold(0.0f32, f32::max);
-    (centre, radius)
+    (centre, libm::sqrtf(radius2))
 }
 
 /// Which faces to cull before they reach the tables.
@@ -216,10 +219,8 @@ struct FacePart<'a> {
 /// One corner of the face being processed.
 #[derive(Debug, Clone, Copy)]
 enum Corner {
-    /// Already in the vertex table.
+    /// In the vertex table.
     Stored(u16, ScreenVertex),
-    /// Projected this face, not yet stored; `usize` is the mesh index.
-    Fresh(usize, ScreenVertex),
     /// Needs clipping.
     Clip,
 }
@@ -249,6 +250,13 @@ impl Frame {
             ),
             cull,
         }
+    }
+
+    /// Whether a clip-space point lies inside the near, far and guard-band
+    /// planes (the same planes as `guard`, compared directly).
+    fn inside_guard(&self, p: Vec4) -> bool {
+        let (gx, gy) = (self.guard[0].w, self.guard[2].w);
+        p.z >= -p.w && p.z <= p.w && p.x.abs() <= gx * p.w && p.y.abs() <= gy * p.w
     }
 
     /// Clip-space position, or `None` when not finite.
@@ -290,24 +298,32 @@ impl Frame {
         x1 < 0 || y1 < 0 || x0 >= w || y0 >= h
     }
 
-    /// Normal (Newell, model space, turned into view space) and the view
-    /// distance of the face's centroid.
+    /// Normal (model space, turned into view space) and the view distance
+    /// of the face's centroid. A triangle's normal is one cross product;
+    /// larger faces use Newell's sum.
     fn face_info<M: Mesh + ?Sized>(&self, mesh: &M, part: FacePart<'_>, front: bool) -> FaceInfo {
         let corners = part.corners;
         let position =
             |k: usize| Vec3::from_array(mesh.position(usize::from(corners[k % corners.len()])));
-        let (mut n, mut sum) = (Vec3::default(), Vec3::default());
-        for k in 0..corners.len() {
-            let (p, q) = (position(k), position(k + 1));
+        let origin = position(0);
+        let (mut n, mut sum) = (Vec3::default(), origin);
+        for k in 1..corners.len().saturating_sub(1) {
+            let (p, q) = (position(k) - origin, position(k + 1) - origin);
             n = n + p.cross(q);
-            sum = sum + p;
+            sum = sum + position(k);
+        }
+        if corners.len() > 1 {
+            sum = sum + position(corners.len() - 1);
         }
         let centroid = sum * (1.0 / corners.len().max(1) as f32);
+        // Only the view-space z of the centroid is needed.
+        let row = self.model_view.m[2];
+        let view_z = row[0] * centroid.x + row[1] * centroid.y + row[2] * centroid.z + row[3];
         FaceInfo {
             face: part.face as u32,
             normal: self.model_view.transform_vector(n).normalized(),
             front,
-            view_depth: -self.model_view.transform_point(centroid).z,
+            view_depth: -view_z,
         }
     }
 }
@@ -385,7 +401,7 @@ fn draw_face<C: Copy, T: PolygonTables<C> + ?Sized, M: Mesh + ?Sized, const VM: 
         if index >= mesh.vertex_count() {
             return Err(Error::MeshIndexOutOfRange);
         }
-        let Some(corner) = classify(tables, cache, mesh, frame, index) else {
+        let Some(corner) = classify(tables, cache, mesh, frame, index)? else {
             stats.non_finite += 1;
             return Ok(());
         };
@@ -397,7 +413,7 @@ fn draw_face<C: Copy, T: PolygonTables<C> + ?Sized, M: Mesh + ?Sized, const VM: 
     let screen: Vec<ScreenVertex, MAX_FACE_CORNERS> = corners
         .iter()
         .map(|c| match *c {
-            Corner::Stored(_, v) | Corner::Fresh(_, v) => v,
+            Corner::Stored(_, v) => v,
             Corner::Clip => ScreenVertex::default(),
         })
         .collect();
@@ -414,7 +430,6 @@ fn draw_face<C: Copy, T: PolygonTables<C> + ?Sized, M: Mesh + ?Sized, const VM: 
     for corner in &corners {
         let id = match *corner {
             Corner::Stored(id, _) => id,
-            Corner::Fresh(index, v) => store(tables, cache, index, v)?,
             Corner::Clip => return Err(Error::TooManyCorners),
         };
         ids.push(id).map_err(|_| Error::TooManyCorners)?;
@@ -425,27 +440,33 @@ fn draw_face<C: Copy, T: PolygonTables<C> + ?Sized, M: Mesh + ?Sized, const VM: 
 }
 
 /// Looks a mesh vertex up in the cache, or transforms and classifies it.
-/// `None` when its position is not finite.
+/// A vertex that can be projected as it is goes into the vertex table at
+/// once, so it is transformed only once per frame even when the first face
+/// that uses it is culled. `Ok(None)` when its position is not finite.
 fn classify<C, T: PolygonTables<C> + ?Sized, M: Mesh + ?Sized, const VM: usize>(
-    tables: &T,
+    tables: &mut T,
     cache: &mut VertexCache<VM>,
     mesh: &M,
     frame: &Frame,
     index: usize,
-) -> Option<Corner> {
-    match cache.slots[index] {
+) -> Result<Option<Corner>, Error> {
+    Ok(match cache.slots[index] {
         NEEDS_CLIP => Some(Corner::Clip),
         EMPTY => {
-            let p = frame.clip_position(mesh, index)?;
-            if clip::inside_all(p, &frame.guard) {
-                frame.project(p).map(|v| Corner::Fresh(index, v))
-            } else {
+            let Some(p) = frame.clip_position(mesh, index) else {
+                return Ok(None);
+            };
+            if !frame.inside_guard(p) {
                 cache.slots[index] = NEEDS_CLIP;
                 Some(Corner::Clip)
+            } else if let Some(v) = frame.project(p) {
+                Some(Corner::Stored(store(tables, cache, index, v)?, v))
+            } else {
+                None
             }
         }
         id => tables.get_vertex(id).map(|v| Corner::Stored(id, v)),
-    }
+    })
 }
 
 /// Stores a projected mesh vertex and remembers its id.

@@ -91,7 +91,11 @@ const CRC_NIBBLES: [u32; 16] = {
         let mut c = n as u32;
         let mut k = 0;
         while k < 4 {
-            c = if c & 1 != 0 { (c >> 1) ^ 0xEDB8_8320 } else { c >> 1 };
+            c = if c & 1 != 0 {
+                (c >> 1) ^ 0xEDB8_8320
+            } else {
+                c >> 1
+            };
             k += 1;
         }
         table[n] = c;

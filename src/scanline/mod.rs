@@ -202,19 +202,39 @@ impl<
     /// An empty renderer for frames `width` (at most `W`) by `height`
     /// pixels, clearing to `background`.
     pub const fn with_size(width: u16, height: u16, background: C) -> Result<Self, Error> {
+        match Self::check_size(width, height) {
+            Ok(()) => Ok(Self::empty(width, height, background)),
+            Err(e) => Err(e),
+        }
+    }
+
+    /// As [`Self::with_size`], for `static` and `const` items (for
+    /// example with `static_cell::ConstStaticCell`), so that a large
+    /// renderer is built at compile time and never copied through the
+    /// stack. An invalid size stops the build.
+    pub const fn new_in_static(width: u16, height: u16, background: C) -> Self {
+        if Self::check_size(width, height).is_err() {
+            panic!("zline: frame width must be 1..=W and height 1..=4096");
+        }
+        Self::empty(width, height, background)
+    }
+
+    const fn check_size(width: u16, height: u16) -> Result<(), Error> {
         const {
             assert!(W > 0 && W <= MAX_FRAME_SIZE, "W must be 1..=4096");
             assert!(V <= 1 << 16, "V must be at most 65536");
             assert!(N >= 3 && N <= 256, "N must be 3..=256");
             assert!(P <= edge::MAX_POLYGONS, "P must be at most 2^20");
         }
-        if width == 0 || width as usize > W {
-            return Err(Error::BadFrameSize);
+        if width == 0 || width as usize > W || height == 0 || height as usize > MAX_FRAME_SIZE {
+            Err(Error::BadFrameSize)
+        } else {
+            Ok(())
         }
-        if height == 0 || height as usize > MAX_FRAME_SIZE {
-            return Err(Error::BadFrameSize);
-        }
-        Ok(Self {
+    }
+
+    const fn empty(width: u16, height: u16, background: C) -> Self {
+        Self {
             width,
             height,
             background,
@@ -231,7 +251,7 @@ impl<
             next_id: 0,
             off_screen: 0,
             degenerate: 0,
-        })
+        }
     }
 
     /// Frame width in pixels.
@@ -733,7 +753,10 @@ fn fill_span<C: Copy, D: DepthFormat>(
             // Re-evaluated from the plane at every span start: the error
             // is the gradient's rounding times the column, never drift from
             // earlier spans.
-            let start = row_value.saturating_add(dz_dx.saturating_mul(i64::from(x0)));
+            // |dz_dx| < 2^40 (steeper polygons are `Exact`) and x0 < 2^12,
+            // and row_value stays within 2^54 of the depth range: no
+            // overflow is possible.
+            let start = row_value + dz_dx * i64::from(x0);
             if let Some((mut acc, step)) = D::span(start, dz_dx, len) {
                 for (stored, pixel) in pixels {
                     write(D::value(acc), stored, pixel);

@@ -84,9 +84,19 @@ impl Plane {
     /// Exact plane value at sub-pixel point `(x, y)`, rounded to the nearest
     /// plane unit.
     pub fn value_at(&self, x: i32, y: i32) -> i64 {
-        let dx = i128::from(x) - i128::from(self.origin.x);
-        let dy = i128::from(y) - i128::from(self.origin.y);
-        let offset = div_round_q16(-(i128::from(self.a) * dx + i128::from(self.b) * dy), self.c);
+        // Inside the guard band both offsets are below 2^23.
+        let dx = i64::from(x) - i64::from(self.origin.x);
+        let dy = i64::from(y) - i64::from(self.origin.y);
+        // On a 32-bit MCU i128 products are slow: use i64 when |a|, |b| <
+        // 2^39 (then each product is below 2^62), which is every polygon of
+        // ordinary size.
+        const SMALL: u64 = 1 << 39;
+        let num = if self.a.unsigned_abs() < SMALL && self.b.unsigned_abs() < SMALL {
+            i128::from(-(self.a * dx + self.b * dy))
+        } else {
+            -(i128::from(self.a) * i128::from(dx) + i128::from(self.b) * i128::from(dy))
+        };
+        let offset = div_round_q16(num, self.c);
         let value = (i128::from(self.origin.z) << PLANE_FRAC_BITS) + offset;
         value.clamp(i128::from(i64::MIN), i128::from(i64::MAX)) as i64
     }

@@ -1,0 +1,163 @@
+//! Prepares the emulated firmware on the host:
+//! 1. the memory map (`memory.x`, QEMU mps2-an385) and cortex-m-rt's linker
+//!    script;
+//! 2. the scenes' meshes as Rust statics, so they live in flash;
+//! 3. each scene's expected CRC, from rendering it on the host with the
+//!    very same code (`src/frame.rs`); the firmware fails if its own frame
+//!    differs;
+//! 4. the renderer's capacities: the exact largest needs over all scenes,
+//!    as measured on the host.
+
+#[path = "src/frame.rs"]
+mod frame;
+
+use std::fmt::Write as _;
+use std::path::PathBuf;
+
+use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
+use zline::mesh::{Mesh, StaticMesh};
+use zline::methods::{HostMesh, shapes, static_mesh_source};
+use zline::scene::VertexCache;
+use zline::{Crc32Sink, Depth16, Depth24, DepthFormat, FrameStats, Renderer};
+
+/// (shape, yaw, pitch): each is rendered with both depth formats.
+const SCENES: [(&str, f32, f32); 4] = [
+    ("torus-knot", 30.0, 20.0),
+    ("torus-knot", 200.0, -35.0),
+    ("icosphere", 30.0, 20.0),
+    ("boxes", 30.0, 20.0),
+];
+
+type HostRenderer<D> = Renderer<Rgb565, D, 240, 65536, 65536, 262_144, 16_384, 16_384, 32>;
+
+fn main() {
+    let out = PathBuf::from(std::env::var("OUT_DIR").expect("OUT_DIR"));
+    std::fs::copy("memory.x", out.join("memory.x")).expect("copy memory.x");
+    println!("cargo:rustc-link-search={}", out.display());
+    println!("cargo:rustc-link-arg=-Tlink.x");
+    println!("cargo:rerun-if-changed=memory.x");
+    println!("cargo:rerun-if-changed=src/frame.rs");
+    println!("cargo:rerun-if-env-changed=ZLINE_QEMU_SCENE");
+    // The host renderer is large: build it on a thread with a large stack.
+    let source = std::thread::Builder::new()
+        .stack_size(512 << 20)
+        .spawn(generate)
+        .expect("spawn")
+        .join()
+        .expect("scene generation failed");
+    std::fs::write(out.join("scenes.rs"), source).expect("write scenes.rs");
+}
+
+/// Largest needs over all frames.
+#[derive(Default)]
+struct Needs {
+    vertices: u32,
+    polygons: u32,
+    corners: u32,
+    active_polygons: u32,
+    pooled_edges: u32,
+    mesh_vertices: usize,
+    corners_per_face: usize,
+}
+
+impl Needs {
+    fn add(&mut self, s: &FrameStats) {
+        self.vertices = self.vertices.max(s.vertices);
+        self.polygons = self.polygons.max(s.polygons);
+        self.corners = self.corners.max(s.corners);
+        self.active_polygons = self.active_polygons.max(s.peak_active_polygons);
+        self.pooled_edges = self.pooled_edges.max(s.peak_pooled_edges);
+    }
+}
+
+fn const_name(shape: &str) -> String {
+    shape.to_uppercase().replace('-', "_")
+}
+
+fn generate() -> String {
+    // ZLINE_QEMU_SCENE=K keeps only scene K (for profiling one frame).
+    let only: Option<usize> = std::env::var("ZLINE_QEMU_SCENE").ok().and_then(|v| v.parse().ok());
+    let scene_list: Vec<(&str, f32, f32)> = SCENES
+        .iter()
+        .enumerate()
+        .filter(|(k, _)| only.is_none_or(|o| o == *k))
+        .map(|(_, s)| *s)
+        .collect();
+    let mut out = String::new();
+    let mut needs = Needs::default();
+    let mut meshes: Vec<(&str, HostMesh)> = Vec::new();
+    for &(shape, _, _) in &scene_list {
+        if !meshes.iter().any(|(s, _)| *s == shape) {
+            let mesh = shapes::by_name(shape).expect("known shape");
+            let source = static_mesh_source(
+                &mesh,
+                &const_name(shape),
+                &format!("zline::methods::shapes `{shape}`"),
+            )
+            .expect("mesh source");
+            out.push_str(&source);
+            out.push('\n');
+            needs.mesh_vertices = needs.mesh_vertices.max(mesh.vertex_count());
+            let widest = (0..mesh.face_count())
+                .map(|f| mesh.face(f).len())
+                .max()
+                .unwrap_or(3);
+            needs.corners_per_face = needs.corners_per_face.max(widest);
+            meshes.push((shape, mesh));
+        }
+    }
+    let mut z16: Box<HostRenderer<Depth16>> =
+        Box::new(HostRenderer::new(frame::SIZE, Rgb565::BLACK).expect("renderer"));
+    let mut z24: Box<HostRenderer<Depth24>> =
+        Box::new(HostRenderer::new(frame::SIZE, Rgb565::BLACK).expect("renderer"));
+    let mut cache: Box<VertexCache<65536>> = Box::new(VertexCache::new());
+    let mut scenes = String::new();
+    for &(shape, yaw, pitch) in &scene_list {
+        let host = &meshes.iter().find(|(s, _)| *s == shape).expect("mesh").1;
+        let mesh =
+            StaticMesh::new(&host.positions, &host.corners, &host.face_starts).expect("valid mesh");
+        let crc16 = expected(&mut *z16, &mut cache, &mesh, yaw, pitch, &mut needs);
+        let crc24 = expected(&mut *z24, &mut cache, &mesh, yaw, pitch, &mut needs);
+        for (depth, crc) in [("Z16", crc16), ("Z24", crc24)] {
+            let _ = writeln!(
+                scenes,
+                "    Scene {{ name: {shape:?}, mesh: &{}, yaw: {yaw:?}, pitch: {pitch:?}, depth: DepthKind::{depth}, expected_crc: 0x{crc:08X} }},",
+                const_name(shape)
+            );
+        }
+    }
+    let _ = writeln!(
+        out,
+        "/// Every scene, with its CRC as rendered on the host.\nstatic SCENES: [Scene; {}] = [\n{scenes}];\n",
+        scene_list.len() * 2
+    );
+    let _ = writeln!(
+        out,
+        "// Capacities: the exact largest needs over all scenes, measured on the host.\n\
+         const V: usize = {};\nconst P: usize = {};\nconst E: usize = {};\nconst AP: usize = {};\nconst AE: usize = {};\n\
+         const N: usize = {};\nconst VM: usize = {};",
+        needs.vertices,
+        needs.polygons,
+        needs.corners,
+        needs.active_polygons,
+        needs.pooled_edges,
+        needs.corners_per_face + 6,
+        needs.mesh_vertices
+    );
+    out
+}
+
+fn expected<D: DepthFormat>(
+    renderer: &mut HostRenderer<D>,
+    cache: &mut VertexCache<65536>,
+    mesh: &StaticMesh<'_>,
+    yaw: f32,
+    pitch: f32,
+    needs: &mut Needs,
+) -> u32 {
+    let mut crc = Crc32Sink::new();
+    let (_, stats) =
+        frame::render_frame(renderer, cache, mesh, yaw, pitch, &mut crc).expect("host render");
+    needs.add(&stats);
+    crc.value()
+}

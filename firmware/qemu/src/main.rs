@@ -1,0 +1,265 @@
+//! zline on an emulated Cortex-M: QEMU `-machine mps2-an385`, code built for
+//! `thumbv6m-none-eabi` (Cortex-M0+; it runs on the board's Cortex-M3).
+//!
+//! For every scene (built-in meshes in flash, two views, both depth formats,
+//! 240x240) it renders one frame into a CRC sink and compares the CRC with
+//! the host's (computed by `build.rs` with the same code). It then renders
+//! the frame again into a sink that discards rows, counting instructions
+//! with SysTick under `-icount shift=0`. It prints one line per scene and
+//! exits through semihosting: 0 when every CRC matched, 1 otherwise.
+//!
+//! Run with `cargo qemu` from the repository root.
+
+#![no_std]
+#![no_main]
+
+mod frame;
+
+use core::convert::Infallible;
+
+use cortex_m::peripheral::SYST;
+use cortex_m::peripheral::syst::SystClkSource;
+use cortex_m_rt::entry;
+use cortex_m_semihosting::{debug, hprintln};
+use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
+use static_cell::ConstStaticCell;
+use zline::mesh::StaticMesh;
+use zline::scene::VertexCache;
+use zline::{Crc32Sink, Depth16, Depth24, DepthFormat, FnSink, FrameStats, Renderer};
+
+/// Which depth format a scene uses.
+#[derive(Clone, Copy)]
+enum DepthKind {
+    Z16,
+    Z24,
+}
+
+/// One frame to check.
+struct Scene {
+    name: &'static str,
+    mesh: &'static StaticMesh<'static>,
+    yaw: f32,
+    pitch: f32,
+    depth: DepthKind,
+    expected_crc: u32,
+}
+
+// Meshes, SCENES and the capacities V, P, E, AP, AE, N, VM (from build.rs).
+include!(concat!(env!("OUT_DIR"), "/scenes.rs"));
+
+type Renderer16 = Renderer<Rgb565, Depth16, { frame::SIZE as usize }, V, P, E, AP, AE, N>;
+type Renderer24 = Renderer<Rgb565, Depth24, { frame::SIZE as usize }, V, P, E, AP, AE, N>;
+
+// The renderers live in statics, built at compile time: no copy on the stack.
+static RENDERER16: ConstStaticCell<Renderer16> = ConstStaticCell::new(Renderer16::new_in_static(
+    frame::SIZE,
+    frame::SIZE,
+    Rgb565::BLACK,
+));
+static RENDERER24: ConstStaticCell<Renderer24> = ConstStaticCell::new(Renderer24::new_in_static(
+    frame::SIZE,
+    frame::SIZE,
+    Rgb565::BLACK,
+));
+static CACHE: ConstStaticCell<VertexCache<VM>> = ConstStaticCell::new(VertexCache::new());
+
+/// SysTick ticks elapsed while running `f`; the counter runs down from
+/// 2^24 - 1 and frames stay well below one wrap.
+fn ticks<T>(syst: &mut SYST, f: impl FnOnce() -> T) -> (T, u32) {
+    syst.clear_current();
+    let start = SYST::get_current();
+    let result = f();
+    let end = SYST::get_current();
+    (result, start.wrapping_sub(end) & 0x00FF_FFFF)
+}
+
+/// Instructions per SysTick tick, measured with a loop of known length:
+/// `subs` + `bne`, two instructions an iteration.
+fn instructions_per_tick(syst: &mut SYST) -> u32 {
+    const ITERATIONS: u32 = 200_000;
+    let ((), t) = ticks(syst, || {
+        // SAFETY: a register-only countdown loop; it touches no memory.
+        unsafe {
+            core::arch::asm!("1:", "subs {0}, #1", "bne 1b", inout(reg) ITERATIONS => _, options(nomem, nostack));
+        }
+    });
+    (2 * ITERATIONS + t / 2) / t.max(1)
+}
+
+struct Outcome {
+    crc: u32,
+    ticks: u32,
+    stats: FrameStats,
+}
+
+fn run<D, const W: usize>(
+    renderer: &mut Renderer<Rgb565, D, W, V, P, E, AP, AE, N>,
+    cache: &mut VertexCache<VM>,
+    scene: &Scene,
+    syst: &mut SYST,
+) -> Result<Outcome, zline::RenderError<Infallible>>
+where
+    D: DepthFormat,
+{
+    let mut crc = Crc32Sink::new();
+    frame::render_frame(
+        renderer,
+        cache,
+        scene.mesh,
+        scene.yaw,
+        scene.pitch,
+        &mut crc,
+    )?;
+    let mut discard = FnSink(|_: u16, _: &[Rgb565], _: &[D::Value]| Ok::<(), Infallible>(()));
+    let (result, ticks) = ticks(syst, || {
+        frame::render_frame(
+            renderer,
+            cache,
+            scene.mesh,
+            scene.yaw,
+            scene.pitch,
+            &mut discard,
+        )
+    });
+    let (_, stats) = result?;
+    Ok(Outcome {
+        crc: crc.value(),
+        ticks,
+        stats,
+    })
+}
+
+#[entry]
+fn main() -> ! {
+    let stack_floor = stack::paint();
+    let Some(mut peripherals) = cortex_m::Peripherals::take() else {
+        finish(false)
+    };
+    let syst = &mut peripherals.SYST;
+    syst.set_clock_source(SystClkSource::Core);
+    syst.set_reload(0x00FF_FFFF);
+    syst.enable_counter();
+    let per_tick = instructions_per_tick(syst);
+    hprintln!(
+        "zline on qemu mps2-an385 (thumbv6m code), {}x{}, SysTick tick = {} instructions",
+        frame::SIZE,
+        frame::SIZE,
+        per_tick
+    );
+
+    let z16 = RENDERER16.take();
+    let z24 = RENDERER24.take();
+    let cache = CACHE.take();
+    let mut all_ok = true;
+    for scene in &SCENES {
+        let outcome = match scene.depth {
+            DepthKind::Z16 => run(z16, cache, scene, syst),
+            DepthKind::Z24 => run(z24, cache, scene, syst),
+        };
+        let depth = match scene.depth {
+            DepthKind::Z16 => Depth16::NAME,
+            DepthKind::Z24 => Depth24::NAME,
+        };
+        match outcome {
+            Ok(o) => {
+                let ok = o.crc == scene.expected_crc;
+                all_ok &= ok;
+                hprintln!(
+                    "scene={} yaw={} pitch={} depth={} crc32={:08X} expected={:08X} {} instructions={} polygons={} edges={} peak_active_polygons={}",
+                    scene.name,
+                    scene.yaw,
+                    scene.pitch,
+                    depth,
+                    o.crc,
+                    scene.expected_crc,
+                    if ok { "ok" } else { "MISMATCH" },
+                    u64::from(o.ticks) * u64::from(per_tick),
+                    o.stats.polygons,
+                    o.stats.edges,
+                    o.stats.peak_active_polygons
+                );
+            }
+            Err(e) => {
+                all_ok = false;
+                hprintln!("scene={} depth={} error: {}", scene.name, depth, e);
+            }
+        }
+    }
+    let renderer_bytes = core::mem::size_of::<Renderer16>()
+        + core::mem::size_of::<Renderer24>()
+        + core::mem::size_of::<VertexCache<VM>>();
+    hprintln!(
+        "stack_high_water_bytes={} renderer_static_bytes={}",
+        stack::high_water(stack_floor),
+        renderer_bytes
+    );
+    finish(all_ok)
+}
+
+fn finish(ok: bool) -> ! {
+    hprintln!(
+        "{}",
+        if ok {
+            "all frames match the host"
+        } else {
+            "FAILED"
+        }
+    );
+    debug::exit(if ok {
+        debug::EXIT_SUCCESS
+    } else {
+        debug::EXIT_FAILURE
+    });
+    loop {
+        cortex_m::asm::wfi();
+    }
+}
+
+#[panic_handler]
+fn panic(info: &core::panic::PanicInfo) -> ! {
+    hprintln!("panic: {}", info);
+    debug::exit(debug::EXIT_FAILURE);
+    loop {
+        cortex_m::asm::wfi();
+    }
+}
+
+/// Stack painting: fill the free stack with a pattern at boot, then find how
+/// far down it was overwritten.
+mod stack {
+    const PATTERN: u32 = 0x5A5A_A5A5;
+
+    unsafe extern "C" {
+        /// End of .bss (cortex-m-rt): the stack may grow down to here.
+        static mut __ebss: u32;
+        /// Top of the stack (cortex-m-rt: the end of RAM).
+        static mut _stack_start: u32;
+    }
+
+    /// Paints from the end of .bss up to just below the current stack
+    /// pointer; returns the lowest painted address.
+    pub fn paint() -> usize {
+        let floor = (&raw const __ebss) as usize;
+        let sp = cortex_m::register::msp::read() as usize;
+        let mut at = floor;
+        while at + 64 < sp {
+            // SAFETY: [floor, sp - 64) is free RAM between .bss and the
+            // live stack; nothing else uses it yet.
+            unsafe { core::ptr::write_volatile(at as *mut u32, PATTERN) };
+            at += 4;
+        }
+        floor
+    }
+
+    /// Bytes of stack used so far: from the top of RAM down to the lowest
+    /// word no longer holding the pattern.
+    pub fn high_water(floor: usize) -> usize {
+        let stack_top = (&raw const _stack_start) as usize;
+        let mut at = floor;
+        // SAFETY: reads of RAM inside [floor, stack_top).
+        while at < stack_top && unsafe { core::ptr::read_volatile(at as *const u32) } == PATTERN {
+            at += 4;
+        }
+        stack_top - at
+    }
+}
