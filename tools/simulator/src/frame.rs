@@ -1,0 +1,374 @@
+//! Drawing one frame into the simulator display, by the scanline core or
+//! by the float64 reference renderer.
+//!
+//! The scanline path is the same pipeline as `examples/render.rs`
+//! (`reference_model`, `Camera::reference`, `draw_mesh`, lambert shading
+//! by default, no culling, z24), with rows sent through
+//! [`zline::DrawTargetSink`], so at the default view it gives the same
+//! pixels as `cargo run --release --example render -- MODEL --out x.png`.
+
+use std::time::Instant;
+
+use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
+use embedded_graphics::prelude::*;
+use embedded_graphics::primitives::Rectangle;
+use embedded_graphics_simulator::SimulatorDisplay;
+use zline::geometry::{Mat4, Vec3};
+use zline::methods::{BACKGROUND, HostMesh, ReferenceFrame, ReferenceView};
+use zline::scene::{Camera, Cull, VertexCache, draw_mesh, reference_model};
+use zline::shade::Shading;
+use zline::{Depth16, Depth24, DepthFormat, DrawTargetSink, RenderError, Renderer};
+
+/// Most vertices a mesh may have (the vertex cache's capacity).
+pub const MAX_MESH_VERTICES: usize = 65_536;
+
+/// The core with host-sized capacities: rows up to 4096 pixels, 65,536
+/// table vertices, 262,144 polygons, 786,432 corners, 32,768 active
+/// polygons, 65,536 pooled edges, 32 corners per polygon.
+type WindowRenderer<D> = Renderer<Rgb888, D, 4096, 65_536, 262_144, 786_432, 32_768, 65_536, 32>;
+
+/// Which renderer draws the frame.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Method {
+    /// The fixed-point scanline core.
+    Scanline,
+    /// The float64 reference renderer (slow for big meshes).
+    Reference,
+}
+
+impl Method {
+    /// The next method (key `m`).
+    pub fn next(self) -> Self {
+        match self {
+            Method::Scanline => Method::Reference,
+            Method::Reference => Method::Scanline,
+        }
+    }
+
+    /// Name for the overlay.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Scanline => "scanline",
+            Method::Reference => "reference",
+        }
+    }
+}
+
+/// Which depth format the scanline core uses.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DepthChoice {
+    /// [`Depth16`].
+    Z16,
+    /// [`Depth24`].
+    Z24,
+}
+
+impl DepthChoice {
+    /// The next format (key `d`).
+    pub fn next(self) -> Self {
+        match self {
+            DepthChoice::Z16 => DepthChoice::Z24,
+            DepthChoice::Z24 => DepthChoice::Z16,
+        }
+    }
+
+    /// Name for the overlay.
+    pub fn name(self) -> &'static str {
+        match self {
+            DepthChoice::Z16 => Depth16::NAME,
+            DepthChoice::Z24 => Depth24::NAME,
+        }
+    }
+}
+
+/// The shadings key `s` cycles through, by name (see [`shading`]).
+pub const SHADINGS: [&str; 4] = ["lambert", "flat", "depth", "id"];
+
+/// The shading at `index` into [`SHADINGS`], as the render tool's
+/// `--shade` makes them.
+pub fn shading(index: usize) -> Shading {
+    match index % SHADINGS.len() {
+        0 => Shading::lambert(),
+        1 => Shading::Flat(Rgb888::new(200, 190, 170)),
+        2 => Shading::Depth {
+            near: 2.0,
+            far: 4.0,
+        },
+        _ => Shading::FaceId,
+    }
+}
+
+/// Everything that decides what one frame shows.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct View {
+    /// Degrees about the vertical axis.
+    pub yaw: f32,
+    /// Degrees about the horizontal axis.
+    pub pitch: f32,
+    /// Zoom steps: the model is scaled by `1.1^zoom`.
+    pub zoom: i32,
+    /// Index into [`SHADINGS`].
+    pub shading: usize,
+    /// Back-face culling.
+    pub cull: Cull,
+    /// Depth format of the scanline core.
+    pub depth: DepthChoice,
+    /// Renderer.
+    pub method: Method,
+}
+
+impl Default for View {
+    /// The render tool's defaults: yaw 30, pitch 20, no zoom, lambert, no
+    /// culling, z24, scanline.
+    fn default() -> Self {
+        Self {
+            yaw: 30.0,
+            pitch: 20.0,
+            zoom: 0,
+            shading: 0,
+            cull: Cull::None,
+            depth: DepthChoice::Z24,
+            method: Method::Scanline,
+        }
+    }
+}
+
+impl View {
+    /// The model matrix: [`reference_model`], then the zoom as a uniform
+    /// scale (left out at zoom 0, so the default view is exactly the render
+    /// tool's).
+    pub fn model(&self, mesh: &HostMesh) -> Mat4 {
+        let model = reference_model(mesh, self.yaw, self.pitch);
+        if self.zoom == 0 {
+            model
+        } else {
+            let s = 1.1f32.powi(self.zoom);
+            Mat4::scale(Vec3::new(s, s, s)).mul(&model)
+        }
+    }
+}
+
+/// What the overlay reports about the last frame.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct FrameReport {
+    /// Milliseconds spent rendering (draw_mesh + render for the scanline
+    /// core; the reference render when it had to run again).
+    pub ms: f64,
+    /// Polygons in the polygon table (scanline), or faces seen (reference).
+    pub polygons: u32,
+    /// Bytes a renderer sized for this scene needs, plus the vertex cache
+    /// (scanline only).
+    pub ram_bytes: Option<usize>,
+}
+
+/// The last reference frame, coloured, kept while the view stays the same.
+struct ReferenceCache {
+    key: (f32, f32, Cull, usize),
+    colors: Vec<Rgb888>,
+    visible: u32,
+    ms: f64,
+}
+
+/// The renderers, on the heap: one scanline core per depth format, the
+/// vertex cache, and the last reference frame.
+pub struct Renderers {
+    width: u16,
+    height: u16,
+    z16: Box<WindowRenderer<Depth16>>,
+    z24: Box<WindowRenderer<Depth24>>,
+    cache: Box<VertexCache<MAX_MESH_VERTICES>>,
+    reference: Option<ReferenceCache>,
+}
+
+impl Renderers {
+    /// Renderers for `width` x `height` frames. Each core takes tens of MB
+    /// and is built on the stack before it moves to the heap: call this on
+    /// a thread with a large stack.
+    pub fn new(width: u16, height: u16) -> Result<Self, String> {
+        let e = |e: zline::Error| format!("renderer: {e}");
+        let z16 = Box::new(WindowRenderer::with_size(width, height, Rgb888::BLACK).map_err(e)?);
+        let z24 = Box::new(WindowRenderer::with_size(width, height, Rgb888::BLACK).map_err(e)?);
+        Ok(Self {
+            width,
+            height,
+            z16,
+            z24,
+            cache: Box::new(VertexCache::new()),
+            reference: None,
+        })
+    }
+
+    /// Draws `mesh` as `view` says into every pixel of `display`.
+    pub fn draw(
+        &mut self,
+        mesh: &HostMesh,
+        view: &View,
+        display: &mut SimulatorDisplay<Rgb888>,
+    ) -> Result<FrameReport, String> {
+        match (view.method, view.depth) {
+            (Method::Scanline, DepthChoice::Z16) => {
+                scanline(&mut self.z16, &mut self.cache, mesh, view, display)
+            }
+            (Method::Scanline, DepthChoice::Z24) => {
+                scanline(&mut self.z24, &mut self.cache, mesh, view, display)
+            }
+            (Method::Reference, _) => Ok(self.reference(mesh, view, display)),
+        }
+    }
+
+    fn reference(
+        &mut self,
+        mesh: &HostMesh,
+        view: &View,
+        display: &mut SimulatorDisplay<Rgb888>,
+    ) -> FrameReport {
+        let key = (view.yaw, view.pitch, view.cull, view.shading);
+        if self.reference.as_ref().is_none_or(|r| r.key != key) {
+            let start = Instant::now();
+            let frame = ReferenceFrame::render(
+                mesh,
+                &ReferenceView {
+                    width: usize::from(self.width),
+                    height: usize::from(self.height),
+                    yaw_deg: f64::from(view.yaw),
+                    pitch_deg: f64::from(view.pitch),
+                    cull_back: view.cull == Cull::Back,
+                },
+            );
+            let ms = start.elapsed().as_secs_f64() * 1e3;
+            let shade = shading(view.shading);
+            let colors = frame
+                .ids
+                .iter()
+                .map(|&id| {
+                    frame
+                        .face_info(id)
+                        .map_or(Rgb888::BLACK, |f| shade.color(&f))
+                })
+                .collect();
+            let mut seen: Vec<u32> = frame
+                .ids
+                .iter()
+                .copied()
+                .filter(|&i| i != BACKGROUND)
+                .collect();
+            seen.sort_unstable();
+            seen.dedup();
+            self.reference = Some(ReferenceCache {
+                key,
+                colors,
+                visible: seen.len() as u32,
+                ms,
+            });
+        }
+        let Some(cached) = &self.reference else {
+            return FrameReport::default();
+        };
+        let width = u32::from(self.width);
+        for (y, row) in cached.colors.chunks(usize::from(self.width)).enumerate() {
+            let area = Rectangle::new(Point::new(0, y as i32), Size::new(width, 1));
+            let Ok(()) = display.fill_contiguous(&area, row.iter().copied());
+        }
+        FrameReport {
+            ms: cached.ms,
+            polygons: cached.visible,
+            ram_bytes: None,
+        }
+    }
+}
+
+/// One frame by the scanline core: clear, [`draw_mesh`], render through a
+/// [`DrawTargetSink`] (one `fill_contiguous` per row).
+fn scanline<D: DepthFormat>(
+    renderer: &mut WindowRenderer<D>,
+    cache: &mut VertexCache<MAX_MESH_VERTICES>,
+    mesh: &HostMesh,
+    view: &View,
+    display: &mut SimulatorDisplay<Rgb888>,
+) -> Result<FrameReport, String> {
+    let camera = Camera::reference(renderer.width(), renderer.height());
+    let model = view.model(mesh);
+    let shade = shading(view.shading);
+    let start = Instant::now();
+    renderer.clear();
+    cache.clear();
+    draw_mesh(renderer, cache, mesh, &model, &camera, view.cull, |f| {
+        shade.color(f)
+    })
+    .map_err(|e| format!("draw_mesh: {e}"))?;
+    let stats = renderer
+        .render(&mut DrawTargetSink::new(display))
+        .map_err(|e| match e {
+            RenderError::Table(e) => format!("render: {e}"),
+            RenderError::Sink(never) => match never {},
+        })?;
+    let ms = start.elapsed().as_secs_f64() * 1e3;
+    let cache_bytes = 2 * mesh.positions.len();
+    Ok(FrameReport {
+        ms,
+        polygons: stats.polygons,
+        ram_bytes: Some(stats.ram_bytes::<Rgb565, D>(usize::from(renderer.width())) + cache_bytes),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every method, depth format, shading and culling draws; the reference
+    /// at the default view has the scanline's silhouette almost everywhere.
+    #[test]
+    fn every_mode_draws() {
+        let run = || {
+            let mesh = zline::methods::shapes::by_name("torus-knot").unwrap();
+            let (w, h) = (96u16, 72u16);
+            let mut r = Renderers::new(w, h).unwrap();
+            let size = Size::new(u32::from(w), u32::from(h));
+            let mut frames = Vec::new();
+            for method in [Method::Scanline, Method::Reference] {
+                for depth in [DepthChoice::Z16, DepthChoice::Z24] {
+                    for shading in 0..SHADINGS.len() {
+                        for cull in [Cull::None, Cull::Back] {
+                            for zoom in [0, 3] {
+                                let view = View {
+                                    method,
+                                    depth,
+                                    shading,
+                                    cull,
+                                    zoom,
+                                    ..View::default()
+                                };
+                                let mut display = SimulatorDisplay::<Rgb888>::new(size);
+                                let report = r.draw(&mesh, &view, &mut display).unwrap();
+                                assert!(report.polygons > 0);
+                                assert_eq!(report.ram_bytes.is_some(), method == Method::Scanline);
+                                frames.push((view, display));
+                            }
+                        }
+                    }
+                }
+            }
+            let lit = |d: &SimulatorDisplay<Rgb888>| {
+                d.bounding_box()
+                    .points()
+                    .map(|p| d.get_pixel(p) != Rgb888::BLACK)
+                    .collect::<Vec<_>>()
+            };
+            let scan = lit(&frames[0].1);
+            let reference = frames
+                .iter()
+                .find(|(v, _)| v.method == Method::Reference && v.zoom == 0)
+                .map(|(_, d)| lit(d))
+                .unwrap();
+            let differ = scan.iter().zip(&reference).filter(|(a, b)| a != b).count();
+            assert!(scan.iter().filter(|&&x| x).count() > 500);
+            assert!(differ < 40, "{differ} pixels differ in coverage");
+        };
+        std::thread::Builder::new()
+            .stack_size(512 << 20)
+            .spawn(run)
+            .unwrap()
+            .join()
+            .unwrap();
+    }
+}
