@@ -7,6 +7,10 @@
 //!    differs;
 //! 4. the renderer's capacities: the exact largest needs over all scenes,
 //!    as measured on the host.
+//!
+//! `ZLINE_QEMU_SCENE=K` keeps only scene K (for profiling one frame);
+//! `ZLINE_QEMU_BAD_CRC=1` corrupts one expected CRC (a self-test of the
+//! failure path).
 
 #[path = "src/frame.rs"]
 mod frame;
@@ -38,6 +42,7 @@ fn main() {
     println!("cargo:rerun-if-changed=memory.x");
     println!("cargo:rerun-if-changed=src/frame.rs");
     println!("cargo:rerun-if-env-changed=ZLINE_QEMU_SCENE");
+    println!("cargo:rerun-if-env-changed=ZLINE_QEMU_BAD_CRC");
     // The host renderer is large: build it on a thread with a large stack.
     let source = std::thread::Builder::new()
         .stack_size(512 << 20)
@@ -118,7 +123,10 @@ fn generate() -> String {
             StaticMesh::new(&host.positions, &host.corners, &host.face_starts).expect("valid mesh");
         let crc16 = expected(&mut *z16, &mut cache, &mesh, yaw, pitch, &mut needs);
         let crc24 = expected(&mut *z24, &mut cache, &mesh, yaw, pitch, &mut needs);
-        for (depth, crc) in [("Z16", crc16), ("Z24", crc24)] {
+        // ZLINE_QEMU_BAD_CRC=1 flips one bit of one expected CRC: a self-test
+        // that the emulated run fails when a frame differs from the host's.
+        let flip = u32::from(std::env::var_os("ZLINE_QEMU_BAD_CRC").is_some() && scenes.is_empty());
+        for (depth, crc) in [("Z16", crc16 ^ flip), ("Z24", crc24)] {
             let _ = writeln!(
                 scenes,
                 "    Scene {{ name: {shape:?}, mesh: &{}, yaw: {yaw:?}, pitch: {pitch:?}, depth: DepthKind::{depth}, expected_crc: 0x{crc:08X} }},",

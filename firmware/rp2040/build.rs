@@ -1,0 +1,248 @@
+//! Build script of the RP2040 firmware.
+//!
+//! 1. Puts the repository's `memory.x` (RP2040 memory map with BOOT2) on
+//!    the linker's search path, and passes cortex-m-rt's `link.x`.
+//! 2. Writes the mesh as Rust statics (`OUT_DIR/mesh.rs`), so it stays in
+//!    flash: the built-in torus knot, or the OBJ file named by the
+//!    environment variable `ZLINE_MESH`.
+//! 3. Runs zline's scanline core on the host over every view the firmware
+//!    shows and writes the table capacities those views need, plus a
+//!    margin, to `OUT_DIR/capacities.rs`. A mesh whose tables would not
+//!    leave enough RAM for the stack fails the build here.
+
+use std::env;
+use std::fmt::Write as _;
+use std::fs;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use embedded_graphics_core::pixelcolor::Rgb565;
+use zline::mesh::{Mesh, StaticMesh};
+use zline::methods::{HostMesh, HostScanline, shapes, static_mesh_source};
+use zline::scene::{Camera, Cull, MAX_CLIPPED_CORNERS, MAX_FACE_CORNERS, reference_model};
+use zline::shade::Shading;
+use zline::{Depth16, FrameStats};
+
+/// LCD size in pixels (ST7789 240x240 module).
+const WIDTH: u16 = 240;
+const HEIGHT: u16 = 240;
+/// The firmware turns the mesh through a full turn in this many frames...
+const YAW_STEPS: u32 = 120;
+/// ...at this fixed pitch, in degrees.
+const PITCH_DEG: f32 = 20.0;
+/// Built-in mesh used when `ZLINE_MESH` is not set.
+const DEFAULT_SHAPE: &str = "torus-knot";
+/// RAM in `memory.x` (SRAM0-3; the two 4 KiB banks SRAM4/5 are left out).
+const RAM: usize = 256 * 1024;
+/// Stack kept free for start-up and the render loop (the largest frames in
+/// the loop are about 3 KiB; `src/stack.rs` measures the real use on the
+/// board).
+const STACK_RESERVE: usize = 16 * 1024;
+/// Bytes of the SPI interface buffer in the firmware (one 240-pixel row
+/// of Rgb565).
+const SPI_BUFFER: usize = 2 * WIDTH as usize;
+
+fn main() -> ExitCode {
+    match run() {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(message) => {
+            eprintln!("error: {message}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn run() -> Result<(), String> {
+    let out = PathBuf::from(env::var_os("OUT_DIR").ok_or("OUT_DIR is not set")?);
+    let manifest = PathBuf::from(env::var_os("CARGO_MANIFEST_DIR").ok_or("no manifest dir")?);
+    println!("cargo:rerun-if-changed=build.rs");
+
+    // 1. Memory map and linker scripts.
+    let memory_x = manifest.join("../../memory.x");
+    fs::copy(&memory_x, out.join("memory.x"))
+        .map_err(|e| format!("copying {}: {e}", memory_x.display()))?;
+    println!("cargo:rerun-if-changed={}", memory_x.display());
+    println!("cargo:rustc-link-search={}", out.display());
+    // cortex-m-rt's script; it INCLUDEs memory.x (above) and device.x
+    // (from rp2040-pac with the HAL's "rt" feature).
+    println!("cargo:rustc-link-arg=-Tlink.x");
+    // No page alignment of sections: keeps the flash image compact.
+    println!("cargo:rustc-link-arg=--nmagic");
+
+    // 2. The mesh, as statics in flash.
+    println!("cargo:rerun-if-env-changed=ZLINE_MESH");
+    let (mesh, origin) = match env::var_os("ZLINE_MESH").filter(|p| !p.is_empty()) {
+        Some(path) => {
+            let path = PathBuf::from(path);
+            println!("cargo:rerun-if-changed={}", path.display());
+            (load_obj(&path)?, path.display().to_string())
+        }
+        None => (
+            shapes::by_name(DEFAULT_SHAPE).ok_or("built-in shape missing")?,
+            format!("zline::methods::shapes::by_name({DEFAULT_SHAPE:?})"),
+        ),
+    };
+    check_mesh(&mesh, &origin)?;
+    let source = static_mesh_source(&mesh, "MESH", &origin)?;
+    write(&out.join("mesh.rs"), &source)?;
+
+    // 3. Table capacities for every view the firmware shows.
+    let capacities = measure(mesh, &origin)?;
+    write(&out.join("capacities.rs"), &capacities)?;
+    Ok(())
+}
+
+fn write(path: &Path, text: &str) -> Result<(), String> {
+    fs::write(path, text).map_err(|e| format!("writing {}: {e}", path.display()))
+}
+
+fn load_obj(path: &Path) -> Result<HostMesh, String> {
+    let shown = path.display();
+    let bytes = fs::read(path).map_err(|e| {
+        let resolved = env::current_dir()
+            .map(|d| d.join(path).display().to_string())
+            .unwrap_or_default();
+        format!("ZLINE_MESH={shown}: {e} (read as {resolved}: a relative path starts at the firmware crate; prefer an absolute path)")
+    })?;
+    HostMesh::from_obj(&bytes).map_err(|e| format!("ZLINE_MESH={shown}: {e}"))
+}
+
+/// Refuses meshes the firmware cannot draw, with a message naming why.
+fn check_mesh(mesh: &HostMesh, origin: &str) -> Result<(), String> {
+    if mesh.face_count() == 0 {
+        return Err(format!("{origin}: the mesh has no faces"));
+    }
+    StaticMesh::new(&mesh.positions, &mesh.corners, &mesh.face_starts)
+        .map_err(|e| format!("{origin}: invalid mesh: {e:?}"))?;
+    let widest = max_face_corners(mesh);
+    if widest > MAX_FACE_CORNERS {
+        return Err(format!(
+            "{origin}: a face has {widest} corners; the pipeline draws at most {MAX_FACE_CORNERS}"
+        ));
+    }
+    Ok(())
+}
+
+fn max_face_corners(mesh: &HostMesh) -> usize {
+    (0..mesh.face_count())
+        .map(|f| mesh.face(f).len())
+        .max()
+        .unwrap_or(3)
+}
+
+/// Renders every firmware view on the host (on a thread with a large
+/// stack: the host renderer is built on the stack) and returns the source
+/// of `capacities.rs`.
+fn measure(mesh: HostMesh, origin: &str) -> Result<String, String> {
+    let origin = origin.to_string();
+    std::thread::Builder::new()
+        .stack_size(256 << 20)
+        .spawn(move || measure_views(&mesh, &origin))
+        .map_err(|e| format!("starting the sizing thread: {e}"))?
+        .join()
+        .map_err(|_| "the sizing thread failed".to_string())?
+}
+
+fn measure_views(mesh: &HostMesh, origin: &str) -> Result<String, String> {
+    let mut host =
+        HostScanline::<Depth16>::new(WIDTH, HEIGHT).map_err(|e| format!("host renderer: {e}"))?;
+    let camera = Camera::reference(WIDTH, HEIGHT);
+    let mut peak = FrameStats::default();
+    for step in 0..YAW_STEPS {
+        let model = reference_model(mesh, yaw_deg(step), PITCH_DEG);
+        let (_, s) = host
+            .render(mesh, &model, &camera, Cull::Back, &Shading::FaceId)
+            .map_err(|e| format!("{origin}: view {step} does not render on the host: {e}"))?;
+        peak.vertices = peak.vertices.max(s.vertices);
+        peak.polygons = peak.polygons.max(s.polygons);
+        peak.corners = peak.corners.max(s.corners);
+        peak.peak_active_polygons = peak.peak_active_polygons.max(s.peak_active_polygons);
+        peak.peak_pooled_edges = peak.peak_pooled_edges.max(s.peak_pooled_edges);
+    }
+
+    // A quarter more than the largest view needs, for rounding differences
+    // between host and target arithmetic.
+    let margin = |n: u32| n as usize + n as usize / 4 + 16;
+    let vertices = margin(peak.vertices).min(1 << 16);
+    let polygons = margin(peak.polygons);
+    let corners = margin(peak.corners);
+    let active_polygons = margin(peak.peak_active_polygons);
+    let pooled_edges = margin(peak.peak_pooled_edges);
+    let polygon_corners = (max_face_corners(mesh) + 6).clamp(9, MAX_CLIPPED_CORNERS);
+    let mesh_vertices = mesh.vertex_count().max(1);
+
+    let sized = FrameStats {
+        vertices: vertices as u32,
+        polygons: polygons as u32,
+        corners: corners as u32,
+        peak_active_polygons: active_polygons as u32,
+        peak_pooled_edges: pooled_edges as u32,
+        ..FrameStats::default()
+    };
+    let renderer = sized.ram_bytes::<Rgb565, Depth16>(usize::from(WIDTH));
+    let ram = renderer + 2 * mesh_vertices + SPI_BUFFER;
+    // The renderer is built at compile time in its static
+    // (`Renderer::new_in_static`), so it needs room once.
+    let needed = ram + STACK_RESERVE;
+    if needed > RAM {
+        return Err(format!(
+            "{origin}: too big for the RP2040's RAM: the renderer's tables for this mesh take \
+             about {renderer} bytes, {needed} bytes in all with the vertex cache, the SPI buffer \
+             and {STACK_RESERVE} bytes of stack, over the {RAM} bytes in memory.x; use a \
+             smaller mesh ({} vertices, {} faces here)",
+            mesh.vertex_count(),
+            mesh.face_count()
+        ));
+    }
+
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "// Generated by build.rs from {}: the largest counts over {YAW_STEPS} yaw \
+         steps at pitch {PITCH_DEG}, {WIDTH}x{HEIGHT}, back faces culled, plus a margin. \
+         Do not edit.",
+        origin.replace(char::is_control, "?")
+    );
+    let _ = writeln!(
+        s,
+        "// Measured: vertices={} polygons={} corners={} active polygons={} pooled edges={}.",
+        peak.vertices,
+        peak.polygons,
+        peak.corners,
+        peak.peak_active_polygons,
+        peak.peak_pooled_edges
+    );
+    let _ = writeln!(
+        s,
+        "// Estimated RAM (renderer + cache + SPI buffer): {ram} bytes.\n"
+    );
+    let items: [(&str, &str, String); 13] = [
+        ("WIDTH", "u16", WIDTH.to_string()),
+        ("HEIGHT", "u16", HEIGHT.to_string()),
+        ("YAW_STEPS", "u32", YAW_STEPS.to_string()),
+        ("YAW_STEP_DEG", "f32", format!("{:?}", yaw_step_deg())),
+        ("PITCH_DEG", "f32", format!("{PITCH_DEG:?}")),
+        ("SPI_BUFFER", "usize", SPI_BUFFER.to_string()),
+        ("MESH_VERTICES", "usize", mesh_vertices.to_string()),
+        ("VERTICES", "usize", vertices.to_string()),
+        ("POLYGONS", "usize", polygons.to_string()),
+        ("CORNERS", "usize", corners.to_string()),
+        ("ACTIVE_POLYGONS", "usize", active_polygons.to_string()),
+        ("POOLED_EDGES", "usize", pooled_edges.to_string()),
+        ("POLYGON_CORNERS", "usize", polygon_corners.to_string()),
+    ];
+    for (name, ty, value) in items {
+        let _ = writeln!(s, "pub const {name}: {ty} = {value};");
+    }
+    Ok(s)
+}
+
+/// Yaw of firmware frame `step` (`0..YAW_STEPS`), in degrees. The firmware
+/// computes the same product from the generated `YAW_STEP_DEG`.
+fn yaw_deg(step: u32) -> f32 {
+    step as f32 * yaw_step_deg()
+}
+
+fn yaw_step_deg() -> f32 {
+    360.0 / YAW_STEPS as f32
+}

@@ -1,0 +1,143 @@
+//! Board set-up: clocks, pins, SPI and the ST7789 LCD.
+//!
+//! # Pinout
+//!
+//! | LCD pin     | Pico pin | GPIO | use                       |
+//! |-------------|----------|------|---------------------------|
+//! | SCL / SCK   | 24       | GP18 | SPI0 SCK                  |
+//! | SDA / MOSI  | 25       | GP19 | SPI0 TX                   |
+//! | CS          | 22       | GP17 | chip select (GPIO output) |
+//! | DC / RS     | 21       | GP16 | data/command              |
+//! | RES / RST   | 26       | GP20 | reset, active low         |
+//! | BLK / BL    | 27       | GP21 | backlight, high = on      |
+//! | VCC         | 36       | 3V3(OUT) |                       |
+//! | GND         | 38       | GND  |                           |
+//!
+//! The pins are chosen in one place, the block marked "Pinout" in
+//! [`init`]. SCK and MOSI must belong to the SPI block chosen there
+//! (SPI0: SCK on GP2/6/18/22, TX on GP3/7/19; SPI1: SCK on GP10/14/26, TX on
+//! GP11/15/27); the HAL checks this at compile time. CS, DC, RST and the
+//! backlight can be any free GPIO.
+//!
+//! Modules without a CS pin have CS tied low on the board: leave GP17
+//! unconnected. They need SPI mode 3 (clock idles high), which is why
+//! [`SPI_MODE`] is mode 3; modules with CS work in mode 3 as well.
+
+use embedded_graphics_core::draw_target::DrawTarget;
+use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
+use embedded_hal::digital::{OutputPin, PinState};
+use embedded_hal::spi::{MODE_3, Mode};
+use embedded_hal_bus::spi::ExclusiveDevice;
+use mipidsi::Builder;
+use mipidsi::interface::SpiInterface;
+use mipidsi::models::ST7789;
+use mipidsi::options::{ColorInversion, ColorOrder, Orientation};
+use rp2040_hal::Clock;
+use rp2040_hal::fugit::RateExtU32;
+use rp2040_hal::gpio::{FunctionSpi, OutputDriveStrength, OutputSlewRate, Pins};
+use rp2040_hal::{self as hal, pac};
+use static_cell::ConstStaticCell;
+
+use crate::Fault;
+use crate::sizes::{HEIGHT, SPI_BUFFER, WIDTH};
+
+/// Crystal on the Pico.
+const XTAL_HZ: u32 = 12_000_000;
+/// SPI clock asked for. The SPI block divides the peripheral clock (125
+/// MHz) by at least 2, so this is the fastest it can go: exactly 62.5 MHz.
+/// Lower it (e.g. to 31.25 MHz) if long wires garble the picture.
+pub const SPI_HZ: u32 = 62_500_000;
+/// SPI mode 3: clock idle high, data sampled on the rising edge (see the
+/// module notes about modules without CS).
+pub const SPI_MODE: Mode = MODE_3;
+
+// The display knobs. Check them with `mipidsi::TestImage` if colours look
+// wrong (see mipidsi's troubleshooting guide).
+
+/// Most 240x240 ST7789 modules are IPS panels that show true colours only
+/// with inversion on; if black shows as white, use `ColorInversion::Normal`.
+pub const INVERSION: ColorInversion = ColorInversion::Inverted;
+/// Subpixel order; if red and blue are swapped, use `ColorOrder::Bgr`.
+pub const COLOR_ORDER: ColorOrder = ColorOrder::Rgb;
+/// Rotation and mirroring of the picture.
+pub const ORIENTATION: Orientation = Orientation::new();
+/// Where the 240x240 panel sits in the controller's 240x320 memory: (0, 0)
+/// for the default orientation. With a rotated `ORIENTATION` many modules
+/// need 80 on one axis: if the picture is shifted, try (0, 80) or (80, 0).
+pub const OFFSET: (u16, u16) = (0, 0);
+
+/// mipidsi's SPI buffer: one row of Rgb565, so each row the renderer
+/// sends goes out in one SPI write. In `.bss`, not on the stack.
+static SPI_BUF: ConstStaticCell<[u8; SPI_BUFFER]> = ConstStaticCell::new([0; SPI_BUFFER]);
+
+/// Brings up clocks, the timer, SPI and the LCD (reset, initialised,
+/// backlight on). Returns the display and the timer (a microsecond clock
+/// and delay).
+pub fn init() -> Result<(impl DrawTarget<Color = Rgb565>, hal::Timer), Fault> {
+    let mut pac = pac::Peripherals::take().ok_or(Fault::Peripherals)?;
+    let mut watchdog = hal::Watchdog::new(pac.WATCHDOG);
+    // 125 MHz system and peripheral clocks from the 12 MHz crystal.
+    let clocks = hal::clocks::init_clocks_and_plls(
+        XTAL_HZ,
+        pac.XOSC,
+        pac.CLOCKS,
+        pac.PLL_SYS,
+        pac.PLL_USB,
+        &mut pac.RESETS,
+        &mut watchdog,
+    )
+    .map_err(|_| Fault::Clocks)?;
+    let mut timer = hal::Timer::new(pac.TIMER, &mut pac.RESETS, &clocks);
+    let sio = hal::Sio::new(pac.SIO);
+    let pins = Pins::new(
+        pac.IO_BANK0,
+        pac.PADS_BANK0,
+        sio.gpio_bank0,
+        &mut pac.RESETS,
+    );
+
+    // ---- Pinout: the only place to change pins (update the table above).
+    let spi_block = pac.SPI0;
+    let sck = pins.gpio18;
+    let mosi = pins.gpio19;
+    let cs = pins.gpio17;
+    let dc = pins.gpio16;
+    let rst = pins.gpio20;
+    let backlight = pins.gpio21;
+    // ----
+
+    let mut sck = sck.into_function::<FunctionSpi>();
+    let mut mosi = mosi.into_function::<FunctionSpi>();
+    // Fast edges and strong drive for 62.5 MHz over jumper wires.
+    sck.set_slew_rate(OutputSlewRate::Fast);
+    sck.set_drive_strength(OutputDriveStrength::TwelveMilliAmps);
+    mosi.set_slew_rate(OutputSlewRate::Fast);
+    mosi.set_drive_strength(OutputDriveStrength::TwelveMilliAmps);
+    let spi = hal::Spi::<_, _, _, 8>::new(spi_block, (mosi, sck)).init(
+        &mut pac.RESETS,
+        clocks.peripheral_clock.freq(),
+        SPI_HZ.Hz(),
+        SPI_MODE,
+    );
+    let cs = cs.into_push_pull_output_in_state(PinState::High);
+    let dc = dc.into_push_pull_output_in_state(PinState::Low);
+    let rst = rst.into_push_pull_output_in_state(PinState::High);
+    let mut backlight = backlight.into_push_pull_output_in_state(PinState::Low);
+
+    let device = ExclusiveDevice::new(spi, cs, timer).map_err(|_| Fault::Spi)?;
+    let buffer = SPI_BUF.try_take().ok_or(Fault::Display)?;
+    let mut display = Builder::new(ST7789, SpiInterface::new(device, dc, buffer))
+        .display_size(WIDTH, HEIGHT)
+        .display_offset(OFFSET.0, OFFSET.1)
+        .orientation(ORIENTATION)
+        .invert_colors(INVERSION)
+        .color_order(COLOR_ORDER)
+        .reset_pin(rst)
+        .init(&mut timer)
+        .map_err(|_| Fault::Display)?;
+    // Black before the backlight comes on, not the controller's noise.
+    display.clear(Rgb565::BLACK).map_err(|_| Fault::Display)?;
+    // The pin keeps its level when `backlight` goes out of scope.
+    backlight.set_high().map_err(|_| Fault::Display)?;
+    Ok((display, timer))
+}
