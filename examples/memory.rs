@@ -10,10 +10,11 @@ use embedded_graphics::pixelcolor::Rgb565;
 use zline::{Depth16, Depth24, Renderer};
 
 /// 240x240, a 1,000-triangle mesh (about 500 vertices), generous active
-/// tables.
-type Small<D> = Renderer<Rgb565, D, 240, 600, 1000, 3000, 256, 512, 4>;
+/// tables (triangles keep their edge pairs inline: the edge pool only
+/// serves concave polygons).
+type Small<D> = Renderer<Rgb565, D, 240, 600, 1000, 3000, 256, 32, 4>;
 /// 320x240, a 5,000-triangle mesh.
-type Large<D> = Renderer<Rgb565, D, 320, 2600, 5000, 15000, 512, 1024, 4>;
+type Large<D> = Renderer<Rgb565, D, 320, 2600, 5000, 15000, 512, 32, 4>;
 
 fn row(name: &str, w: usize, h: usize, z16: usize, z24: usize) {
     let full = w * h * 2 * 2;
@@ -31,14 +32,14 @@ fn main() {
     );
     println!("|---|---|---|---|");
     row(
-        "240x240, V=600 P=1000 E=3000 AP=256 AE=512",
+        "240x240, V=600 P=1000 E=3000 AP=256 AE=32",
         240,
         240,
         size_of::<Small<Depth16>>(),
         size_of::<Small<Depth24>>(),
     );
     row(
-        "320x240, V=2600 P=5000 E=15000 AP=512 AE=1024",
+        "320x240, V=2600 P=5000 E=15000 AP=512 AE=32",
         320,
         240,
         size_of::<Large<Depth16>>(),

@@ -74,6 +74,7 @@ fn run(args: &[String]) -> Result<(), String> {
         peak.edges = peak.edges.max(s.edges);
         peak.peak_active_polygons = peak.peak_active_polygons.max(s.peak_active_polygons);
         peak.peak_active_edges = peak.peak_active_edges.max(s.peak_active_edges);
+        peak.peak_pooled_edges = peak.peak_pooled_edges.max(s.peak_pooled_edges);
     }
     let w = usize::from(size.0);
     println!("mesh={path}");
@@ -87,6 +88,7 @@ fn run(args: &[String]) -> Result<(), String> {
     println!("edges={}", peak.edges);
     println!("peak_active_polygons={}", peak.peak_active_polygons);
     println!("peak_active_edges={}", peak.peak_active_edges);
+    println!("peak_pooled_edges={}", peak.peak_pooled_edges);
     println!("vertex_cache_bytes={}", 2 * mesh.positions.len());
     let z16 = peak.ram_bytes::<Rgb565, Depth16>(w) + 2 * mesh.positions.len();
     let z24 = peak.ram_bytes::<Rgb565, Depth24>(w) + 2 * mesh.positions.len();
@@ -102,7 +104,7 @@ fn run(args: &[String]) -> Result<(), String> {
         peak.polygons,
         peak.corners,
         peak.peak_active_polygons,
-        peak.peak_active_edges,
+        peak.peak_pooled_edges,
         max_corners,
         mesh.positions.len()
     );
