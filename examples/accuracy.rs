@@ -16,7 +16,10 @@
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use zline::methods::{Comparison, HostMesh, HostScanline, ReferenceFrame, ReferenceView, compare};
+use zline::methods::{
+    Comparison, HostMesh, HostScanline, ReferenceFrame, ReferenceView, compare, parse_size,
+    run_tool,
+};
 use zline::scene::{Camera, Cull, reference_model};
 use zline::shade::Shading;
 use zline::{Depth16, Depth24, DepthFormat};
@@ -42,12 +45,7 @@ fn parse(args: &[String]) -> Result<Options, String> {
     let mut it = args.iter();
     while let Some(a) = it.next() {
         match a.as_str() {
-            "--size" => {
-                let v = it.next().ok_or("--size needs WxH")?;
-                let (w, h) = v.split_once('x').ok_or("--size needs WxH")?;
-                o.width = w.parse().map_err(|_| "bad width")?;
-                o.height = h.parse().map_err(|_| "bad height")?;
-            }
+            "--size" => (o.width, o.height) = parse_size(it.next().ok_or("--size needs WxH")?)?,
             "--cull" => {
                 o.cull = match it.next().map(String::as_str) {
                     Some("none") => Cull::None,
@@ -158,22 +156,8 @@ fn run(args: &[String]) -> Result<bool, String> {
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let worker = std::thread::Builder::new()
-        .stack_size(512 << 20)
-        .spawn(move || run(&args));
-    match worker.map(|w| w.join()) {
-        Ok(Ok(Ok(true))) => ExitCode::SUCCESS,
-        Ok(Ok(Ok(false))) => {
-            eprintln!("accuracy: hard mismatches with z24");
-            ExitCode::FAILURE
-        }
-        Ok(Ok(Err(message))) => {
-            eprintln!("accuracy: {message}");
-            ExitCode::from(2)
-        }
-        _ => {
-            eprintln!("accuracy: internal failure");
-            ExitCode::FAILURE
-        }
-    }
+    run_tool("accuracy", "", move || match run(&args)? {
+        true => Ok(()),
+        false => Err("hard mismatches with z24".into()),
+    })
 }

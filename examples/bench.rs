@@ -17,7 +17,9 @@
 use std::process::ExitCode;
 use std::time::Instant;
 
-use zline::methods::{HostMesh, HostScanline, ReferenceFrame, ReferenceView, shapes};
+use zline::methods::{
+    HostScanline, ReferenceFrame, ReferenceView, load_model, parse_size, run_tool,
+};
 use zline::scene::{Camera, Cull, reference_model};
 use zline::shade::Shading;
 use zline::{Depth16, Depth24};
@@ -83,14 +85,7 @@ fn run(args: &[String]) -> Result<(), String> {
     let mut it = args.iter();
     while let Some(a) = it.next() {
         match a.as_str() {
-            "--size" => {
-                let v = it.next().ok_or("--size needs WxH")?;
-                let (w, h) = v.split_once('x').ok_or("--size needs WxH")?;
-                size = (
-                    w.parse().map_err(|_| "bad width")?,
-                    h.parse().map_err(|_| "bad height")?,
-                );
-            }
+            "--size" => size = parse_size(it.next().ok_or("--size needs WxH")?)?,
             "--rounds" => {
                 rounds = it
                     .next()
@@ -115,13 +110,7 @@ fn run(args: &[String]) -> Result<(), String> {
     println!("| mesh | faces | configuration | median ms | ratio to scanline z16 |");
     println!("|---|---|---|---|---|");
     for path in &paths {
-        let mesh = match path.strip_prefix("shape:") {
-            Some(name) => shapes::by_name(name).ok_or(format!("unknown shape {name}"))?,
-            None => {
-                let bytes = std::fs::read(path).map_err(|e| format!("{path}: {e}"))?;
-                HostMesh::from_obj(&bytes).map_err(|e| format!("{path}: {e}"))?
-            }
-        };
+        let mesh = load_model(path)?;
         let model = reference_model(&mesh, 30.0, 20.0);
         let view = ReferenceView {
             width: usize::from(size.0),
@@ -169,18 +158,5 @@ fn run(args: &[String]) -> Result<(), String> {
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let worker = std::thread::Builder::new()
-        .stack_size(512 << 20)
-        .spawn(move || run(&args));
-    match worker.map(|w| w.join()) {
-        Ok(Ok(Ok(()))) => ExitCode::SUCCESS,
-        Ok(Ok(Err(message))) => {
-            eprintln!("bench: {message}");
-            ExitCode::from(2)
-        }
-        _ => {
-            eprintln!("bench: internal failure");
-            ExitCode::FAILURE
-        }
-    }
+    run_tool("bench", "", move || run(&args))
 }

@@ -14,7 +14,7 @@
 use std::process::ExitCode;
 
 use embedded_graphics::pixelcolor::Rgb565;
-use zline::methods::{HostMesh, HostScanline};
+use zline::methods::{HostMesh, HostScanline, load_model, parse_size, run_tool};
 use zline::scene::{Camera, Cull, reference_model};
 use zline::shade::Shading;
 use zline::{Depth16, Depth24, FrameStats};
@@ -26,14 +26,7 @@ fn run(args: &[String]) -> Result<(), String> {
     while let Some(a) = it.next() {
         let mut value = || it.next().ok_or_else(|| format!("{a} needs a value"));
         match a.as_str() {
-            "--size" => {
-                let v = value()?;
-                let (w, h) = v.split_once('x').ok_or("--size needs WxH")?;
-                size = (
-                    w.parse().map_err(|_| "bad width")?,
-                    h.parse().map_err(|_| "bad height")?,
-                );
-            }
+            "--size" => size = parse_size(value()?)?,
             "--cull" => {
                 cull = if value()? == "back" {
                     Cull::Back
@@ -56,8 +49,7 @@ fn run(args: &[String]) -> Result<(), String> {
     let path = path.ok_or(
         "usage: needs MODEL.obj [--size WxH] [--cull none|back] [--pitch DEG] [--views N]",
     )?;
-    let bytes = std::fs::read(&path).map_err(|e| format!("{path}: {e}"))?;
-    let mesh = HostMesh::from_obj(&bytes).map_err(|e| format!("{path}: {e}"))?;
+    let mesh = load_model(&path)?;
     let mut host = HostScanline::<Depth16>::new(size.0, size.1).map_err(|e| e.to_string())?;
     let camera = Camera::reference(size.0, size.1);
     let mut peak = FrameStats::default();
@@ -122,18 +114,5 @@ fn mesh_max_corners(mesh: &HostMesh) -> usize {
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let worker = std::thread::Builder::new()
-        .stack_size(512 << 20)
-        .spawn(move || run(&args));
-    match worker.map(|w| w.join()) {
-        Ok(Ok(Ok(()))) => ExitCode::SUCCESS,
-        Ok(Ok(Err(message))) => {
-            eprintln!("needs: {message}");
-            ExitCode::from(2)
-        }
-        _ => {
-            eprintln!("needs: internal failure");
-            ExitCode::FAILURE
-        }
-    }
+    run_tool("needs", "", move || run(&args))
 }

@@ -36,7 +36,10 @@ use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use embedded_graphics_simulator::{OutputSettings, SimulatorDisplay};
-use zline::methods::{BACKGROUND, HostMesh, HostScanline, ReferenceFrame, ReferenceView, shapes};
+use zline::methods::{
+    BACKGROUND, HostMesh, HostScanline, ReferenceFrame, ReferenceView, load_model, parse_size,
+    run_tool,
+};
 use zline::scene::{Camera, Cull, reference_model};
 use zline::shade::Shading;
 use zline::{Depth16, Depth24, DepthFormat, FrameStats};
@@ -132,13 +135,6 @@ fn parse_args(args: &[String]) -> Result<Options, String> {
     }
     o.model = model.ok_or("missing MODEL.obj")?;
     Ok(o)
-}
-
-fn parse_size(s: &str) -> Result<(u16, u16), String> {
-    let bad = || format!("--size: expected WxH with each side 1 to 4096, got '{s}'");
-    let (w, h) = s.split_once('x').ok_or_else(bad)?;
-    let side = |v: &str| v.parse::<u16>().ok().filter(|&n| (1..=4096).contains(&n));
-    Ok((side(w).ok_or_else(bad)?, side(h).ok_or_else(bad)?))
 }
 
 fn parse_angle(name: &str, s: &str) -> Result<f32, String> {
@@ -288,27 +284,9 @@ fn write_outputs(o: &Options, out: &Output) -> Result<(), String> {
     Ok(())
 }
 
-/// An OBJ file, or `shape:NAME` for a built-in mesh.
-fn load_model(path: &std::path::Path) -> Result<HostMesh, String> {
-    let text = path.to_string_lossy();
-    if let Some(name) = text.strip_prefix("shape:") {
-        return shapes::by_name(name).ok_or_else(|| {
-            format!(
-                "unknown shape '{name}' (one of {})",
-                shapes::NAMES.join(", ")
-            )
-        });
-    }
-    let bytes = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    HostMesh::from_obj(&bytes).map_err(|e| format!("{}: {e}", path.display()))
-}
-
 fn run(args: &[String]) -> Result<(), String> {
     let o = parse_args(args)?;
-    let mesh = load_model(&o.model)?;
-    if mesh.positions.is_empty() {
-        return Err(format!("{}: no vertices", o.model.display()));
-    }
+    let mesh = load_model(&o.model.to_string_lossy())?;
     let mut out = match (o.reference, o.depth.as_str()) {
         (true, _) => run_reference(&o, &mesh),
         (false, "z16") => run_scanline::<Depth16>(&o, &mesh)?,
@@ -338,22 +316,7 @@ fn run(args: &[String]) -> Result<(), String> {
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    // The host renderer is built on the stack before it moves to the heap.
-    let worker = std::thread::Builder::new()
-        .stack_size(512 << 20)
-        .spawn(move || run(&args));
-    match worker.map(|w| w.join()) {
-        Ok(Ok(Ok(()))) => ExitCode::SUCCESS,
-        Ok(Ok(Err(message))) => {
-            eprintln!("render: {message}");
-            eprintln!(
-                "usage: render MODEL.obj [--size WxH] [--yaw DEG] [--pitch DEG] [--shade flat|lambert|depth|id] [--cull none|back] [--depth z16|z24] [--method scanline|reference] [--out FILE.png] [--ids FILE.bin] [--stats] [--frames N]"
-            );
-            ExitCode::from(2)
-        }
-        _ => {
-            eprintln!("render: internal failure");
-            ExitCode::FAILURE
-        }
-    }
+    run_tool("render", USAGE, move || run(&args))
 }
+
+const USAGE: &str = "usage: render MODEL.obj|shape:NAME [--size WxH] [--yaw DEG] [--pitch DEG] [--shade flat|lambert|depth|id] [--cull none|back] [--depth z16|z24] [--method scanline|reference] [--out FILE.png] [--ids FILE.bin] [--stats] [--frames N]";

@@ -277,12 +277,21 @@ impl Frame {
         ScreenVertex::from_f32(x, y, z).ok()
     }
 
-    /// Whether the projected polygon is kept by the back-face test, and
-    /// whether its front faces the viewer. Screen y points down, so a
+    /// The back-face and extremum tests on a projected polygon: `Some(front)`
+    /// when it is kept (whether its front faces the viewer), `None` when it
+    /// is culled, counted in `stats`. Screen y points down, so a
     /// counter-clockwise face (seen by the viewer) has negative area.
-    fn facing(&self, corners: &[ScreenVertex]) -> (bool, bool) {
+    fn keep(&self, corners: &[ScreenVertex], stats: &mut DrawStats) -> Option<bool> {
         let front = twice_area(corners) < 0;
-        (front || self.cull == Cull::None, front)
+        if !front && self.cull == Cull::Back {
+            stats.back_faces += 1;
+            None
+        } else if self.misses_frame(corners) {
+            stats.off_screen += 1;
+            None
+        } else {
+            Some(front)
+        }
     }
 
     /// Whether the screen bounding box of the corners misses the frame.
@@ -410,30 +419,19 @@ fn draw_face<C: Copy, T: PolygonTables<C> + ?Sized, M: Mesh + ?Sized, const VM: 
     if corners.iter().any(|c| matches!(c, Corner::Clip)) {
         return draw_clipped(tables, mesh, frame, part, stats, shade);
     }
-    let screen: Vec<ScreenVertex, MAX_FACE_CORNERS> = corners
-        .iter()
-        .map(|c| match *c {
-            Corner::Stored(_, v) => v,
-            Corner::Clip => ScreenVertex::default(),
-        })
-        .collect();
-    let (keep, front) = frame.facing(&screen);
-    if !keep {
-        stats.back_faces += 1;
-        return Ok(());
-    }
-    if frame.misses_frame(&screen) {
-        stats.off_screen += 1;
-        return Ok(());
-    }
-    let mut ids: Vec<u16, MAX_FACE_CORNERS> = Vec::new();
+    let (mut screen, mut ids): (
+        Vec<ScreenVertex, MAX_FACE_CORNERS>,
+        Vec<u16, MAX_FACE_CORNERS>,
+    ) = (Vec::new(), Vec::new());
     for corner in &corners {
-        let id = match *corner {
-            Corner::Stored(id, _) => id,
-            Corner::Clip => return Err(Error::TooManyCorners),
-        };
-        ids.push(id).map_err(|_| Error::TooManyCorners)?;
+        if let Corner::Stored(id, v) = *corner {
+            screen.push(v).map_err(|_| Error::TooManyCorners)?;
+            ids.push(id).map_err(|_| Error::TooManyCorners)?;
+        }
     }
+    let Some(front) = frame.keep(&screen, stats) else {
+        return Ok(());
+    };
     let color = shade(&frame.face_info(mesh, part, front));
     count(stats, tables.add_polygon(&ids, color)?);
     Ok(())
@@ -531,15 +529,9 @@ fn draw_clipped<C: Copy, T: PolygonTables<C> + ?Sized, M: Mesh + ?Sized>(
         stats.outside += 1;
         return Ok(());
     }
-    let (keep, front) = frame.facing(&screen);
-    if !keep {
-        stats.back_faces += 1;
+    let Some(front) = frame.keep(&screen, stats) else {
         return Ok(());
-    }
-    if frame.misses_frame(&screen) {
-        stats.off_screen += 1;
-        return Ok(());
-    }
+    };
     let mut ids: Vec<u16, MAX_CLIPPED_CORNERS> = Vec::new();
     for v in &screen {
         ids.push(tables.add_vertex(*v)?)

@@ -9,9 +9,11 @@ mod reference;
 mod rust_source;
 mod scanline_host;
 pub mod shapes;
+mod tool;
 
 pub use accuracy::{Comparison, compare};
 pub use host_mesh::HostMesh;
 pub use reference::{BACKGROUND, ReferenceFrame, ReferenceView};
 pub use rust_source::static_mesh_source;
 pub use scanline_host::{HostFrame, HostPixel, HostRenderer, HostScanline};
+pub use tool::{load_model, parse_size, run_tool};

@@ -2,7 +2,7 @@
 
 use std::path::PathBuf;
 
-use zline::methods::{HostMesh, shapes};
+use zline::methods::{HostMesh, parse_size};
 
 /// The usage line, printed with `--help` and after a bad argument.
 pub const USAGE: &str = "usage: simulator [MODEL.obj | shape:NAME] [--size WxH] [--scale N] [--yaw DEG] [--pitch DEG] [--no-overlay]";
@@ -81,13 +81,6 @@ pub fn parse_args(args: &[String]) -> Result<Options, String> {
     Ok(o)
 }
 
-fn parse_size(s: &str) -> Result<(u16, u16), String> {
-    let bad = || format!("--size: expected WxH with each side 1 to 4096, got '{s}'");
-    let (w, h) = s.split_once('x').ok_or_else(bad)?;
-    let side = |v: &str| v.parse::<u16>().ok().filter(|&n| (1..=4096).contains(&n));
-    Ok((side(w).ok_or_else(bad)?, side(h).ok_or_else(bad)?))
-}
-
 fn parse_angle(name: &str, s: &str) -> Result<f32, String> {
     s.parse::<f32>()
         .ok()
@@ -98,21 +91,7 @@ fn parse_angle(name: &str, s: &str) -> Result<f32, String> {
 /// Loads an OBJ file, or a built-in mesh for `shape:NAME`, and checks that
 /// the window's renderer can take it.
 pub fn load_model(path: &std::path::Path) -> Result<HostMesh, String> {
-    let text = path.to_string_lossy();
-    let mesh = if let Some(name) = text.strip_prefix("shape:") {
-        shapes::by_name(name).ok_or_else(|| {
-            format!(
-                "unknown shape '{name}' (one of {})",
-                shapes::NAMES.join(", ")
-            )
-        })?
-    } else {
-        let bytes = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
-        HostMesh::from_obj(&bytes).map_err(|e| format!("{}: {e}", path.display()))?
-    };
-    if mesh.positions.is_empty() {
-        return Err(format!("{}: no vertices", path.display()));
-    }
+    let mesh = zline::methods::load_model(&path.to_string_lossy())?;
     if mesh.positions.len() > crate::frame::MAX_MESH_VERTICES {
         return Err(format!(
             "{}: {} vertices, the window takes at most {}",

@@ -1,0 +1,75 @@
+//! What the host tools (`examples/`, the simulator) share: loading a model
+//! named on the command line, reading a frame size, and running on a thread
+//! with a stack large enough for a host-sized renderer.
+
+use std::format;
+use std::process::ExitCode;
+use std::string::{String, ToString};
+
+use super::{HostMesh, shapes};
+
+/// An OBJ file, or `shape:NAME` for a built-in mesh (see [`shapes::NAMES`]).
+/// Errors name the file and, for a malformed OBJ, the line.
+pub fn load_model(spec: &str) -> Result<HostMesh, String> {
+    let mesh = match spec.strip_prefix("shape:") {
+        Some(name) => shapes::by_name(name).ok_or_else(|| {
+            format!(
+                "unknown shape '{name}' (one of {})",
+                shapes::NAMES.join(", ")
+            )
+        })?,
+        None => {
+            let bytes = std::fs::read(spec).map_err(|e| format!("{spec}: {e}"))?;
+            HostMesh::from_obj(&bytes).map_err(|e| format!("{spec}: {e}"))?
+        }
+    };
+    if mesh.positions.is_empty() {
+        return Err(format!("{spec}: no vertices"));
+    }
+    Ok(mesh)
+}
+
+/// A frame size `WxH`, each side 1 to 4096.
+pub fn parse_size(s: &str) -> Result<(u16, u16), String> {
+    let bad = || format!("--size: expected WxH with each side 1 to 4096, got '{s}'");
+    let (w, h) = s.split_once('x').ok_or_else(bad)?;
+    let side = |v: &str| v.parse::<u16>().ok().filter(|&n| (1..=4096).contains(&n));
+    Ok((side(w).ok_or_else(bad)?, side(h).ok_or_else(bad)?))
+}
+
+/// Runs a tool's `body` on a thread with a 512 MiB stack (a host-sized
+/// renderer is built on the stack before it moves to the heap). An `Err`
+/// is printed as `NAME: message` (then `usage`, if not empty) and exits
+/// with 2; a panic exits with 1.
+pub fn run_tool(
+    name: &str,
+    usage: &str,
+    body: impl FnOnce() -> Result<(), String> + Send + 'static,
+) -> ExitCode {
+    let worker = std::thread::Builder::new()
+        .stack_size(512 << 20)
+        .spawn(body);
+    match worker.map(|w| w.join()) {
+        Ok(Ok(Ok(()))) => ExitCode::SUCCESS,
+        Ok(Ok(Err(message))) => {
+            std::eprintln!("{name}: {message}");
+            if !usage.is_empty() {
+                std::eprintln!("{usage}");
+            }
+            ExitCode::from(2)
+        }
+        Ok(Err(panic)) => {
+            let text = panic
+                .downcast_ref::<&str>()
+                .map(ToString::to_string)
+                .or_else(|| panic.downcast_ref::<String>().cloned())
+                .unwrap_or_default();
+            std::eprintln!("{name}: internal failure {text}");
+            ExitCode::FAILURE
+        }
+        Err(e) => {
+            std::eprintln!("{name}: cannot start: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
