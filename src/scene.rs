@@ -95,6 +95,12 @@ impl Camera {
 /// vertex. Then apply `Rx(pitch) · Ry(yaw)`, angles in degrees.
 pub fn reference_model<M: Mesh + ?Sized>(mesh: &M, yaw_deg: f32, pitch_deg: f32) -> Mat4 {
     let (centre, radius) = bounding_sphere(mesh);
+    reference_model_around(centre, radius, yaw_deg, pitch_deg)
+}
+
+/// [`reference_model`] for a mesh whose [`bounding_sphere`] is already
+/// known: an animation computes the sphere once per mesh, not per frame.
+pub fn reference_model_around(centre: Vec3, radius: f32, yaw_deg: f32, pitch_deg: f32) -> Mat4 {
     let scale = if radius > 0.0 { 1.0 / radius } else { 1.0 };
     let normalise = Mat4::scale(Vec3::new(scale, scale, scale)).mul(&Mat4::translation(-centre));
     Mat4::rotation_x(radians(pitch_deg))

@@ -81,7 +81,9 @@ fn const_name(shape: &str) -> String {
 
 fn generate() -> String {
     // ZLINE_QEMU_SCENE=K keeps only scene K (for profiling one frame).
-    let only: Option<usize> = std::env::var("ZLINE_QEMU_SCENE").ok().and_then(|v| v.parse().ok());
+    let only: Option<usize> = std::env::var("ZLINE_QEMU_SCENE")
+        .ok()
+        .and_then(|v| v.parse().ok());
     let scene_list: Vec<(&str, f32, f32)> = SCENES
         .iter()
         .enumerate()
@@ -115,7 +117,7 @@ fn generate() -> String {
         Box::new(HostRenderer::new(frame::SIZE, Rgb565::BLACK).expect("renderer"));
     let mut z24: Box<HostRenderer<Depth24>> =
         Box::new(HostRenderer::new(frame::SIZE, Rgb565::BLACK).expect("renderer"));
-    let mut cache: Box<VertexCache<65536>> = Box::new(VertexCache::new());
+    let mut cache: Box<VertexCache<65536>> = Box::default();
     let mut scenes = String::new();
     for &(shape, yaw, pitch) in &scene_list {
         let host = &meshes.iter().find(|(s, _)| *s == shape).expect("mesh").1;
@@ -164,8 +166,16 @@ fn expected<D: DepthFormat>(
     needs: &mut Needs,
 ) -> u32 {
     let mut crc = Crc32Sink::new();
-    let (_, stats) =
-        frame::render_frame(renderer, cache, mesh, yaw, pitch, &mut crc).expect("host render");
+    let (_, stats) = frame::render_frame(
+        renderer,
+        cache,
+        mesh,
+        zline::scene::bounding_sphere(mesh),
+        yaw,
+        pitch,
+        &mut crc,
+    )
+    .expect("host render");
     needs.add(&stats);
     crc.value()
 }

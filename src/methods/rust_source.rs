@@ -32,7 +32,7 @@ pub fn static_mesh_source(mesh: &HostMesh, name: &str, origin: &str) -> Result<S
     );
     let _ = writeln!(
         out,
-        "const {name}_POSITIONS: [[f32; 3]; {}] = [\n{}];\n",
+        "static {name}_POSITIONS: [[f32; 3]; {}] = [\n{}];\n",
         positions.len(),
         rows(positions, 1, |p| format!(
             "[{:?}, {:?}, {:?}]",
@@ -41,13 +41,13 @@ pub fn static_mesh_source(mesh: &HostMesh, name: &str, origin: &str) -> Result<S
     );
     let _ = writeln!(
         out,
-        "const {name}_CORNERS: [u16; {}] = [\n{}];\n",
+        "static {name}_CORNERS: [u16; {}] = [\n{}];\n",
         corners.len(),
         rows(corners, 16, u16::to_string)
     );
     let _ = writeln!(
         out,
-        "const {name}_FACE_STARTS: [u32; {}] = [\n{}];\n",
+        "static {name}_FACE_STARTS: [u32; {}] = [\n{}];\n",
         face_starts.len(),
         rows(face_starts, 16, u32::to_string)
     );

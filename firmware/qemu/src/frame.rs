@@ -4,16 +4,18 @@
 //! arithmetic, same pixels.
 
 use embedded_graphics_core::pixelcolor::Rgb565;
+use zline::geometry::Vec3;
 use zline::mesh::StaticMesh;
-use zline::scene::{Camera, Cull, DrawStats, VertexCache, draw_mesh, reference_model};
+use zline::scene::{Camera, Cull, DrawStats, VertexCache, draw_mesh, reference_model_around};
 use zline::shade::Shading;
 use zline::{DepthFormat, FrameStats, RenderError, Renderer, RowSink};
 
 /// Frame width and height.
 pub const SIZE: u16 = 240;
 
-/// Draws `mesh` in the reference view at `yaw`/`pitch` (Lambert, back
-/// faces culled) and sends the frame to `sink`.
+/// Draws `mesh`, whose bounding sphere is `(centre, radius)` (computed once
+/// per mesh), in the reference view at `yaw`/`pitch` (Lambert, back faces
+/// culled) and sends the frame to `sink`.
 #[allow(clippy::too_many_arguments)]
 pub fn render_frame<
     D,
@@ -30,6 +32,7 @@ pub fn render_frame<
     renderer: &mut Renderer<Rgb565, D, W, V, P, E, AP, AE, N>,
     cache: &mut VertexCache<VM>,
     mesh: &StaticMesh<'_>,
+    (centre, radius): (Vec3, f32),
     yaw: f32,
     pitch: f32,
     sink: &mut S,
@@ -40,7 +43,7 @@ where
 {
     renderer.clear();
     cache.clear();
-    let model = reference_model(mesh, yaw, pitch);
+    let model = reference_model_around(centre, radius, yaw, pitch);
     let camera = Camera::reference(SIZE, SIZE);
     let shading = Shading::lambert();
     let draw = draw_mesh(renderer, cache, mesh, &model, &camera, Cull::Back, |f| {

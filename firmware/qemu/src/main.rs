@@ -102,10 +102,13 @@ where
     D: DepthFormat,
 {
     let mut crc = Crc32Sink::new();
+    // Once per mesh, outside the timed frame.
+    let sphere = zline::scene::bounding_sphere(scene.mesh);
     frame::render_frame(
         renderer,
         cache,
         scene.mesh,
+        sphere,
         scene.yaw,
         scene.pitch,
         &mut crc,
@@ -116,6 +119,7 @@ where
             renderer,
             cache,
             scene.mesh,
+            sphere,
             scene.yaw,
             scene.pitch,
             &mut discard,

@@ -29,7 +29,8 @@ use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use panic_halt as _;
 use rp2040_hal as hal;
 use static_cell::ConstStaticCell;
-use zline::scene::{Camera, Cull, VertexCache, draw_mesh, reference_model};
+use zline::geometry::Vec3;
+use zline::scene::{Camera, Cull, VertexCache, bounding_sphere, draw_mesh, reference_model_around};
 use zline::shade::Shading;
 use zline::{Depth16, DrawTargetSink, FrameStats, RenderError, Renderer};
 
@@ -143,6 +144,8 @@ fn run() -> Result<core::convert::Infallible, Fault> {
     stack::paint();
 
     let camera = Camera::reference(sizes::WIDTH, sizes::HEIGHT);
+    // The mesh does not change: its bounding sphere is computed once.
+    let sphere = bounding_sphere(&MESH);
     let shading = Shading::lambert();
     let mut step = 0u32;
     loop {
@@ -150,7 +153,15 @@ fn run() -> Result<core::convert::Infallible, Fault> {
         // The same yaw angles build.rs sized the tables for.
         let yaw = step as f32 * sizes::YAW_STEP_DEG;
         step = (step + 1) % sizes::YAW_STEPS;
-        match draw_frame(renderer, cache, &mut display, &camera, &shading, yaw) {
+        match draw_frame(
+            renderer,
+            cache,
+            &mut display,
+            &camera,
+            &shading,
+            sphere,
+            yaw,
+        ) {
             Ok(stats) => {
                 FRAMES.store(FRAMES.load(Ordering::Relaxed) + 1, Ordering::Relaxed);
                 POLYGONS.store(stats.polygons, Ordering::Relaxed);
@@ -170,7 +181,8 @@ fn run() -> Result<core::convert::Infallible, Fault> {
     }
 }
 
-/// One frame: the mesh at `yaw` through the scene pipeline into the
+/// One frame: the mesh (bounding sphere computed once, at start-up) at
+/// `yaw` through the scene pipeline into the
 /// tables, then every row to the LCD. On an error the frame is given up;
 /// the next one starts from empty tables.
 fn draw_frame<D: DrawTarget<Color = Rgb565>>(
@@ -179,11 +191,12 @@ fn draw_frame<D: DrawTarget<Color = Rgb565>>(
     display: &mut D,
     camera: &Camera,
     shading: &Shading,
+    (centre, radius): (Vec3, f32),
     yaw: f32,
 ) -> Result<FrameStats, FrameError> {
     renderer.clear();
     cache.clear();
-    let model = reference_model(&MESH, yaw, sizes::PITCH_DEG);
+    let model = reference_model_around(centre, radius, yaw, sizes::PITCH_DEG);
     draw_mesh(renderer, cache, &MESH, &model, camera, Cull::Back, |face| {
         Rgb565::from(shading.color(face))
     })
