@@ -80,13 +80,6 @@ pub fn depth_from_f32(depth: f32) -> Option<u32> {
     }
 }
 
-/// `ceil(num / den)` for `den > 0`.
-pub(crate) fn div_ceil_i64(num: i64, den: i64) -> i64 {
-    debug_assert!(den > 0);
-    let q = num.div_euclid(den);
-    if q * den == num { q } else { q + 1 }
-}
-
 /// `num / den` rounded to the nearest integer (ties towards +inf), for any
 /// non-zero `den`.
 pub(crate) fn div_round_i128(num: i128, den: i128) -> i128 {
@@ -143,9 +136,6 @@ mod tests {
 
     #[test]
     fn rounding_helpers() {
-        assert_eq!(div_ceil_i64(7, 2), 4);
-        assert_eq!(div_ceil_i64(-7, 2), -3);
-        assert_eq!(div_ceil_i64(6, 3), 2);
         assert_eq!(div_round_i128(5, 2), 3);
         assert_eq!(div_round_i128(-5, 2), -2);
         assert_eq!(div_round_i128(5, -2), -2);

@@ -14,7 +14,7 @@
 //! `N = x·D - r` and `0 <= r < D`, the crossing never drifts, so the edge
 //! lands on the same pixels however many rows it is stepped.
 
-use crate::fixed::{HALF_PIXEL, SUBPIXEL_STEPS, div_ceil_i64, first_sample_at_or_after};
+use crate::fixed::{HALF_PIXEL, SUBPIXEL_STEPS, first_sample_at_or_after};
 use crate::vertex::ScreenVertex;
 
 /// Edge-table entry, packed in 4 bytes: the row where edges of a polygon
@@ -65,6 +65,22 @@ pub(crate) fn edge_rows(
     (first < end).then_some((top, bottom, first, end))
 }
 
+/// `(q, r)` with `q = ceil(num / den)` and `r = q·den - num` in `[0, den)`,
+/// for `den > 0`. One division: 32-bit when `num` fits (the usual case on a
+/// small screen), else 64-bit. Inside the guard band the quotient (a pixel
+/// column) and the remainder fit `i32`.
+fn ceil_div_rem(num: i64, den: i32) -> (i32, i32) {
+    let (q, r) = match i32::try_from(num) {
+        Ok(n) => (n / den, n % den),
+        Err(_) => {
+            let d = i64::from(den);
+            ((num / d) as i32, (num % d) as i32)
+        }
+    };
+    // Truncation rounds towards zero: a positive remainder means one more.
+    if r > 0 { (q + 1, den - r) } else { (q, -r) }
+}
+
 /// Active-edge-table entry: an edge crossing the current scanline.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct ActiveEdge {
@@ -102,7 +118,8 @@ impl ActiveEdge {
     /// list.
     ///
     /// Inside the guard band `dy < 2^22` sub-pixel steps, so `den < 2^30`
-    /// and every per-row quantity fits `i32`; the set-up products fit `i64`.
+    /// and every per-row quantity fits `i32`; the set-up products fit `i64`,
+    /// and the divisions are 32-bit whenever the numerator fits.
     pub fn start(
         top: ScreenVertex,
         bottom: ScreenVertex,
@@ -110,27 +127,32 @@ impl ActiveEdge {
         end_row: u16,
         next: u32,
     ) -> Self {
-        let dx = i64::from(bottom.x) - i64::from(top.x);
-        let dy = i64::from(bottom.y) - i64::from(top.y);
-        let s = i64::from(SUBPIXEL_STEPS);
-        let den = s * dy;
-        let sample_y = i64::from(row) * s + i64::from(HALF_PIXEL);
+        // Inside the guard band |dx|, dy < 2^22: 32-bit, and den < 2^30.
+        let dx = bottom.x - top.x;
+        let dy = bottom.y - top.y;
+        let den = SUBPIXEL_STEPS * dy;
+        let sample_y = i32::from(row) * SUBPIXEL_STEPS + HALF_PIXEL;
         // Crossing x at the sample line, minus half a pixel, times den:
         // x(row) - 0.5px = (x_top - half)·dy + (yc - y_top)·dx, over dy.
-        let numerator =
-            (i64::from(top.x) - i64::from(HALF_PIXEL)) * dy + (sample_y - i64::from(top.y)) * dx;
-        let x = div_ceil_i64(numerator, den);
-        let remainder = x * den - numerator;
-        let step = dx.div_euclid(dy);
-        let step_remainder = s * dx - step * den;
+        // The products need 64 bits.
+        let numerator = i64::from(top.x - HALF_PIXEL) * i64::from(dy)
+            + i64::from(sample_y - top.y) * i64::from(dx);
+        let (x, remainder) = ceil_div_rem(numerator, den);
+        // floor(dx / dy) and its remainder, in one 32-bit division.
+        let (mut step, mut rest) = (dx / dy, dx % dy);
+        if rest < 0 {
+            step -= 1;
+            rest += dy;
+        }
         Self {
             next,
-            x: x as i32,
+            x,
             end_row,
-            remainder: remainder as i32,
-            step: step as i32,
-            step_remainder: step_remainder as i32,
-            den: den as i32,
+            remainder,
+            step,
+            // S·dx - step·S·dy = S·(dx mod dy).
+            step_remainder: SUBPIXEL_STEPS * rest,
+            den,
         }
     }
 
@@ -144,6 +166,34 @@ impl ActiveEdge {
         } else {
             self.x += self.step + 1;
             self.remainder = r + self.den;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ceil_division_with_remainder() {
+        for (num, den) in [
+            (7i64, 2i32),
+            (-7, 2),
+            (6, 3),
+            (-6, 3),
+            (0, 5),
+            (1 << 40, 1000),
+            (-(1 << 40) - 1, 999),
+        ] {
+            let (q, r) = ceil_div_rem(num, den);
+            let d = i64::from(den);
+            assert_eq!(
+                i64::from(q),
+                num.div_euclid(d) + i64::from(num.rem_euclid(d) != 0),
+                "{num}/{den}"
+            );
+            assert_eq!(i64::from(q) * d - num, i64::from(r));
+            assert!((0..den).contains(&r));
         }
     }
 }
