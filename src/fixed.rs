@@ -91,20 +91,24 @@ pub(crate) fn div_round_i128(num: i128, den: i128) -> i128 {
 /// `num · 2^16 / den` rounded to the nearest integer (ties towards +inf),
 /// exactly, for any non-zero `den`.
 ///
-/// When `num` fits `i64` and `|den| < 2^45` (every triangle inside the
-/// guard band) this takes two `i64` divisions, `q = num / den` and the
-/// fraction `round(r · 2^16 / den)` from the remainder `0 <= r < den`,
-/// instead of one `i128` division.
+/// When `|num| < 2^46` and `|den| < 2^45` (nearly every polygon) this is
+/// one `i64` division; for larger `num` that fits `i64`, two (`q = num /
+/// den`, then the fraction `round(r · 2^16 / den)` from the remainder);
+/// only beyond that one `i128` division.
 pub(crate) fn div_round_q16(num: i128, den: i64) -> i128 {
     const FAST_DEN: u64 = 1 << 45;
     if let Ok(n) = i64::try_from(num)
         && den.unsigned_abs() < FAST_DEN
-        && n != i64::MIN
         && den != 0
     {
         let (n, d) = if den < 0 { (-n, -den) } else { (n, den) };
+        if n.unsigned_abs() < 1 << 46 {
+            // One division: 2·n·2^16 < 2^63.
+            return i128::from(((n << 17) + d).div_euclid(2 * d));
+        }
+        // Quotient, then the fraction from the remainder 0 <= r < d:
+        // 2·r·2^16 < 2^62.
         let (q, r) = (n.div_euclid(d), n.rem_euclid(d));
-        // r < 2^45, so 2·r·2^16 < 2^62.
         let fraction = ((r << 17) + d).div_euclid(2 * d);
         return (i128::from(q) << 16) + i128::from(fraction);
     }
@@ -150,6 +154,11 @@ mod tests {
             (1 << 70, 3),
             (3, -(1 << 50)),
             (-1, 1 << 17),
+            ((1 << 46) - 1, 7),
+            (-(1 << 46) + 1, 7),
+            (1 << 46, 7),
+            (-(1 << 46), -7),
+            (123_456_789_012, -98_765_432_109),
         ] {
             assert_eq!(
                 div_round_q16(num, den),
