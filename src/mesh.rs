@@ -20,6 +20,13 @@ pub trait Mesh {
     /// Vertex indices of face `index` (`index < face_count()`), in order
     /// around the face.
     fn face(&self, index: usize) -> &[u16];
+
+    /// Whether face `index` is planar ([`is_planar`]). A mesh that knows it
+    /// in advance (for example a [`StaticMesh`] with planarity bits from
+    /// its generator) answers without any arithmetic.
+    fn face_is_planar(&self, index: usize) -> bool {
+        is_planar(self, index)
+    }
 }
 
 /// Why a mesh's arrays do not describe a valid mesh.
@@ -38,6 +45,8 @@ pub enum MeshError {
     },
     /// More than 65,536 vertices (corners are `u16`).
     TooManyVertices,
+    /// Fewer planarity bits than faces.
+    BadPlanarity,
 }
 
 /// A mesh over borrowed slices: `'static` ones live in flash.
@@ -46,6 +55,8 @@ pub struct StaticMesh<'a> {
     positions: &'a [[f32; 3]],
     corners: &'a [u16],
     face_starts: &'a [u32],
+    /// Bit `f` set when face `f` is planar; empty when not precomputed.
+    planar: &'a [u32],
 }
 
 impl<'a> StaticMesh<'a> {
@@ -96,6 +107,20 @@ impl<'a> StaticMesh<'a> {
             positions,
             corners,
             face_starts,
+            planar: &[],
+        })
+    }
+
+    /// The same mesh with its faces' planarity precomputed: bit `f % 32`
+    /// of `bits[f / 32]` is set when face `f` is planar ([`is_planar`]).
+    /// `Err` when `bits` is too short for the faces.
+    pub const fn with_planar_faces(self, bits: &'a [u32]) -> Result<Self, MeshError> {
+        if bits.len() < self.face_starts.len().div_ceil(32) {
+            return Err(MeshError::BadPlanarity);
+        }
+        Ok(Self {
+            planar: bits,
+            ..self
         })
     }
 
@@ -140,6 +165,22 @@ impl Mesh for StaticMesh<'_> {
     fn face(&self, index: usize) -> &[u16] {
         face_of(self.corners, self.face_starts, index)
     }
+
+    fn face_is_planar(&self, index: usize) -> bool {
+        match self.planar.get(index / 32) {
+            Some(word) => word & (1 << (index % 32)) != 0,
+            None => is_planar(self, index),
+        }
+    }
+}
+
+/// Planarity bits for [`StaticMesh::with_planar_faces`]: one bit per face.
+pub fn planar_face_bits<M: Mesh + ?Sized>(mesh: &M) -> impl Iterator<Item = u32> + '_ {
+    (0..mesh.face_count().div_ceil(32)).map(move |word| {
+        (0..32)
+            .filter(|bit| word * 32 + bit < mesh.face_count() && is_planar(mesh, word * 32 + bit))
+            .fold(0u32, |bits, bit| bits | 1 << bit)
+    })
 }
 
 /// Largest deviation from planar, relative to the face's size, for which a
@@ -229,5 +270,17 @@ mod tests {
         assert!(!is_planar(&bent, 0));
         let tri = StaticMesh::new(&BENT, &[0, 1, 2], &[0]).unwrap();
         assert!(is_planar(&tri, 0));
+        // Precomputed bits answer the same, and say what they are told.
+        let both = StaticMesh::new(&BENT, &[0, 1, 2, 3, 0, 1, 2], &[0, 4]).unwrap();
+        let bits: [u32; 1] = [planar_face_bits(&both).next().unwrap()];
+        assert_eq!(bits[0], 0b10);
+        let known = both.with_planar_faces(&bits).unwrap();
+        assert!(!known.face_is_planar(0) && known.face_is_planar(1));
+        let lying = both.with_planar_faces(&[0b01]).unwrap();
+        assert!(lying.face_is_planar(0));
+        assert_eq!(
+            both.with_planar_faces(&[]).err(),
+            Some(MeshError::BadPlanarity)
+        );
     }
 }

@@ -22,7 +22,7 @@
 //! 7. **Shading**: the face's colour comes from a closure over [`FaceInfo`],
 //!    for example [`Shading::color`](crate::shade::Shading::color).
 //!
-//! A face that is not planar ([`is_planar`]) has no single plane. It goes
+//! A face that is not planar ([`crate::mesh::is_planar`]) has no single plane. It goes
 //! through these steps as the fan of triangles from its first corner, each
 //! with the face's id.
 //!
@@ -35,7 +35,7 @@ use crate::clip::{self, FRUSTUM};
 use crate::error::Error;
 use crate::fixed::SUBPIXEL_STEPS;
 use crate::geometry::{Mat4, Vec3, Vec4, radians};
-use crate::mesh::{Mesh, is_planar};
+use crate::mesh::Mesh;
 use crate::scanline::{Admission, PolygonTables, twice_area};
 use crate::vertex::ScreenVertex;
 
@@ -375,7 +375,7 @@ where
     };
     for face in 0..mesh.face_count() {
         let corners = mesh.face(face);
-        if corners.len() > 3 && !is_planar(mesh, face) {
+        if corners.len() > 3 && !mesh.face_is_planar(face) {
             stats.split += 1;
             for k in 1..corners.len() - 1 {
                 let triangle = [corners[0], corners[k], corners[k + 1]];

@@ -14,14 +14,14 @@
 //! * depth is the distance along the view axis at which the pixel's ray
 //!   meets the face's plane (Newell normal in view space); the nearest
 //!   face wins, and on an exact tie the lower face id;
-//! * a face that is not planar ([`is_planar`], the same test the pipeline
+//! * a face that is not planar ([`Mesh::face_is_planar`], the same test the pipeline
 //!   uses) is the fan of triangles from its first corner.
 
 use std::vec;
 use std::vec::Vec;
 
 use crate::geometry::Vec3;
-use crate::mesh::{Mesh, is_planar};
+use crate::mesh::Mesh;
 use crate::scene::FaceInfo;
 
 /// Face id of pixels no face covers.
@@ -111,7 +111,7 @@ impl ReferenceFrame {
                 .iter()
                 .map(|&i| positions[usize::from(i)])
                 .collect();
-            let outlines: Vec<Vec<V3>> = if corners.len() > 3 && !is_planar(mesh, f) {
+            let outlines: Vec<Vec<V3>> = if corners.len() > 3 && !mesh.face_is_planar(f) {
                 (1..corners.len() - 1)
                     .map(|k| vec![corners[0], corners[k], corners[k + 1]])
                     .collect()

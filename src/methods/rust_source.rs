@@ -7,6 +7,7 @@ use std::string::{String, ToString};
 use std::vec::Vec;
 
 use super::HostMesh;
+use crate::mesh::planar_face_bits;
 
 /// Rust source defining `pub static NAME: zline::mesh::StaticMesh<'static>`
 /// and its three arrays (`NAME_POSITIONS`, `NAME_CORNERS`,
@@ -51,12 +52,22 @@ pub fn static_mesh_source(mesh: &HostMesh, name: &str, origin: &str) -> Result<S
         face_starts.len(),
         rows(face_starts, 16, u32::to_string)
     );
+    let planar: Vec<u32> = planar_face_bits(mesh).collect();
+    let _ = writeln!(
+        out,
+        "// Bit f set: face f is planar (precomputed, so the pipeline need not test it).\n\
+         static {name}_PLANAR: [u32; {}] = [\n{}];\n",
+        planar.len(),
+        rows(&planar, 8, |b| format!("0x{b:08X}"))
+    );
     let _ = writeln!(
         out,
         "/// Mesh from {origin}, checked at compile time.\n\
          pub static {name}: zline::mesh::StaticMesh<'static> = match zline::mesh::StaticMesh::new(\n    \
          &{name}_POSITIONS,\n    &{name}_CORNERS,\n    &{name}_FACE_STARTS,\n) {{\n    \
-         Ok(mesh) => mesh,\n    Err(_) => panic!(\"{name}: invalid mesh\"),\n}};"
+         Ok(mesh) => match mesh.with_planar_faces(&{name}_PLANAR) {{\n        \
+         Ok(mesh) => mesh,\n        Err(_) => panic!(\"{name}: invalid planarity bits\"),\n    }},\n    \
+         Err(_) => panic!(\"{name}: invalid mesh\"),\n}};"
     );
     Ok(out)
 }
