@@ -48,11 +48,6 @@ pub fn outside_one_plane(points: &[Vec4], planes: &[Vec4]) -> bool {
         .any(|q| points.iter().all(|p| q.dot(*p) < 0.0))
 }
 
-/// Whether a point is inside every plane.
-pub fn inside_all(point: Vec4, planes: &[Vec4]) -> bool {
-    planes.iter().all(|q| q.dot(point) >= 0.0)
-}
-
 /// The clipped polygon did not fit `M` corners.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct TooManyCorners;
