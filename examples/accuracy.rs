@@ -70,7 +70,7 @@ fn scanline_ids<D: DepthFormat>(
 where
     D::Value: Into<u32>,
 {
-    let model = reference_model(mesh, yaw, pitch);
+    let model = reference_model(mesh, yaw, pitch).map_err(|e| e.to_string())?;
     let camera = Camera::reference(o.width, o.height);
     host.render(mesh, &model, &camera, o.cull, &Shading::FaceId)
         .map_err(|e| e.to_string())?;

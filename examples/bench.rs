@@ -93,6 +93,10 @@ fn run(args: &[String]) -> Result<(), String> {
                     .filter(|&n| n > 0)
                     .ok_or("bad --rounds")?
             }
+            "--frames" => {
+                return Err("unknown option --frames (the bench times rounds: --rounds N)".into());
+            }
+            s if s.starts_with("--") => return Err(format!("unknown option {s}")),
             s => paths.push(s.to_string()),
         }
     }
@@ -111,7 +115,7 @@ fn run(args: &[String]) -> Result<(), String> {
     println!("|---|---|---|---|---|");
     for path in &paths {
         let mesh = load_model(path)?;
-        let model = reference_model(&mesh, 30.0, 20.0);
+        let model = reference_model(&mesh, 30.0, 20.0).map_err(|e| format!("{path}: {e}"))?;
         let view = ReferenceView {
             width: usize::from(size.0),
             height: usize::from(size.1),

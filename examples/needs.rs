@@ -14,7 +14,7 @@
 use std::process::ExitCode;
 
 use embedded_graphics::pixelcolor::Rgb565;
-use zline::methods::{HostMesh, HostScanline, load_model, parse_size, run_tool};
+use zline::methods::{HostScanline, load_model, parse_size, run_tool};
 use zline::scene::{Camera, Cull, reference_model};
 use zline::shade::Shading;
 use zline::{Depth16, Depth24, FrameStats};
@@ -28,13 +28,20 @@ fn run(args: &[String]) -> Result<(), String> {
         match a.as_str() {
             "--size" => size = parse_size(value()?)?,
             "--cull" => {
-                cull = if value()? == "back" {
-                    Cull::Back
-                } else {
-                    Cull::None
+                cull = match value()?.as_str() {
+                    "back" => Cull::Back,
+                    "none" => Cull::None,
+                    s => return Err(format!("--cull: unknown '{s}' (none, back)")),
                 }
             }
-            "--pitch" => pitch = value()?.parse().map_err(|_| "bad pitch")?,
+            "--pitch" => {
+                let v = value()?;
+                pitch = v
+                    .parse::<f32>()
+                    .ok()
+                    .filter(|p| p.is_finite())
+                    .ok_or_else(|| format!("--pitch: expected degrees, got '{v}'"))?
+            }
             "--views" => {
                 views = value()?
                     .parse()
@@ -53,10 +60,9 @@ fn run(args: &[String]) -> Result<(), String> {
     let mut host = HostScanline::<Depth16>::new(size.0, size.1).map_err(|e| e.to_string())?;
     let camera = Camera::reference(size.0, size.1);
     let mut peak = FrameStats::default();
-    let max_corners = mesh_max_corners(&mesh);
     for k in 0..views {
         let yaw = 360.0 * k as f32 / views as f32;
-        let model = reference_model(&mesh, yaw, pitch);
+        let model = reference_model(&mesh, yaw, pitch).map_err(|e| format!("{path}: {e}"))?;
         let (_, s) = host
             .render(&mesh, &model, &camera, cull, &Shading::FaceId)
             .map_err(|e| e.to_string())?;
@@ -91,25 +97,15 @@ fn run(args: &[String]) -> Result<(), String> {
         w * usize::from(size.1) * 4
     );
     println!(
-        "type Zr = zline::Renderer<Rgb565, zline::Depth16, {w}, {}, {}, {}, {}, {}, {}>; // VertexCache<{}>",
+        "type Zr = zline::Renderer<Rgb565, zline::Depth16, {w}, {}, {}, {}, {}, {}>; // VertexCache<{}>",
         peak.vertices,
         peak.polygons,
         peak.corners,
         peak.peak_active_polygons,
         peak.peak_pooled_edges,
-        max_corners,
         mesh.positions.len()
     );
     Ok(())
-}
-
-/// Most corners of one face, plus the six clipping can add.
-fn mesh_max_corners(mesh: &HostMesh) -> usize {
-    use zline::mesh::Mesh;
-    (0..mesh.face_count())
-        .map(|f| mesh.face(f).len() + 6)
-        .max()
-        .unwrap_or(9)
 }
 
 fn main() -> ExitCode {

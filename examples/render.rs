@@ -124,8 +124,10 @@ fn parse_args(args: &[String]) -> Result<Options, String> {
                 o.frames = value()?
                     .parse()
                     .ok()
-                    .filter(|&n| n > 0)
-                    .ok_or("--frames: expected a positive whole number")?
+                    .filter(|n| (1..=MAX_FRAMES).contains(n))
+                    .ok_or_else(|| {
+                        format!("--frames: expected a whole number from 1 to {MAX_FRAMES}")
+                    })?
             }
             "--stats" => o.stats = true,
             s if s.starts_with("--") => return Err(format!("unknown option {s}")),
@@ -152,9 +154,13 @@ struct Output {
     stats: Vec<(String, String)>,
 }
 
+/// Most timed frames `--frames` accepts.
+const MAX_FRAMES: usize = 100_000;
+
+/// The median, or NaN for no times.
 fn median(times: &mut [f64]) -> f64 {
     times.sort_by(f64::total_cmp);
-    times[times.len() / 2]
+    times.get(times.len() / 2).copied().unwrap_or(f64::NAN)
 }
 
 fn run_scanline<D: DepthFormat>(o: &Options, mesh: &HostMesh) -> Result<Output, String>
@@ -162,7 +168,7 @@ where
     D::Value: Into<u32>,
 {
     let mut host = HostScanline::<D>::new(o.width, o.height).map_err(|e| e.to_string())?;
-    let model = reference_model(mesh, o.yaw, o.pitch);
+    let model = reference_model(mesh, o.yaw, o.pitch).map_err(|e| e.to_string())?;
     let camera = Camera::reference(o.width, o.height);
     let mut times = Vec::new();
     let mut last = None;
@@ -170,7 +176,7 @@ where
         let start = Instant::now();
         let result = host
             .render(mesh, &model, &camera, o.cull, &o.shade)
-            .map_err(|e| format!("render: {e}"))?;
+            .map_err(|e| e.to_string())?;
         if k >= 3 {
             times.push(start.elapsed().as_secs_f64() * 1e3);
         }

@@ -26,7 +26,9 @@ pub enum Error {
         /// The scanline that did not fit.
         row: u16,
     },
-    /// A polygon has more corners than the const parameter `N` allows.
+    /// A polygon (or a mesh face) has more corners than
+    /// [`MAX_POLYGON_CORNERS`](crate::fixed::MAX_POLYGON_CORNERS) (for a
+    /// face, [`MAX_FACE_CORNERS`](crate::scene::MAX_FACE_CORNERS)).
     TooManyCorners,
     /// A polygon has fewer than three corners.
     TooFewCorners,
@@ -37,9 +39,15 @@ pub enum Error {
     OutsideGuardBand,
     /// A vertex depth is outside `[0, DEPTH_MAX]`, or is NaN/infinite.
     DepthOutOfRange,
-    /// A mesh face names a vertex beyond the mesh, or beyond the vertex
-    /// cache given to the scene.
+    /// A mesh face names a vertex beyond the mesh.
     MeshIndexOutOfRange,
+    /// The mesh has more vertices than the
+    /// [`VertexCache`](crate::scene::VertexCache) given to the scene holds.
+    VertexCacheTooSmall,
+    /// The mesh's size cannot be normalised in `f32`: the radius of its
+    /// bounding sphere is positive but outside `[2^-126, 2^126]`, or a
+    /// position is not finite.
+    MeshExtent,
     /// The frame width is zero or above the row capacity `W`, or the height
     /// is zero or above [`MAX_FRAME_SIZE`](crate::fixed::MAX_FRAME_SIZE).
     BadFrameSize,
@@ -55,14 +63,23 @@ impl fmt::Display for Error {
                 write!(f, "active polygon table full at row {row}")
             }
             Error::ActiveEdgesFull { row } => write!(f, "active edge table full at row {row}"),
-            Error::TooManyCorners => f.write_str("polygon has too many corners"),
+            Error::TooManyCorners => write!(
+                f,
+                "polygon has more than {} corners (a mesh face more than {})",
+                crate::fixed::MAX_POLYGON_CORNERS,
+                crate::scene::MAX_FACE_CORNERS
+            ),
             Error::TooFewCorners => f.write_str("polygon has fewer than 3 corners"),
             Error::VertexOutOfRange => f.write_str("polygon names a vertex that does not exist"),
             Error::OutsideGuardBand => f.write_str("vertex outside the guard band or not finite"),
             Error::DepthOutOfRange => f.write_str("vertex depth outside [0, 1] or not finite"),
-            Error::MeshIndexOutOfRange => {
-                f.write_str("mesh face names a vertex beyond the mesh or the vertex cache")
+            Error::MeshIndexOutOfRange => f.write_str("mesh face names a vertex beyond the mesh"),
+            Error::VertexCacheTooSmall => {
+                f.write_str("the vertex cache holds fewer vertices than the mesh has")
             }
+            Error::MeshExtent => f.write_str(
+                "mesh size cannot be normalised: its radius must be 0 or between 2^-126 and 2^126",
+            ),
             Error::BadFrameSize => f.write_str("frame width or height is zero or too large"),
         }
     }

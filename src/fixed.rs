@@ -29,6 +29,9 @@ pub const HALF_PIXEL: i32 = SUBPIXEL_STEPS / 2;
 
 /// Largest frame width or height, in pixels, that the renderer accepts.
 pub const MAX_FRAME_SIZE: usize = 4096;
+/// Most corners one polygon may have. It bounds the integer ranges of
+/// polygon set-up (see `src/scanline/plane.rs`); it costs no memory.
+pub const MAX_POLYGON_CORNERS: usize = 1024;
 /// Vertices must lie strictly inside `(-GUARD_BAND_PX, GUARD_BAND_PX)` on
 /// both axes, in pixels.
 pub const GUARD_BAND_PX: i32 = 8192;
@@ -68,6 +71,28 @@ pub fn subpixel_from_f32(pixels: f32) -> Option<i32> {
     None
 }
 
+/// [`subpixel_from_f32`] for an `f64` (the clipped path of the pipeline).
+pub fn subpixel_from_f64(pixels: f64) -> Option<i32> {
+    let scaled = pixels * f64::from(SUBPIXEL_STEPS);
+    let rounded = if scaled >= 0.0 {
+        scaled + 0.5
+    } else {
+        scaled - 0.5
+    };
+    // Also rejects NaN: every comparison with NaN is false.
+    (rounded > -f64::from(GUARD_BAND) && rounded < f64::from(GUARD_BAND)).then_some(rounded as i32)
+}
+
+/// [`depth_from_f32`] for an `f64`.
+pub fn depth_from_f64(depth: f64) -> Option<u32> {
+    if (0.0..=1.0).contains(&depth) {
+        let value = (depth * f64::from(DEPTH_ONE) + 0.5) as u32;
+        Some(value.min(DEPTH_MAX))
+    } else {
+        None
+    }
+}
+
 /// Converts a depth in `[0, 1]` (0 near, 1 far) to Q0.24, rounding to the
 /// nearest step and mapping 1.0 to [`DEPTH_MAX`]. Returns `None` for NaN and
 /// values outside `[0, 1]`.
@@ -89,31 +114,36 @@ pub(crate) fn div_round_i128(num: i128, den: i128) -> i128 {
 }
 
 /// `num · 2^16 / den` rounded to the nearest integer (ties towards +inf),
-/// exactly, for any non-zero `den`.
+/// exactly, for any non-zero `den` and any `|num| < 2^100`.
 ///
-/// When `|num| < 2^46` and `|den| < 2^45` (nearly every polygon) this is
-/// one `i64` division; for larger `num` that fits `i64`, two (`q = num /
-/// den`, then the fraction `round(r · 2^16 / den)` from the remainder);
-/// only beyond that one `i128` division.
+/// Three paths, each exact:
+/// * `|num| < 2^45` and `|den| < 2^45` (nearly every polygon): one `i64`
+///   division of `2·num·2^16 + den`, whose magnitude is below
+///   `2^62 + 2^45 < 2^63`;
+/// * `num` fits `i64`, `|den| < 2^45`: the quotient `num / den`, then the
+///   fraction `round(r · 2^16 / den)` from the remainder `0 <= r < den`, with
+///   `2·r·2^16 + den < 2^63`;
+/// * otherwise one `i128` division of `num · 2^16` (below `2^116`).
 pub(crate) fn div_round_q16(num: i128, den: i64) -> i128 {
-    const FAST_DEN: u64 = 1 << 45;
+    debug_assert!(den != 0 && num.unsigned_abs() < 1 << 100);
     if let Ok(n) = i64::try_from(num)
-        && den.unsigned_abs() < FAST_DEN
+        && den.unsigned_abs() < FAST_BOUND
         && den != 0
     {
         let (n, d) = if den < 0 { (-n, -den) } else { (n, den) };
-        if n.unsigned_abs() < 1 << 46 {
-            // One division: 2·n·2^16 < 2^63.
+        if n.unsigned_abs() < FAST_BOUND {
             return i128::from(((n << 17) + d).div_euclid(2 * d));
         }
-        // Quotient, then the fraction from the remainder 0 <= r < d:
-        // 2·r·2^16 < 2^62.
         let (q, r) = (n.div_euclid(d), n.rem_euclid(d));
         let fraction = ((r << 17) + d).div_euclid(2 * d);
         return (i128::from(q) << 16) + i128::from(fraction);
     }
     div_round_i128(num << 16, i128::from(den))
 }
+
+/// Operands below this magnitude take the one-division path of
+/// [`div_round_q16`]: `2·|num|·2^16 + |den| < 2^62 + 2^45`.
+const FAST_BOUND: u64 = 1 << 45;
 
 /// First pixel whose sample point lies at or to the right of sub-pixel
 /// coordinate `x` (`ceil((x - HALF_PIXEL) / SUBPIXEL_STEPS)`). The same
@@ -126,6 +156,7 @@ pub(crate) fn first_sample_at_or_after(x: i32) -> i32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use proptest::strategy::Strategy;
 
     #[test]
     fn sample_rounding() {
@@ -159,12 +190,47 @@ mod tests {
             (1 << 46, 7),
             (-(1 << 46), -7),
             (123_456_789_012, -98_765_432_109),
+            // Issue 7, item 1: the x-gradient numerator 2^46 - 256 of a
+            // 10 x 205 px triangle used to overflow `(n << 17) + d`.
+            ((1 << 46) - 256, 134_218_240),
+            (-(1 << 46) + 256, 134_218_240),
+            ((1 << 45) - 1, (1 << 45) - 1),
+            (-(1 << 45) + 1, (1 << 45) - 1),
+            (1 << 45, (1 << 45) - 1),
+            ((1 << 45) - 1, -(1 << 45) + 1),
+            (i128::from(i64::MAX), (1 << 45) - 1),
+            (i128::from(i64::MIN), (1 << 45) - 1),
+            (i128::from(i64::MIN), 1),
+            (i128::from(i64::MAX), i64::MAX),
+            (i128::from(i64::MIN), i64::MIN),
+            ((1 << 99) + 12345, 3),
+            (-(1 << 99), -(1 << 62)),
         ] {
             assert_eq!(
                 div_round_q16(num, den),
                 div_round_i128(num << 16, i128::from(den)),
                 "{num} / {den}"
             );
+        }
+    }
+
+    proptest::proptest! {
+        /// Every path of `div_round_q16` is exact over its whole domain:
+        /// operands drawn near each path's limits and anywhere else.
+        #[test]
+        fn q16_division_is_exact(
+            num in proptest::prop_oneof![
+                -(1i128 << 46)..(1i128 << 46),
+                proptest::num::i64::ANY.prop_map(i128::from),
+                -(1i128 << 99)..(1i128 << 99),
+            ],
+            den in proptest::prop_oneof![
+                proptest::num::i64::ANY,
+                -(1i64 << 46)..(1i64 << 46),
+                -1000i64..1000,
+            ].prop_filter("non-zero", |d| *d != 0),
+        ) {
+            proptest::prop_assert_eq!(div_round_q16(num, den), div_round_i128(num << 16, i128::from(den)));
         }
     }
 

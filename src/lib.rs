@@ -16,9 +16,9 @@
 //! use embedded_graphics::pixelcolor::BinaryColor;
 //! use zline::{Depth16, DrawTargetSink, Renderer, ScreenVertex};
 //!
-//! // 16x16 frame: up to 8 vertices, 2 polygons, 8 edges, 2 active
-//! // polygons, 8 active edges, 4 corners per polygon.
-//! let mut renderer: Renderer<BinaryColor, Depth16, 16, 8, 2, 8, 2, 8, 4> =
+//! // 16x16 frame: up to 8 vertices, 2 polygons, 8 edges (corners), 2
+//! // active polygons, no pooled active edges (triangles need none).
+//! let mut renderer: Renderer<BinaryColor, Depth16, 16, 8, 2, 8, 2, 0> =
 //!     Renderer::new(16, BinaryColor::Off).unwrap();
 //! let v = |x: f32, y: f32, z: f32| ScreenVertex::from_f32(x, y, z).unwrap();
 //! renderer
@@ -55,7 +55,7 @@ pub use depth::{Depth16, Depth24, DepthFormat};
 pub use error::{Error, RenderError};
 pub use scanline::{Admission, FrameStats, PolygonTables, Renderer};
 pub use sink::{Crc32Sink, DrawTargetSink, FnSink, RowSink};
-pub use vertex::ScreenVertex;
+pub use vertex::{Outline, OutlineBuilder, ScreenRect, ScreenVertex};
 
 /// Compiles the README's code examples as doctests.
 #[cfg(doctest)]

@@ -47,6 +47,12 @@ pub enum MeshError {
     TooManyVertices,
     /// Fewer planarity bits than faces.
     BadPlanarity,
+    /// A face has more corners than the pipeline draws
+    /// ([`MAX_FACE_CORNERS`](crate::scene::MAX_FACE_CORNERS)).
+    FaceTooLarge {
+        /// The offending face.
+        face: usize,
+    },
 }
 
 /// A mesh over borrowed slices: `'static` ones live in flash.
@@ -100,6 +106,9 @@ impl<'a> StaticMesh<'a> {
             };
             if end > corners.len() || start + 3 > end {
                 return Err(MeshError::BadFaceStarts { face: f });
+            }
+            if end - start > crate::scene::MAX_FACE_CORNERS {
+                return Err(MeshError::FaceTooLarge { face: f });
             }
             f += 1;
         }

@@ -25,18 +25,23 @@
 //!
 //! - `v x y z` is a vertex; numbers after `z` (`w`, vertex colours) are
 //!   ignored. Coordinates must be finite: `nan` and `inf` are errors.
-//! - `f` lists 3 or more corners, each `v`, `v/vt`, `v//vn` or `v/vt/vn`.
-//!   Only `v` is used, but `vt` and `vn` must be integers or empty.
-//!   Positive indices count from 1 and may name any `v` line of the file,
-//!   even a later one; negative ones count back from the last vertex
-//!   defined before the face (`-1` is that vertex).
+//! - `f` lists 3 or more corners (at most `N`, and at most
+//!   [`MAX_FACE_CORNERS`](crate::scene::MAX_FACE_CORNERS)), each `v`,
+//!   `v/vt`, `v//vn` or `v/vt/vn`. Only `v` is used, but `vt` and `vn` are
+//!   checked like `v` against the `vt` and `vn` lines.
+//!   Positive indices count from 1 and may name any line of their kind in
+//!   the file, even a later one; negative ones count back from the last
+//!   one defined before the face (`-1` is that one). An index out of range
+//!   (including one too large for any integer type) is
+//!   [`ObjErrorKind::IndexOutOfRange`], naming the index and how many exist.
 //! - Every other statement (`vt`, `vn`, `o`, `g`, `s`, `usemtl`,
 //!   `mtllib`, `l`, `p`, unknown keywords) is skipped without looking at
 //!   its arguments; [`Statement::Other`] names its keyword.
 //! - `#` starts a comment up to the end of the line. Comment bytes are
 //!   never decoded, so they need not be UTF-8.
-//! - Lines end with LF or CRLF; the last one may have no line end. Spaces
-//!   and tabs separate tokens; blank lines are skipped.
+//! - Lines end with LF, CRLF or a lone CR (old Mac files); the last one may
+//!   have no line end. A UTF-8 byte-order mark at the start is skipped.
+//!   Spaces and tabs separate tokens; blank lines are skipped.
 //! - Line continuation with `\` is not supported: the `\` token is then an
 //!   error, never silently dropped.
 //!
@@ -47,6 +52,7 @@ use core::fmt;
 use heapless::Vec;
 
 use crate::mesh::{Mesh, StaticMesh, face_of};
+use crate::scene::MAX_FACE_CORNERS;
 
 /// Most vertices a file may define: corners are `u16`.
 pub const MAX_VERTICES: usize = 1 << 16;
@@ -60,6 +66,27 @@ pub struct ObjError {
     pub kind: ObjErrorKind,
 }
 
+/// Which kind of element a face corner's index names.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Element {
+    /// A position (`v`).
+    Vertex,
+    /// A texture coordinate (`vt`).
+    TexCoord,
+    /// A normal (`vn`).
+    Normal,
+}
+
+impl fmt::Display for Element {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Element::Vertex => "vertex",
+            Element::TexCoord => "texture coordinate",
+            Element::Normal => "normal",
+        })
+    }
+}
+
 /// What is wrong with a line.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ObjErrorKind {
@@ -70,12 +97,22 @@ pub enum ObjErrorKind {
     MissingCoordinate,
     /// A face corner is not `v`, `v/vt`, `v//vn` or `v/vt/vn`.
     BadCorner,
-    /// A vertex index is 0, beyond the file's vertices, or (negative)
-    /// before the first vertex.
-    IndexOutOfRange,
+    /// A corner's index is 0, beyond the file's elements of its kind, or
+    /// (negative) before the first one.
+    IndexOutOfRange {
+        /// What the index names.
+        element: Element,
+        /// The index as written, saturated to the `i64` range.
+        index: i64,
+        /// How many elements of that kind the index may name: all in the
+        /// file for a positive index, those defined before the face for a
+        /// negative one.
+        available: u32,
+    },
     /// A face has fewer than three corners.
     TooFewCorners,
-    /// A face has more corners than the const parameter `N` allows.
+    /// A face has more corners than the const parameter `N` allows, or
+    /// than [`MAX_FACE_CORNERS`] (which the pipeline draws).
     TooManyCorners,
     /// Fixed-capacity storage is full.
     CapacityExceeded(Capacity),
@@ -110,7 +147,32 @@ impl fmt::Display for ObjErrorKind {
             ObjErrorKind::BadNumber => f.write_str("bad or non-finite number"),
             ObjErrorKind::MissingCoordinate => f.write_str("vertex has fewer than 3 coordinates"),
             ObjErrorKind::BadCorner => f.write_str("face corner is not v, v/vt, v//vn or v/vt/vn"),
-            ObjErrorKind::IndexOutOfRange => f.write_str("vertex index out of range"),
+            ObjErrorKind::IndexOutOfRange {
+                element,
+                index,
+                available,
+            } => {
+                if index.unsigned_abs() >= i64::MAX.unsigned_abs() {
+                    write!(f, "{element} index too large")?;
+                } else {
+                    write!(f, "{element} index {index} out of range")?;
+                }
+                let noun = match (element, *available == 1) {
+                    (Element::Vertex, false) => "vertices",
+                    (Element::TexCoord, false) => "texture coordinates",
+                    (Element::Normal, false) => "normals",
+                    (element, true) => match element {
+                        Element::Vertex => "vertex",
+                        Element::TexCoord => "texture coordinate",
+                        Element::Normal => "normal",
+                    },
+                };
+                if *index < 0 {
+                    write!(f, " ({available} {noun} defined before this line)")
+                } else {
+                    write!(f, " ({available} {noun} in the file)")
+                }
+            }
             ObjErrorKind::TooFewCorners => f.write_str("face has fewer than 3 corners"),
             ObjErrorKind::TooManyCorners => f.write_str("face has too many corners"),
             ObjErrorKind::CapacityExceeded(c) => write!(f, "{c} capacity exceeded"),
@@ -135,8 +197,12 @@ struct Lines<'a> {
     number: u32,
 }
 
+/// The UTF-8 byte-order mark.
+const BOM: &[u8] = b"\xEF\xBB\xBF";
+
 impl<'a> Lines<'a> {
     fn new(bytes: &'a [u8]) -> Self {
+        let bytes = bytes.strip_prefix(BOM).unwrap_or(bytes);
         Self {
             rest: bytes,
             done: bytes.is_empty(),
@@ -152,12 +218,22 @@ impl<'a> Iterator for Lines<'a> {
         if self.done {
             return None;
         }
-        let mut parts = self.rest.splitn(2, |&b| b == b'\n');
-        let line = parts.next().unwrap_or(&[]);
-        match parts.next() {
-            Some(rest) if !rest.is_empty() => self.rest = rest,
-            _ => self.done = true,
+        // LF, CRLF or a lone CR ends a line.
+        let (line, rest) = match self.rest.iter().position(|&b| b == b'\n' || b == b'\r') {
+            Some(end) => {
+                let skip = if self.rest[end..].starts_with(b"\r\n") {
+                    2
+                } else {
+                    1
+                };
+                (&self.rest[..end], &self.rest[end + skip..])
+            }
+            None => (self.rest, &[][..]),
+        };
+        if rest.is_empty() {
+            self.done = true;
         }
+        self.rest = rest;
         self.number = self.number.saturating_add(1);
         Some((self.number, strip_comment(line)))
     }
@@ -184,9 +260,21 @@ fn parse_coordinate(token: &[u8]) -> Result<f32, ObjErrorKind> {
     }
 }
 
-/// A decimal integer with optional sign.
+/// A decimal integer with optional sign, saturated to the `i64` range
+/// (an index that large is out of range anyway, and reported so).
 fn parse_integer(token: &[u8]) -> Result<i64, ObjErrorKind> {
-    ascii(token)?.parse().map_err(|_| ObjErrorKind::BadNumber)
+    let (negative, digits) = match token {
+        [b'-', rest @ ..] => (true, rest),
+        [b'+', rest @ ..] => (false, rest),
+        _ => (false, token),
+    };
+    if digits.is_empty() || !digits.iter().all(u8::is_ascii_digit) {
+        return Err(ObjErrorKind::BadNumber);
+    }
+    let magnitude = digits.iter().fold(0i64, |n, &d| {
+        n.saturating_mul(10).saturating_add(i64::from(d - b'0'))
+    });
+    Ok(if negative { -magnitude } else { magnitude })
 }
 
 fn ascii(token: &[u8]) -> Result<&str, ObjErrorKind> {
@@ -196,29 +284,29 @@ fn ascii(token: &[u8]) -> Result<&str, ObjErrorKind> {
     core::str::from_utf8(token).map_err(|_| ObjErrorKind::BadNumber)
 }
 
-/// The (unresolved, 1-based or negative) vertex index of a face corner,
-/// after checking its `vt` and `vn` parts.
-fn corner_index(token: &[u8]) -> Result<i64, ObjErrorKind> {
+/// The (unresolved, 1-based or negative) indices of a face corner: the
+/// vertex, and the texture coordinate and normal when present.
+fn corner_indices(token: &[u8]) -> Result<[Option<i64>; 3], ObjErrorKind> {
     let mut parts = token.split(|&b| b == b'/');
     let vertex = parts.next().unwrap_or(&[]);
     if vertex.is_empty() {
         return Err(ObjErrorKind::BadCorner);
     }
-    let index = parse_integer(vertex)?;
+    let mut indices = [Some(parse_integer(vertex)?), None, None];
     for (k, part) in parts.enumerate() {
         if k >= 2 {
             return Err(ObjErrorKind::BadCorner);
         }
         if !part.is_empty() {
-            parse_integer(part)?;
+            indices[k + 1] = Some(parse_integer(part)?);
         }
     }
-    Ok(index)
+    Ok(indices)
 }
 
-/// 0-based vertex index of an OBJ index, given the vertices defined so far
-/// (`seen`) and in the whole file (`total`).
-fn resolve(index: i64, seen: usize, total: usize) -> Result<u16, ObjErrorKind> {
+/// 0-based index of an OBJ index naming an `element`, given how many were
+/// defined so far (`seen`) and in the whole file (`total`).
+fn resolve(element: Element, index: i64, seen: usize, total: usize) -> Result<usize, ObjErrorKind> {
     let resolved = if index > 0 {
         usize::try_from(index - 1).ok().filter(|&i| i < total)
     } else {
@@ -227,8 +315,38 @@ fn resolve(index: i64, seen: usize, total: usize) -> Result<u16, ObjErrorKind> {
             .filter(|&back| back > 0)
             .and_then(|back| seen.checked_sub(back))
     };
-    let resolved = resolved.ok_or(ObjErrorKind::IndexOutOfRange)?;
-    u16::try_from(resolved).map_err(|_| ObjErrorKind::TooManyVertices)
+    resolved.ok_or(ObjErrorKind::IndexOutOfRange {
+        element,
+        index,
+        available: u32::try_from(if index >= 0 { total } else { seen }).unwrap_or(u32::MAX),
+    })
+}
+
+/// How many of each element a file defines: so far, or in all.
+#[derive(Debug, Clone, Copy, Default)]
+struct ElementCounts {
+    vertices: usize,
+    texcoords: usize,
+    normals: usize,
+}
+
+impl ElementCounts {
+    fn add(&mut self, keyword: &[u8]) {
+        match keyword {
+            b"v" => self.vertices += 1,
+            b"vt" => self.texcoords += 1,
+            b"vn" => self.normals += 1,
+            _ => {}
+        }
+    }
+
+    fn get(&self, element: Element) -> usize {
+        match element {
+            Element::Vertex => self.vertices,
+            Element::TexCoord => self.texcoords,
+            Element::Normal => self.normals,
+        }
+    }
 }
 
 /// One parsed line, before the face corners are stored anywhere.
@@ -243,21 +361,26 @@ enum Parsed<'a> {
 #[derive(Debug, Clone)]
 struct Parser<'a> {
     lines: Lines<'a>,
-    total_vertices: usize,
-    seen_vertices: usize,
+    /// `v`, `vt` and `vn` lines in the whole file.
+    total: ElementCounts,
+    /// `v`, `vt` and `vn` lines before the current one.
+    seen: ElementCounts,
     line: u32,
     failed: bool,
 }
 
 impl<'a> Parser<'a> {
     fn new(bytes: &'a [u8]) -> Self {
-        let total_vertices = Lines::new(bytes)
-            .filter(|(_, line)| tokens(line).next() == Some(b"v"))
-            .count();
+        let mut total = ElementCounts::default();
+        for (_, line) in Lines::new(bytes) {
+            if let Some(keyword) = tokens(line).next() {
+                total.add(keyword);
+            }
+        }
         Self {
             lines: Lines::new(bytes),
-            total_vertices,
-            seen_vertices: 0,
+            total,
+            seen: ElementCounts::default(),
             line: 0,
             failed: false,
         }
@@ -275,6 +398,9 @@ impl<'a> Parser<'a> {
             words.next().map(|keyword| (number, keyword, words))
         })?;
         self.line = line;
+        if keyword != b"v" {
+            self.seen.add(keyword);
+        }
         let parsed = match keyword {
             b"v" => self.vertex(&mut args).map(Parsed::Vertex),
             b"f" => self.face(&mut args, corner).map(|()| Parsed::Face),
@@ -290,7 +416,7 @@ impl<'a> Parser<'a> {
         &mut self,
         args: &mut impl Iterator<Item = &'t [u8]>,
     ) -> Result<[f32; 3], ObjErrorKind> {
-        if self.seen_vertices >= MAX_VERTICES {
+        if self.seen.vertices >= MAX_VERTICES {
             return Err(ObjErrorKind::TooManyVertices);
         }
         let mut position = [0.0; 3];
@@ -298,7 +424,7 @@ impl<'a> Parser<'a> {
             let token = args.next().ok_or(ObjErrorKind::MissingCoordinate)?;
             *coordinate = parse_coordinate(token)?;
         }
-        self.seen_vertices += 1;
+        self.seen.vertices += 1;
         Ok(position)
     }
 
@@ -309,8 +435,29 @@ impl<'a> Parser<'a> {
     ) -> Result<(), ObjErrorKind> {
         let mut corners = 0usize;
         for token in args {
-            let index = corner_index(token)?;
-            corner(resolve(index, self.seen_vertices, self.total_vertices)?)?;
+            let [vertex, texcoord, normal] = corner_indices(token)?;
+            for (element, index) in [(Element::TexCoord, texcoord), (Element::Normal, normal)] {
+                if let Some(index) = index {
+                    resolve(
+                        element,
+                        index,
+                        self.seen.get(element),
+                        self.total.get(element),
+                    )?;
+                }
+            }
+            let vertex = vertex.ok_or(ObjErrorKind::BadCorner)?;
+            let index = resolve(
+                Element::Vertex,
+                vertex,
+                self.seen.vertices,
+                self.total.vertices,
+            )?;
+            let index = u16::try_from(index).map_err(|_| ObjErrorKind::TooManyVertices)?;
+            if corners >= MAX_FACE_CORNERS {
+                return Err(ObjErrorKind::TooManyCorners);
+            }
+            corner(index)?;
             corners += 1;
         }
         if corners < 3 {
@@ -375,7 +522,7 @@ impl<'a, const N: usize> ObjReader<'a, N> {
 
     /// Number of `v` lines in the whole file.
     pub fn vertex_total(&self) -> usize {
-        self.parser.total_vertices
+        self.parser.total.vertices
     }
 }
 
@@ -438,8 +585,8 @@ impl ObjCounts {
 }
 
 /// Checks a whole OBJ file like [`ObjMesh::parse`] and counts its
-/// statements, without storing anything and with no limit on corners per
-/// face.
+/// statements, without storing anything (faces may have up to
+/// [`MAX_FACE_CORNERS`] corners).
 ///
 /// ```
 /// let counts = zline::obj::count(b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n").unwrap();
@@ -636,6 +783,14 @@ mod tests {
         assert_eq!(Lines::new(b"").count(), 0);
         assert_eq!(Lines::new(b"x\n").count(), 1);
         assert_eq!(Lines::new(b"\n").count(), 1);
+        // A lone CR ends a line too; CRLF is one line end.
+        let lines: [(u32, &[u8]); 4] = [(1, b"a"), (2, b"b"), (3, b""), (4, b"c")];
+        assert!(Lines::new(b"a\rb\r\n\rc\r").eq(lines));
+        // A byte-order mark is not part of line 1.
+        assert_eq!(
+            Lines::new(b"\xEF\xBB\xBFv 1").next(),
+            Some((1, &b"v 1"[..]))
+        );
     }
 
     #[test]
@@ -667,30 +822,44 @@ mod tests {
 
     #[test]
     fn corners() {
-        assert_eq!(corner_index(b"7"), Ok(7));
-        assert_eq!(corner_index(b"7/2"), Ok(7));
-        assert_eq!(corner_index(b"-7//2"), Ok(-7));
-        assert_eq!(corner_index(b"7/2/3"), Ok(7));
-        assert_eq!(corner_index(b"7/2/3/4"), Err(ObjErrorKind::BadCorner));
-        assert_eq!(corner_index(b"/2"), Err(ObjErrorKind::BadCorner));
-        assert_eq!(corner_index(b"7/x"), Err(ObjErrorKind::BadNumber));
+        assert_eq!(corner_indices(b"7"), Ok([Some(7), None, None]));
+        assert_eq!(corner_indices(b"7/2"), Ok([Some(7), Some(2), None]));
+        assert_eq!(corner_indices(b"-7//2"), Ok([Some(-7), None, Some(2)]));
+        assert_eq!(corner_indices(b"7/2/3"), Ok([Some(7), Some(2), Some(3)]));
+        assert_eq!(corner_indices(b"7/2/3/4"), Err(ObjErrorKind::BadCorner));
+        assert_eq!(corner_indices(b"/2"), Err(ObjErrorKind::BadCorner));
+        assert_eq!(corner_indices(b"7/x"), Err(ObjErrorKind::BadNumber));
+    }
+
+    #[test]
+    fn integers_saturate() {
+        assert_eq!(parse_integer(b"+12"), Ok(12));
+        assert_eq!(parse_integer(b"18446744073709551616"), Ok(i64::MAX));
+        assert_eq!(parse_integer(b"-99999999999999999999999"), Ok(-i64::MAX));
+        for bad in [&b""[..], b"-", b"+", b"1-", b"--1", b"1e3", b" 1"] {
+            assert_eq!(parse_integer(bad), Err(ObjErrorKind::BadNumber), "{bad:?}");
+        }
     }
 
     #[test]
     fn resolution() {
-        assert_eq!(resolve(1, 0, 3), Ok(0));
-        assert_eq!(resolve(3, 0, 3), Ok(2));
-        assert_eq!(resolve(4, 0, 3), Err(ObjErrorKind::IndexOutOfRange));
-        assert_eq!(resolve(0, 2, 3), Err(ObjErrorKind::IndexOutOfRange));
-        assert_eq!(resolve(-1, 2, 3), Ok(1));
-        assert_eq!(resolve(-2, 2, 3), Ok(0));
-        assert_eq!(resolve(-3, 2, 3), Err(ObjErrorKind::IndexOutOfRange));
-        assert_eq!(resolve(i64::MIN, 2, 3), Err(ObjErrorKind::IndexOutOfRange));
-        assert_eq!(resolve(i64::MAX, 2, 3), Err(ObjErrorKind::IndexOutOfRange));
-        assert_eq!(
-            resolve(70_000, 0, 70_000),
-            Err(ObjErrorKind::TooManyVertices)
-        );
+        let out = |index: i64, available: u32| {
+            Err(ObjErrorKind::IndexOutOfRange {
+                element: Element::Vertex,
+                index,
+                available,
+            })
+        };
+        let r = |index, seen, total| resolve(Element::Vertex, index, seen, total);
+        assert_eq!(r(1, 0, 3), Ok(0));
+        assert_eq!(r(3, 0, 3), Ok(2));
+        assert_eq!(r(4, 0, 3), out(4, 3));
+        assert_eq!(r(0, 2, 3), out(0, 3));
+        assert_eq!(r(-1, 2, 3), Ok(1));
+        assert_eq!(r(-2, 2, 3), Ok(0));
+        assert_eq!(r(-3, 2, 3), out(-3, 2));
+        assert_eq!(r(i64::MIN, 2, 3), out(i64::MIN, 2));
+        assert_eq!(r(i64::MAX, 2, 3), out(i64::MAX, 3));
     }
 
     #[test]

@@ -4,21 +4,26 @@
 //!
 //! For each face, in order:
 //! 1. **Transform** each corner to clip space (`projection · view · model`),
-//!    once per vertex per frame. A [`VertexCache`] remembers where each mesh
-//!    vertex went in the vertex table.
-//! 2. **Non-finite** corners (NaN or infinity after transformation): the face
-//!    is skipped and counted in [`DrawStats::non_finite`].
+//!    once per vertex per draw. A [`VertexCache`] remembers where each mesh
+//!    vertex went in the vertex table; [`draw_mesh`] resets it, so one
+//!    cache serves every mesh of a frame.
+//! 2. **Non-finite** corners (NaN or infinity even in `f64`): the face is
+//!    skipped and counted in [`DrawStats::non_finite`]. A corner whose `f32`
+//!    transform overflows but whose `f64` one is finite is clipped instead.
 //! 3. **Frustum**: a face whose corners all lie outside one frustum plane is
 //!    culled ([`DrawStats::outside`]).
 //! 4. **Clipping**: a face with a corner behind the near plane, beyond the
 //!    far plane, or outside the guard band ([`GUARD_BAND_PX`] pixels
-//!    around the frame) is clipped in homogeneous space
-//!    ([`crate::clip`]): cut, never dropped or turned inside out.
-//! 5. **Back faces** (with [`Cull::Back`]): faces whose projected corners
+//!    around the frame's centre) is clipped in homogeneous space, in `f64`
+//!    ([`crate::clip`]): cut, never dropped or turned inside out, with the
+//!    cut edges within the sub-pixel grid of the exact ones. Corners that
+//!    needed no clipping keep their shared vertex, so clipped and unclipped
+//!    neighbours stay watertight.
+//! 5. The core leaves out faces of **zero area** and faces covering **no
+//!    pixel sample** ([`DrawStats::degenerate`], [`DrawStats::off_screen`]).
+//! 6. **Back faces** (with [`Cull::Back`]): faces whose projected corners
 //!    run clockwise as seen by the viewer are culled. The test is exact, on
 //!    the sub-pixel grid the core uses.
-//! 6. **Extremum test**: a face whose screen bounding box misses the frame is
-//!    culled. The core then leaves out faces that cover no pixel sample.
 //! 7. **Shading**: the face's colour comes from a closure over [`FaceInfo`],
 //!    for example [`Shading::color`](crate::shade::Shading::color).
 //!
@@ -26,27 +31,30 @@
 //! through these steps as the fan of triangles from its first corner, each
 //! with the face's id.
 //!
+//! No step needs a buffer per face: corners stream into the tables, so a
+//! face may have up to [`MAX_FACE_CORNERS`] corners.
+//!
 //! Depth handed to the core is `z_ndc` mapped to `[0, 1]`. It is affine in
 //! screen space, so the core's plane stepping is exact.
 
-use heapless::Vec;
+use core::fmt;
 
-use crate::clip::{self, FRUSTUM};
+use crate::clip::{self, ClipPoint, ClipVertex, Clipper};
 use crate::error::Error;
-use crate::fixed::SUBPIXEL_STEPS;
+use crate::fixed::MAX_POLYGON_CORNERS;
 use crate::geometry::{Mat4, Vec3, Vec4, radians};
 use crate::mesh::Mesh;
-use crate::scanline::{Admission, PolygonTables, twice_area};
-use crate::vertex::ScreenVertex;
+use crate::scanline::{Admission, PolygonTables};
+use crate::vertex::{Outline, OutlineBuilder, ScreenVertex};
 
-/// Most corners a mesh face may have.
-pub const MAX_FACE_CORNERS: usize = 26;
-/// Most corners after clipping (a face gains at most one per plane).
-pub const MAX_CLIPPED_CORNERS: usize = MAX_FACE_CORNERS + 6;
-/// Half-width of the band around the frame, in pixels, inside which
-/// vertices are projected as they are. Faces reaching beyond it are clipped
-/// to it. It is half the core's guard band, so rounding can never push a
-/// vertex out of the core's range.
+/// Most corners a mesh face may have: clipping adds at most one corner per
+/// plane (six), and a polygon has at most
+/// [`MAX_POLYGON_CORNERS`](crate::fixed::MAX_POLYGON_CORNERS).
+pub const MAX_FACE_CORNERS: usize = MAX_POLYGON_CORNERS - 6;
+/// Half-width of the band around the frame's centre, in pixels, inside
+/// which vertices are projected as they are. Faces reaching beyond it are
+/// clipped to it. It is half the core's guard band, so rounding can never
+/// push a vertex out of the core's range.
 pub const GUARD_BAND_PX: f32 = 4096.0;
 
 /// A camera: view and projection matrices and the frame they map to.
@@ -93,9 +101,15 @@ impl Camera {
 /// The reference model matrix: centre the mesh on its bounding box centre
 /// `c` and scale by `1/r`, where `r` is the largest distance from `c` to a
 /// vertex. Then apply `Rx(pitch) · Ry(yaw)`, angles in degrees.
-pub fn reference_model<M: Mesh + ?Sized>(mesh: &M, yaw_deg: f32, pitch_deg: f32) -> Mat4 {
-    let (centre, radius) = bounding_sphere(mesh);
-    reference_model_around(centre, radius, yaw_deg, pitch_deg)
+/// `Err(`[`Error::MeshExtent`]`)` when `r` cannot be normalised (see
+/// [`bounding_sphere`]).
+pub fn reference_model<M: Mesh + ?Sized>(
+    mesh: &M,
+    yaw_deg: f32,
+    pitch_deg: f32,
+) -> Result<Mat4, Error> {
+    let (centre, radius) = bounding_sphere(mesh)?;
+    Ok(reference_model_around(centre, radius, yaw_deg, pitch_deg))
 }
 
 /// [`reference_model`] for a mesh whose [`bounding_sphere`] is already
@@ -108,28 +122,54 @@ pub fn reference_model_around(centre: Vec3, radius: f32, yaw_deg: f32, pitch_deg
         .mul(&normalise)
 }
 
+/// Smallest and largest positive radius [`bounding_sphere`] accepts: both
+/// `r` and `1/r` are then normal `f32` numbers.
+pub const RADIUS_RANGE: (f32, f32) = (f32::MIN_POSITIVE, 1.0 / f32::MIN_POSITIVE);
+
 /// Centre of the axis-aligned bounding box of all vertices, and the largest
-/// distance from it to a vertex.
-pub fn bounding_sphere<M: Mesh + ?Sized>(mesh: &M) -> (Vec3, f32) {
+/// distance from it to a vertex (0 for an empty or one-point mesh).
+///
+/// Computed in `f64`, so no finite `f32` coordinates overflow or underflow
+/// on the way (`f32` squares of coordinates beyond about `1.8e19`, or
+/// below about `1e-19`, would). `Err(`[`Error::MeshExtent`]`)` when the
+/// radius is positive but outside [`RADIUS_RANGE`], where the scale `1/r`
+/// would lose precision in `f32`, or when a position is not finite.
+pub fn bounding_sphere<M: Mesh + ?Sized>(mesh: &M) -> Result<(Vec3, f32), Error> {
     let count = mesh.vertex_count();
     if count == 0 {
-        return (Vec3::default(), 0.0);
+        return Ok((Vec3::default(), 0.0));
     }
-    let mut lo = Vec3::from_array(mesh.position(0));
-    let mut hi = lo;
+    let position = |i: usize| mesh.position(i).map(f64::from);
+    let (mut lo, mut hi) = (position(0), position(0));
     for i in 1..count {
-        let p = Vec3::from_array(mesh.position(i));
-        lo = Vec3::new(lo.x.min(p.x), lo.y.min(p.y), lo.z.min(p.z));
-        hi = Vec3::new(hi.x.max(p.x), hi.y.max(p.y), hi.z.max(p.z));
+        let p = position(i);
+        for axis in 0..3 {
+            lo[axis] = lo[axis].min(p[axis]);
+            hi[axis] = hi[axis].max(p[axis]);
+        }
     }
-    let centre = (lo + hi) * 0.5;
+    if !lo.iter().chain(&hi).all(|c| c.is_finite()) {
+        return Err(Error::MeshExtent);
+    }
+    let centre = [0, 1, 2].map(|axis| (lo[axis] + hi[axis]) * 0.5);
     let radius2 = (0..count)
         .map(|i| {
-            let d = Vec3::from_array(mesh.position(i)) - centre;
-            d.dot(d)
+            let p = position(i);
+            (0..3)
+                .map(|a| (p[a] - centre[a]) * (p[a] - centre[a]))
+                .sum::<f64>()
         })
-        .fold(0.0f32, f32::max);
-    (centre, libm::sqrtf(radius2))
+        .fold(0.0f64, f64::max);
+    let radius = libm::sqrt(radius2);
+    let centre = Vec3::new(centre[0] as f32, centre[1] as f32, centre[2] as f32);
+    if radius == 0.0 {
+        return Ok((centre, 0.0));
+    }
+    let (min, max) = RADIUS_RANGE;
+    if !(f64::from(min)..=f64::from(max)).contains(&radius) {
+        return Err(Error::MeshExtent);
+    }
+    Ok((centre, radius as f32))
 }
 
 /// Which faces to cull before they reach the tables.
@@ -181,17 +221,22 @@ pub struct DrawStats {
     pub split: u32,
 }
 
-/// Where each mesh vertex went in the vertex table this frame: 2 bytes per
-/// mesh vertex, for meshes of up to `VM` vertices.
+/// Where each mesh vertex went in the vertex table during one
+/// [`draw_mesh`]: 2 bytes per mesh vertex, for meshes of up to `VM`
+/// vertices. It is scratch space: `draw_mesh` resets the entries it uses
+/// before it starts, so one cache serves any number of meshes (and any
+/// number of draws of one mesh with different model matrices) in a frame.
 #[derive(Debug, Clone)]
 pub struct VertexCache<const VM: usize> {
     slots: [u16; VM],
 }
 
-/// Not yet transformed this frame.
+/// Not yet transformed in this draw.
 const EMPTY: u16 = u16::MAX;
 /// Transformed, and it needs clipping: never projected as it is.
 const NEEDS_CLIP: u16 = u16::MAX - 1;
+/// Its position is not finite even in `f64`.
+const NON_FINITE: u16 = u16::MAX - 2;
 
 impl<const VM: usize> VertexCache<VM> {
     /// An empty cache.
@@ -199,8 +244,8 @@ impl<const VM: usize> VertexCache<VM> {
         Self { slots: [EMPTY; VM] }
     }
 
-    /// Forgets every vertex: call once per frame (with the renderer's
-    /// `clear`).
+    /// Forgets every vertex. [`draw_mesh`] does this itself for the
+    /// vertices it uses; there is no need to call it between draws.
     pub fn clear(&mut self) {
         self.slots.fill(EMPTY);
     }
@@ -212,33 +257,77 @@ impl<const VM: usize> Default for VertexCache<VM> {
     }
 }
 
-/// A polygon to draw for a face: the face itself, or one triangle of its
-/// fan.
-#[derive(Debug, Clone, Copy)]
-struct FacePart<'a> {
-    /// Index of the face in the mesh.
-    face: usize,
-    /// Its corners, as mesh vertex indices.
-    corners: &'a [u16],
+/// Why [`draw_mesh`] stopped: the error, and the face it stopped at
+/// (`None` when it stopped before the first face). Faces before that face
+/// stay in the tables.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct DrawError {
+    /// Index of the face being drawn.
+    pub face: Option<u32>,
+    /// What went wrong.
+    pub error: Error,
 }
 
-/// One corner of the face being processed.
+impl fmt::Display for DrawError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.face {
+            Some(face) => write!(f, "face {face}: {}", self.error),
+            None => write!(f, "{}", self.error),
+        }
+    }
+}
+
+impl core::error::Error for DrawError {}
+
+impl From<DrawError> for Error {
+    fn from(e: DrawError) -> Self {
+        e.error
+    }
+}
+
+impl<E> From<DrawError> for crate::error::RenderError<E> {
+    fn from(e: DrawError) -> Self {
+        crate::error::RenderError::Table(e.error)
+    }
+}
+
+/// One corner of the face being processed, from the cache.
 #[derive(Debug, Clone, Copy)]
 enum Corner {
-    /// In the vertex table.
-    Stored(u16, ScreenVertex),
+    /// In the vertex table (its index is in the cache).
+    Stored,
     /// Needs clipping.
     Clip,
+    /// Not finite.
+    NonFinite,
 }
 
 /// Per-draw constants.
 struct Frame {
     mvp: Mat4,
+    /// The same product in `f64`, for faces that need clipping.
+    mvp64: [[f64; 4]; 4],
     model_view: Mat4,
     width: f32,
     height: f32,
-    guard: [Vec4; 6],
+    /// Guard band half-widths in NDC units, x and y.
+    guard: (f32, f32),
     cull: Cull,
+}
+
+/// `a · b` in `f64`.
+fn mul64(a: &[[f64; 4]; 4], b: &[[f64; 4]; 4]) -> [[f64; 4]; 4] {
+    let mut r = [[0.0f64; 4]; 4];
+    for (i, row) in r.iter_mut().enumerate() {
+        for (j, cell) in row.iter_mut().enumerate() {
+            *cell = (0..4).map(|k| a[i][k] * b[k][j]).sum();
+        }
+    }
+    r
+}
+
+fn to64(m: &Mat4) -> [[f64; 4]; 4] {
+    m.m.map(|row| row.map(f64::from))
 }
 
 impl Frame {
@@ -247,10 +336,14 @@ impl Frame {
         let (width, height) = (f32::from(camera.width), f32::from(camera.height));
         Self {
             mvp: camera.projection.mul(&model_view),
+            mvp64: mul64(
+                &to64(&camera.projection),
+                &mul64(&to64(&camera.view), &to64(model)),
+            ),
             model_view,
             width,
             height,
-            guard: clip::guard_planes(
+            guard: (
                 2.0 * GUARD_BAND_PX / width - 1.0,
                 2.0 * GUARD_BAND_PX / height - 1.0,
             ),
@@ -259,18 +352,24 @@ impl Frame {
     }
 
     /// Whether a clip-space point lies inside the near, far and guard-band
-    /// planes (the same planes as `guard`, compared directly).
+    /// planes.
     fn inside_guard(&self, p: Vec4) -> bool {
-        let (gx, gy) = (self.guard[0].w, self.guard[2].w);
+        let (gx, gy) = self.guard;
         p.z >= -p.w && p.z <= p.w && p.x.abs() <= gx * p.w && p.y.abs() <= gy * p.w
     }
 
-    /// Clip-space position, or `None` when not finite.
-    fn clip_position<M: Mesh + ?Sized>(&self, mesh: &M, index: usize) -> Option<Vec4> {
-        let p = self
-            .mvp
-            .transform_point(Vec3::from_array(mesh.position(index)));
-        p.is_finite().then_some(p)
+    /// Clip-space position in `f32` (not checked for finiteness).
+    fn clip_position<M: Mesh + ?Sized>(&self, mesh: &M, index: usize) -> Vec4 {
+        self.mvp
+            .transform_point(Vec3::from_array(mesh.position(index)))
+    }
+
+    /// Clip-space position in `f64`.
+    fn clip_position64<M: Mesh + ?Sized>(&self, mesh: &M, index: usize) -> ClipPoint {
+        let p = mesh.position(index).map(f64::from);
+        let row = |r: [f64; 4]| r[0] * p[0] + r[1] * p[1] + r[2] * p[2] + r[3];
+        let m = &self.mvp64;
+        ClipPoint::new(row(m[0]), row(m[1]), row(m[2]), row(m[3]))
     }
 
     /// Screen vertex of a clip-space point inside the near, far and guard
@@ -283,41 +382,30 @@ impl Frame {
         ScreenVertex::from_f32(x, y, z).ok()
     }
 
-    /// The back-face and extremum tests on a projected polygon: `Some(front)`
-    /// when it is kept (whether its front faces the viewer), `None` when it
-    /// is culled, counted in `stats`. Screen y points down, so a
-    /// counter-clockwise face (seen by the viewer) has negative area.
-    fn keep(&self, corners: &[ScreenVertex], stats: &mut DrawStats) -> Option<bool> {
-        let front = twice_area(corners) < 0;
-        if !front && self.cull == Cull::Back {
-            stats.back_faces += 1;
-            None
-        } else if self.misses_frame(corners) {
-            stats.off_screen += 1;
-            None
-        } else {
-            Some(front)
-        }
+    /// [`Self::project`] in `f64`, for the corners clipping made.
+    fn project64(&self, p: ClipPoint) -> Option<ScreenVertex> {
+        let inv_w = 1.0 / p.w;
+        let x = (p.x * inv_w + 1.0) * 0.5 * f64::from(self.width);
+        let y = (1.0 - p.y * inv_w) * 0.5 * f64::from(self.height);
+        let z = ((p.z * inv_w + 1.0) * 0.5).clamp(0.0, 1.0);
+        ScreenVertex::from_f64(x, y, z).ok()
     }
 
-    /// Whether the screen bounding box of the corners misses the frame.
-    fn misses_frame(&self, corners: &[ScreenVertex]) -> bool {
-        let (w, h) = (
-            self.width as i32 * SUBPIXEL_STEPS,
-            self.height as i32 * SUBPIXEL_STEPS,
-        );
-        let (mut x0, mut x1, mut y0, mut y1) = (i32::MAX, i32::MIN, i32::MAX, i32::MIN);
-        for c in corners {
-            (x0, x1, y0, y1) = (x0.min(c.x), x1.max(c.x), y0.min(c.y), y1.max(c.y));
-        }
-        x1 < 0 || y1 < 0 || x0 >= w || y0 >= h
+    /// The guard planes in `f64`.
+    fn guard_planes(&self) -> [[f64; 4]; 6] {
+        clip::guard_planes(f64::from(self.guard.0), f64::from(self.guard.1))
     }
 
     /// Normal (model space, turned into view space) and the view distance
     /// of the face's centroid. A triangle's normal is one cross product;
     /// larger faces use Newell's sum.
-    fn face_info<M: Mesh + ?Sized>(&self, mesh: &M, part: FacePart<'_>, front: bool) -> FaceInfo {
-        let corners = part.corners;
+    fn face_info<M: Mesh + ?Sized>(
+        &self,
+        mesh: &M,
+        face: usize,
+        corners: &[u16],
+        front: bool,
+    ) -> FaceInfo {
         let position =
             |k: usize| Vec3::from_array(mesh.position(usize::from(corners[k % corners.len()])));
         let origin = position(0);
@@ -335,7 +423,7 @@ impl Frame {
         let row = self.model_view.m[2];
         let view_z = row[0] * centroid.x + row[1] * centroid.y + row[2] * centroid.z + row[3];
         FaceInfo {
-            face: part.face as u32,
+            face: face as u32,
             normal: self.model_view.transform_vector(n).normalized(),
             front,
             view_depth: -view_z,
@@ -347,10 +435,10 @@ impl Frame {
 /// culls, clips, projects and shades every face, and offers the survivors
 /// to the polygon table. Call the renderer's `render` afterwards.
 ///
-/// `cache` must hold at least `mesh.vertex_count()` entries and must be
-/// cleared together with the renderer's tables. On `Err` (a table is full,
-/// or the mesh is malformed) the faces before the failing one stay in the
-/// tables.
+/// `cache` must hold at least `mesh.vertex_count()` entries; it is reset
+/// here, so one cache serves every mesh of a frame. On `Err` (a table is
+/// full, or the mesh is malformed) the faces before the failing one stay in
+/// the tables, and the error names the face.
 pub fn draw_mesh<C, T, M, const VM: usize>(
     tables: &mut T,
     cache: &mut VertexCache<VM>,
@@ -359,199 +447,282 @@ pub fn draw_mesh<C, T, M, const VM: usize>(
     camera: &Camera,
     cull: Cull,
     mut shade: impl FnMut(&FaceInfo) -> C,
-) -> Result<DrawStats, Error>
+) -> Result<DrawStats, DrawError>
 where
     C: Copy,
     T: PolygonTables<C> + ?Sized,
     M: Mesh + ?Sized,
 {
-    if mesh.vertex_count() > VM {
-        return Err(Error::MeshIndexOutOfRange);
-    }
+    let vertex_count = mesh.vertex_count();
+    let Some(slots) = cache.slots.get_mut(..vertex_count) else {
+        return Err(DrawError {
+            face: None,
+            error: Error::VertexCacheTooSmall,
+        });
+    };
+    slots.fill(EMPTY);
     let frame = Frame::new(model, camera, cull);
     let mut stats = DrawStats {
         faces: mesh.face_count() as u32,
         ..DrawStats::default()
     };
+    let mut draw = Draw {
+        tables,
+        cache,
+        mesh,
+        frame: &frame,
+        stats: &mut stats,
+        shade: &mut shade,
+    };
     for face in 0..mesh.face_count() {
-        let corners = mesh.face(face);
-        if corners.len() > 3 && !mesh.face_is_planar(face) {
-            stats.split += 1;
-            for k in 1..corners.len() - 1 {
-                let triangle = [corners[0], corners[k], corners[k + 1]];
-                let part = FacePart {
-                    face,
-                    corners: &triangle,
-                };
-                draw_face(tables, cache, mesh, &frame, part, &mut stats, &mut shade)?;
-            }
-        } else {
-            let part = FacePart { face, corners };
-            draw_face(tables, cache, mesh, &frame, part, &mut stats, &mut shade)?;
-        }
+        draw.face(face).map_err(|error| DrawError {
+            face: Some(face as u32),
+            error,
+        })?;
     }
     Ok(stats)
 }
 
-fn draw_face<C: Copy, T: PolygonTables<C> + ?Sized, M: Mesh + ?Sized, const VM: usize>(
-    tables: &mut T,
-    cache: &mut VertexCache<VM>,
-    mesh: &M,
-    frame: &Frame,
-    part: FacePart<'_>,
-    stats: &mut DrawStats,
-    shade: &mut impl FnMut(&FaceInfo) -> C,
-) -> Result<(), Error> {
-    let indices = part.corners;
-    if indices.len() > MAX_FACE_CORNERS {
-        return Err(Error::TooManyCorners);
+/// The state of one [`draw_mesh`].
+struct Draw<'a, T: ?Sized, M: ?Sized, S, const VM: usize> {
+    tables: &'a mut T,
+    cache: &'a mut VertexCache<VM>,
+    mesh: &'a M,
+    frame: &'a Frame,
+    stats: &'a mut DrawStats,
+    shade: &'a mut S,
+}
+
+impl<C, T, M, S, const VM: usize> Draw<'_, T, M, S, VM>
+where
+    C: Copy,
+    T: PolygonTables<C> + ?Sized,
+    M: Mesh + ?Sized,
+    S: FnMut(&FaceInfo) -> C,
+{
+    fn face(&mut self, face: usize) -> Result<(), Error> {
+        let corners = self.mesh.face(face);
+        if corners.len() > MAX_FACE_CORNERS {
+            return Err(Error::TooManyCorners);
+        }
+        if corners.len() < 3 {
+            self.stats.degenerate += 1;
+            return Ok(());
+        }
+        if corners.len() > 3 && !self.mesh.face_is_planar(face) {
+            self.stats.split += 1;
+            for k in 1..corners.len() - 1 {
+                self.part(face, &[corners[0], corners[k], corners[k + 1]])?;
+            }
+            Ok(())
+        } else {
+            self.part(face, corners)
+        }
     }
-    if indices.len() < 3 {
-        stats.degenerate += 1;
-        return Ok(());
+
+    /// Draws one polygon of a face: the face itself, or one triangle of
+    /// its fan.
+    fn part(&mut self, face: usize, corners: &[u16]) -> Result<(), Error> {
+        let (mut clip, mut non_finite) = (false, false);
+        for &index in corners {
+            match self.classify(usize::from(index))? {
+                Corner::Stored => {}
+                Corner::Clip => clip = true,
+                Corner::NonFinite => non_finite = true,
+            }
+        }
+        if non_finite {
+            self.stats.non_finite += 1;
+            return Ok(());
+        }
+        if clip {
+            return self.clipped_part(face, corners);
+        }
+        let (frame, mesh, stats) = (self.frame, self.mesh, &mut *self.stats);
+        let shade = &mut *self.shade;
+        let slots = &self.cache.slots;
+        let ids = corners.iter().map(|&index| slots[usize::from(index)]);
+        let admission = self.tables.offer_polygon(ids, |outline| {
+            shade_front_face(frame, mesh, face, corners, outline, stats, shade)
+        })?;
+        self.count(admission);
+        Ok(())
     }
-    let mut corners: Vec<Corner, MAX_FACE_CORNERS> = Vec::new();
-    for &index in indices {
-        let index = usize::from(index);
-        if index >= mesh.vertex_count() {
+
+    fn count(&mut self, admission: Admission) {
+        match admission {
+            Admission::Queued(_) => self.stats.queued += 1,
+            Admission::OffScreen => self.stats.off_screen += 1,
+            Admission::Degenerate => self.stats.degenerate += 1,
+            Admission::Declined => {}
+        }
+    }
+
+    /// Looks a mesh vertex up in the cache, or transforms and classifies
+    /// it. A vertex that can be projected as it is goes into the vertex
+    /// table at once, so it is transformed only once per draw even when the
+    /// first face that uses it is culled.
+    fn classify(&mut self, index: usize) -> Result<Corner, Error> {
+        if index >= self.mesh.vertex_count() {
             return Err(Error::MeshIndexOutOfRange);
         }
-        let Some(corner) = classify(tables, cache, mesh, frame, index)? else {
-            stats.non_finite += 1;
+        let slot = match self.cache.slots[index] {
+            EMPTY => {
+                let p = self.frame.clip_position(self.mesh, index);
+                let stored = if !p.is_finite() {
+                    None
+                } else if self.frame.inside_guard(p) {
+                    self.frame.project(p)
+                } else {
+                    None
+                };
+                match stored {
+                    Some(v) => {
+                        let id = self.tables.add_vertex(v)?;
+                        if id >= NON_FINITE {
+                            return Err(Error::VertexTableFull);
+                        }
+                        id
+                    }
+                    None if self.frame.clip_position64(self.mesh, index).is_finite() => NEEDS_CLIP,
+                    None => NON_FINITE,
+                }
+            }
+            slot => slot,
+        };
+        self.cache.slots[index] = slot;
+        Ok(match slot {
+            NEEDS_CLIP => Corner::Clip,
+            NON_FINITE => Corner::NonFinite,
+            _ => Corner::Stored,
+        })
+    }
+
+    /// The slow path for faces that cross the near or far plane or the
+    /// guard band: clip in homogeneous space in `f64`. A first pass judges
+    /// the clipped polygon (corners, area, bounding box, back face) without
+    /// storing anything; only a polygon that will be queued is streamed
+    /// into the tables by the second, identical pass. Corners that need no
+    /// clipping keep their shared vertex.
+    fn clipped_part(&mut self, face: usize, corners: &[u16]) -> Result<(), Error> {
+        let frame = self.frame;
+        let outside = corners.iter().fold(u32::MAX, |mask, &index| {
+            let p = frame.clip_position64(self.mesh, usize::from(index));
+            mask & clip::outside_mask(p, &clip::FRUSTUM)
+        });
+        if outside != 0 {
+            self.stats.outside += 1;
+            return Ok(());
+        }
+        self.stats.clipped += 1;
+
+        // Pass 1: the outline of the clipped polygon.
+        let mut outline = OutlineBuilder::default();
+        let mut unprojectable = false;
+        let tables = &*self.tables;
+        let slots = &self.cache.slots[..];
+        clip_face(frame, self.mesh, slots, corners, &mut |v: ClipVertex| -> Result<(), Error> {
+            let screen = match v.tag {
+                Some(id) => tables.get_vertex(id),
+                None => frame.project64(v.point),
+            };
+            match screen {
+                Some(screen) if outline.corners() < MAX_POLYGON_CORNERS => outline.add(screen),
+                _ => unprojectable = true,
+            }
+            Ok(())
+        })?;
+        if unprojectable {
+            // Cannot happen for finite input (the clipped corners lie well
+            // inside the core's range), but it is counted, never silent.
+            self.stats.non_finite += 1;
+            return Ok(());
+        }
+        let outline = outline.finish();
+        if outline.corners < 3 {
+            self.stats.outside += 1;
+            return Ok(());
+        }
+        if outline.twice_area == 0 {
+            self.stats.degenerate += 1;
+            return Ok(());
+        }
+        let (width, height) = (self.tables.frame_width(), self.tables.frame_height());
+        if outline.rect.and_then(|r| r.sample_rows(width, height)).is_none() {
+            self.stats.off_screen += 1;
+            return Ok(());
+        }
+        let (mesh, stats, shade) = (self.mesh, &mut *self.stats, &mut *self.shade);
+        let Some(color) = shade_front_face(frame, mesh, face, corners, &outline, stats, shade) else {
             return Ok(());
         };
-        corners.push(corner).map_err(|_| Error::TooManyCorners)?;
-    }
-    if corners.iter().any(|c| matches!(c, Corner::Clip)) {
-        return draw_clipped(tables, mesh, frame, part, stats, shade);
-    }
-    let (mut screen, mut ids): (
-        Vec<ScreenVertex, MAX_FACE_CORNERS>,
-        Vec<u16, MAX_FACE_CORNERS>,
-    ) = (Vec::new(), Vec::new());
-    for corner in &corners {
-        if let Corner::Stored(id, v) = *corner {
-            screen.push(v).map_err(|_| Error::TooManyCorners)?;
-            ids.push(id).map_err(|_| Error::TooManyCorners)?;
-        }
-    }
-    let Some(front) = frame.keep(&screen, stats) else {
-        return Ok(());
-    };
-    let color = shade(&frame.face_info(mesh, part, front));
-    count(stats, tables.add_polygon(&ids, color)?);
-    Ok(())
-}
 
-/// Looks a mesh vertex up in the cache, or transforms and classifies it.
-/// A vertex that can be projected as it is goes into the vertex table at
-/// once, so it is transformed only once per frame even when the first face
-/// that uses it is culled. `Ok(None)` when its position is not finite.
-fn classify<C, T: PolygonTables<C> + ?Sized, M: Mesh + ?Sized, const VM: usize>(
-    tables: &mut T,
-    cache: &mut VertexCache<VM>,
-    mesh: &M,
-    frame: &Frame,
-    index: usize,
-) -> Result<Option<Corner>, Error> {
-    Ok(match cache.slots[index] {
-        NEEDS_CLIP => Some(Corner::Clip),
-        EMPTY => {
-            let Some(p) = frame.clip_position(mesh, index) else {
-                return Ok(None);
+        // Pass 2: the same corners, into the tables.
+        self.tables.begin_polygon();
+        let tables = &mut *self.tables;
+        let slots = &self.cache.slots[..];
+        let streamed = clip_face(frame, self.mesh, slots, corners, &mut |v: ClipVertex| -> Result<(), Error> {
+            let id = match v.tag {
+                Some(id) => id,
+                // Projectable: pass 1 projected the same point.
+                None => match frame.project64(v.point) {
+                    Some(screen) => tables.add_vertex(screen)?,
+                    None => return Err(Error::OutsideGuardBand),
+                },
             };
-            if !frame.inside_guard(p) {
-                cache.slots[index] = NEEDS_CLIP;
-                Some(Corner::Clip)
-            } else if let Some(v) = frame.project(p) {
-                Some(Corner::Stored(store(tables, cache, index, v)?, v))
-            } else {
-                None
-            }
+            tables.add_corner(id)
+        });
+        if let Err(e) = streamed {
+            self.tables.discard_polygon();
+            return Err(e);
         }
-        id => tables.get_vertex(id).map(|v| Corner::Stored(id, v)),
-    })
+        let admission = self.tables.finish_polygon(|_| Some(color))?;
+        self.count(admission);
+        Ok(())
+    }
+
 }
 
-/// Stores a projected mesh vertex and remembers its id.
-fn store<C, T: PolygonTables<C> + ?Sized, const VM: usize>(
-    tables: &mut T,
-    cache: &mut VertexCache<VM>,
-    index: usize,
-    vertex: ScreenVertex,
-) -> Result<u16, Error> {
-    if let Some(&id) = cache
-        .slots
-        .get(index)
-        .filter(|&&s| s != EMPTY && s != NEEDS_CLIP)
-    {
-        return Ok(id);
-    }
-    let id = tables.add_vertex(vertex)?;
-    if id >= NEEDS_CLIP {
-        return Err(Error::VertexTableFull);
-    }
-    cache.slots[index] = id;
-    Ok(id)
-}
-
-/// The slow path for faces that cross the near or far plane or the guard
-/// band: clip in homogeneous space, then project the new polygon. Its
-/// vertices are not shared with other faces.
-fn draw_clipped<C: Copy, T: PolygonTables<C> + ?Sized, M: Mesh + ?Sized>(
-    tables: &mut T,
-    mesh: &M,
+/// Runs a face's corners through the guard-band clipper into `out`.
+/// Corners the cache holds as stored vertices go in tagged with their index
+/// and known to be inside.
+fn clip_face<M: Mesh + ?Sized>(
     frame: &Frame,
-    part: FacePart<'_>,
+    mesh: &M,
+    slots: &[u16],
+    corners: &[u16],
+    out: &mut dyn FnMut(ClipVertex) -> Result<(), Error>,
+) -> Result<(), Error> {
+    let mut clipper = Clipper::new(frame.guard_planes());
+    for &index in corners {
+        let index = usize::from(index);
+        let tag = match slots[index] {
+            NEEDS_CLIP => None,
+            id => Some(id),
+        };
+        let point = frame.clip_position64(mesh, index);
+        clipper.push(ClipVertex::corner(point, tag, tag.is_some()), out)?;
+    }
+    clipper.finish(out)
+}
+
+/// The back-face test and the shading of a face the core accepted: its
+/// colour, or `None` (counted) for a culled back face. Screen y points
+/// down, so a face counter-clockwise as the viewer sees it has negative
+/// area.
+fn shade_front_face<C, M: Mesh + ?Sized>(
+    frame: &Frame,
+    mesh: &M,
+    face: usize,
+    corners: &[u16],
+    outline: &Outline,
     stats: &mut DrawStats,
     shade: &mut impl FnMut(&FaceInfo) -> C,
-) -> Result<(), Error> {
-    let mut points: Vec<Vec4, MAX_FACE_CORNERS> = Vec::new();
-    for &index in part.corners {
-        let Some(p) = frame.clip_position(mesh, usize::from(index)) else {
-            stats.non_finite += 1;
-            return Ok(());
-        };
-        points.push(p).map_err(|_| Error::TooManyCorners)?;
+) -> Option<C> {
+    let front = outline.twice_area < 0;
+    if !front && frame.cull == Cull::Back {
+        stats.back_faces += 1;
+        return None;
     }
-    if clip::outside_one_plane(&points, &FRUSTUM) {
-        stats.outside += 1;
-        return Ok(());
-    }
-    stats.clipped += 1;
-    let clipped = clip::clip_polygon::<MAX_CLIPPED_CORNERS>(&points, &frame.guard)
-        .map_err(|_| Error::TooManyCorners)?;
-    let mut screen: Vec<ScreenVertex, MAX_CLIPPED_CORNERS> = Vec::new();
-    for &p in &clipped {
-        match frame.project(p) {
-            Some(v) => screen.push(v).map_err(|_| Error::TooManyCorners)?,
-            None => {
-                stats.non_finite += 1;
-                return Ok(());
-            }
-        }
-    }
-    if screen.len() < 3 {
-        stats.outside += 1;
-        return Ok(());
-    }
-    let Some(front) = frame.keep(&screen, stats) else {
-        return Ok(());
-    };
-    let mut ids: Vec<u16, MAX_CLIPPED_CORNERS> = Vec::new();
-    for v in &screen {
-        ids.push(tables.add_vertex(*v)?)
-            .map_err(|_| Error::TooManyCorners)?;
-    }
-    let color = shade(&frame.face_info(mesh, part, front));
-    count(stats, tables.add_polygon(&ids, color)?);
-    Ok(())
-}
-
-fn count(stats: &mut DrawStats, admission: Admission) {
-    match admission {
-        Admission::Queued(_) => stats.queued += 1,
-        Admission::OffScreen => stats.off_screen += 1,
-        Admission::Degenerate => stats.degenerate += 1,
-    }
+    Some(shade(&frame.face_info(mesh, face, corners, front)))
 }

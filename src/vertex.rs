@@ -1,7 +1,11 @@
-//! Screen-space vertices: the renderer's input.
+//! Screen-space vertices, the renderer's input, and their bounding
+//! rectangle.
 
 use crate::error::Error;
-use crate::fixed::{DEPTH_MAX, GUARD_BAND, depth_from_f32, subpixel_from_f32};
+use crate::fixed::{
+    DEPTH_MAX, GUARD_BAND, depth_from_f32, depth_from_f64, first_sample_at_or_after,
+    subpixel_from_f32, subpixel_from_f64,
+};
 
 /// A vertex after projection: position on the sub-pixel grid and depth.
 ///
@@ -39,6 +43,14 @@ impl ScreenVertex {
         Ok(Self { x, y, z })
     }
 
+    /// [`Self::from_f32`] for `f64` values.
+    pub fn from_f64(x: f64, y: f64, depth: f64) -> Result<Self, Error> {
+        let x = subpixel_from_f64(x).ok_or(Error::OutsideGuardBand)?;
+        let y = subpixel_from_f64(y).ok_or(Error::OutsideGuardBand)?;
+        let z = depth_from_f64(depth).ok_or(Error::DepthOutOfRange)?;
+        Ok(Self { x, y, z })
+    }
+
     /// Checks the guard band and the depth range.
     pub const fn check(&self) -> Result<(), Error> {
         if self.x <= -GUARD_BAND
@@ -51,6 +63,125 @@ impl ScreenVertex {
             Err(Error::DepthOutOfRange)
         } else {
             Ok(())
+        }
+    }
+}
+
+/// The bounding rectangle of some screen vertices, on the sub-pixel grid,
+/// and the pixel samples it holds: the one bounding-box test the pipeline
+/// and the core share.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ScreenRect {
+    /// Smallest x.
+    pub x0: i32,
+    /// Largest x.
+    pub x1: i32,
+    /// Smallest y.
+    pub y0: i32,
+    /// Largest y.
+    pub y1: i32,
+}
+
+impl ScreenRect {
+    /// The rectangle of one vertex.
+    pub const fn point(v: ScreenVertex) -> Self {
+        Self {
+            x0: v.x,
+            x1: v.x,
+            y0: v.y,
+            y1: v.y,
+        }
+    }
+
+    /// Grows the rectangle to hold `v`.
+    pub fn add(&mut self, v: ScreenVertex) {
+        self.x0 = self.x0.min(v.x);
+        self.x1 = self.x1.max(v.x);
+        self.y0 = self.y0.min(v.y);
+        self.y1 = self.y1.max(v.y);
+    }
+
+    /// The rectangle of `vertices`; `None` for none.
+    pub fn of(vertices: impl IntoIterator<Item = ScreenVertex>) -> Option<Self> {
+        let mut vertices = vertices.into_iter();
+        let mut rect = Self::point(vertices.next()?);
+        vertices.for_each(|v| rect.add(v));
+        Some(rect)
+    }
+
+    /// Rows `[first, end)` of a `width` x `height` frame whose samples the
+    /// rectangle may hold, or `None` when it holds no pixel sample of the
+    /// frame (so no polygon inside it can cover one).
+    pub fn sample_rows(&self, width: u16, height: u16) -> Option<(u16, u16)> {
+        let columns = first_sample_at_or_after(self.x0).max(0)
+            ..first_sample_at_or_after(self.x1).min(i32::from(width));
+        let rows = first_sample_at_or_after(self.y0).max(0)
+            ..first_sample_at_or_after(self.y1).min(i32::from(height));
+        (!columns.is_empty() && !rows.is_empty()).then_some((rows.start as u16, rows.end as u16))
+    }
+}
+
+/// A polygon's outline as the core judges it: its number of corners, twice
+/// its signed area and its bounding rectangle, gathered corner by corner
+/// (see [`OutlineBuilder`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Outline {
+    /// Number of corners.
+    pub corners: usize,
+    /// Twice the signed area on the screen, in square sub-pixel steps
+    /// (negative when the corners run counter-clockwise as seen on the
+    /// screen, y pointing down).
+    pub twice_area: i64,
+    /// Bounding rectangle; `None` without corners.
+    pub rect: Option<ScreenRect>,
+}
+
+/// Gathers an [`Outline`] corner by corner, with no buffer: the area is the
+/// fan of cross products from the first corner (exactly Newell's `c`).
+///
+/// Feed it at most [`MAX_POLYGON_CORNERS`](crate::fixed::MAX_POLYGON_CORNERS)
+/// corners: then every term is below `2^45` and the sum below `2^55`.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct OutlineBuilder {
+    first: Option<ScreenVertex>,
+    previous: Option<ScreenVertex>,
+    corners: usize,
+    twice_area: i64,
+    rect: Option<ScreenRect>,
+}
+
+impl OutlineBuilder {
+    /// Adds the next corner.
+    pub fn add(&mut self, v: ScreenVertex) {
+        match self.first {
+            None => self.first = Some(v),
+            Some(o) => {
+                if let Some(p) = self.previous {
+                    let (px, py) = (i64::from(p.x) - i64::from(o.x), i64::from(p.y) - i64::from(o.y));
+                    let (qx, qy) = (i64::from(v.x) - i64::from(o.x), i64::from(v.y) - i64::from(o.y));
+                    self.twice_area += px * qy - py * qx;
+                }
+                self.previous = Some(v);
+            }
+        }
+        match &mut self.rect {
+            Some(rect) => rect.add(v),
+            None => self.rect = Some(ScreenRect::point(v)),
+        }
+        self.corners += 1;
+    }
+
+    /// Number of corners so far.
+    pub fn corners(&self) -> usize {
+        self.corners
+    }
+
+    /// The outline of the corners added.
+    pub fn finish(&self) -> Outline {
+        Outline {
+            corners: self.corners,
+            twice_area: self.twice_area,
+            rect: self.rect,
         }
     }
 }

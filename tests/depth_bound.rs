@@ -56,7 +56,7 @@ fn check<D: DepthFormat, const W: usize>(
 where
     D::Value: Into<u64>,
 {
-    let mut renderer: Renderer<u32, D, W, 3, 1, 3, 1, 3, 3> = Renderer::new(height, 0).unwrap();
+    let mut renderer: Renderer<u32, D, W, 3, 1, 3, 1, 3> = Renderer::new(height, 0).unwrap();
     renderer.push_polygon_vertices(&tri, 1).unwrap();
     let (frame, _) = capture(&mut renderer);
     let (lsb, max) = format_scale::<D>();
@@ -145,4 +145,102 @@ fn edge_on_triangle_depths_are_exact() {
     ];
     let n = check::<Depth24, 256>(tri, 12, 4) + check::<Depth16, 256>(tri, 12, 1);
     assert!(n > 0, "the sliver should cover some samples");
+}
+
+/// Any polygon, every pixel: coverage exactly as the reference where its
+/// exactly rounded depth is nearer than the far plane, nothing where it is
+/// at or beyond it, and stored depths within 1 LSB.
+fn check_polygon<D: DepthFormat, const W: usize>(poly: &[ScreenVertex], height: u16) -> usize
+where
+    D::Value: Into<u64>,
+{
+    let mut renderer: Renderer<u32, D, W, 8, 1, 8, 1, 8> = Renderer::new(height, 0).unwrap();
+    renderer.push_polygon_vertices(poly, 1).unwrap();
+    let (frame, _) = capture(&mut renderer);
+    let (lsb, max) = format_scale::<D>();
+    let mut drawn_pixels = 0;
+    for j in 0..i32::from(height) {
+        for i in 0..W as i32 {
+            let drawn = frame.color(i as usize, j as usize) == 1;
+            let stored = i128::from(frame.depth(i as usize, j as usize).into());
+            if !covers(poly, i, j) {
+                assert!(!drawn, "{}: ({i}, {j}) drawn outside {poly:?}", D::NAME);
+                continue;
+            }
+            let (num, den) = exact_depth(poly, i, j);
+            if den == 0 {
+                // Zero net area (a figure-eight, say): no plane, left out.
+                assert!(!drawn, "{}: ({i}, {j}) drawn without a plane", D::NAME);
+                continue;
+            }
+            let rounded = exactly_rounded(num, den, lsb, max);
+            if rounded >= max - 1 {
+                // At the far plane: drawn only if it stores a nearer value.
+                assert!(!drawn || stored < max, "{}: ({i}, {j})", D::NAME);
+            } else {
+                assert!(drawn, "{}: ({i}, {j}) not drawn, depth {rounded}", D::NAME);
+            }
+            if drawn {
+                drawn_pixels += 1;
+                assert!(
+                    (stored - rounded).abs() <= 1,
+                    "{}: pixel ({i}, {j}) stored {stored}, exactly rounded {rounded}, {poly:?}",
+                    D::NAME
+                );
+            }
+        }
+    }
+    drawn_pixels
+}
+
+/// Issue 7, item 1: the x-gradient numerator is 2^46 - 256; the one-division
+/// rounding shortcut overflowed and pixel 20 stored depth 0 where the plane
+/// is at 1,262,143.
+#[test]
+fn gradient_numerator_near_2_pow_46() {
+    let tri = [
+        ScreenVertex::new(5120, 2560, 1_000_000).unwrap(),
+        ScreenVertex::new(7680, 2560, 6_242_860).unwrap(),
+        ScreenVertex::new(5120, 54_989, 1_000_000).unwrap(),
+    ];
+    assert!(check_polygon::<Depth24, 128>(&tri, 256) > 500);
+    assert!(check_polygon::<Depth16, 128>(&tri, 256) > 500);
+}
+
+/// Issue 7, item 2: a self-intersecting quad of twice-area 1 whose exact
+/// depth runs far beyond the far plane: clamped to i64::MAX and then
+/// rounded, it wrapped to depth 0 and was drawn in front of everything.
+#[test]
+fn exact_path_beyond_the_far_plane_is_not_drawn() {
+    let quad = [
+        ScreenVertex::new(0, 1, DEPTH_MAX).unwrap(),
+        ScreenVertex::new(8189, 8189, 0).unwrap(),
+        ScreenVertex::new(8190, 0, 11_777_215).unwrap(),
+        ScreenVertex::new(0, 8190, DEPTH_MAX).unwrap(),
+    ];
+    check_polygon::<Depth24, 32>(&quad, 32);
+    check_polygon::<Depth16, 32>(&quad, 32);
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    /// Polygons of 3 to 8 corners with coordinates drawn near the guard
+    /// band and depths near both ends: the inputs that reach the set-up
+    /// arithmetic's limits.
+    #[test]
+    fn extreme_polygons_within_one_lsb(
+        poly in prop::collection::vec(
+            (
+                prop_oneof![Just(1 - zline::fixed::GUARD_BAND), Just(zline::fixed::GUARD_BAND - 1), -S..40 * S, -20_000..20_000],
+                prop_oneof![Just(1 - zline::fixed::GUARD_BAND), Just(zline::fixed::GUARD_BAND - 1), -S..40 * S, -20_000..20_000],
+                prop_oneof![Just(0), Just(DEPTH_MAX), 0..=DEPTH_MAX],
+            ),
+            3..=8,
+        )
+    ) {
+        let poly: Vec<ScreenVertex> = poly.into_iter().map(|(x, y, z)| ScreenVertex::new(x, y, z).unwrap()).collect();
+        check_polygon::<Depth24, 32>(&poly, 32);
+        check_polygon::<Depth16, 32>(&poly, 32);
+    }
 }

@@ -4,7 +4,7 @@
 use proptest::prelude::*;
 use zline::mesh::{Mesh, StaticMesh};
 use zline::obj::{
-    Capacity, ObjCounts, ObjError, ObjErrorKind, ObjMesh, ObjReader, Statement, count,
+    Capacity, Element, ObjCounts, ObjError, ObjErrorKind, ObjMesh, ObjReader, Statement, count,
 };
 
 /// Roomy enough for every hand-written input; 8 corners per face.
@@ -46,6 +46,7 @@ fn with_triangle(tail: &str) -> Vec<u8> {
 
 #[test]
 fn each_corner_format() {
+    // One texture coordinate and one normal for the corners to name.
     for face in [
         "f 1 2 3\n",
         "f 1/1 2/1 3/1\n",
@@ -54,7 +55,7 @@ fn each_corner_format() {
         "f 1/ 2/ 3/\n",
         "f 1/1/ 2// 3/-1/-1\n",
     ] {
-        let mesh = parse(&with_triangle(face));
+        let mesh = parse(&with_triangle(&format!("vt 0 0\nvn 0 0 1\n{face}")));
         assert_eq!(faces(&mesh), [[0, 1, 2]], "{face}");
     }
 }
@@ -260,7 +261,6 @@ fn bad_numbers() {
         ("f 1/a 2 3\n", 4),
         ("f 1 2//b 3\n", 4),
         ("f 1 2 3/1/1.5\n", 4),
-        ("f 1 2 99999999999999999999\n", 4),
         ("f 1 2 3 \\\n", 4),
     ] {
         assert_eq!(error(&with_triangle(tail)), at(line, BadNumber), "{tail:?}");
@@ -285,35 +285,103 @@ fn missing_coordinates_and_bad_corners() {
     }
 }
 
+fn out_of_range(element: Element, index: i64, available: u32) -> ObjErrorKind {
+    ObjErrorKind::IndexOutOfRange {
+        element,
+        index,
+        available,
+    }
+}
+
 #[test]
 fn indices_out_of_range() {
-    use ObjErrorKind::IndexOutOfRange;
-    for tail in [
-        "f 0 1 2\n",
-        "f 1 2 4\n",
-        "f 1 2 -4\n",
-        "f 1 2 -0\n",
-        "f 1 2 -99999999999\n",
+    use Element::Vertex;
+    for (tail, index, available) in [
+        ("f 0 1 2\n", 0, 3),
+        ("f 1 2 4\n", 4, 3),
+        ("f 1 2 -4\n", -4, 3),
+        ("f 1 2 -0\n", 0, 3),
+        ("f 1 2 -99999999999\n", -99_999_999_999, 3),
+        // Issue 7, item 9: 2^64 is an index out of range, not a bad number.
+        ("f 1 2 18446744073709551616\n", i64::MAX, 3),
     ] {
         assert_eq!(
             error(&with_triangle(tail)),
-            at(4, IndexOutOfRange),
+            at(4, out_of_range(Vertex, index, available)),
             "{tail:?}"
         );
     }
     // Positive indices are checked against the whole file ...
     assert_eq!(
         error(b"v 0 0 0\nf 1 2 3\nv 0 0 0\n"),
-        at(2, IndexOutOfRange)
+        at(2, out_of_range(Vertex, 3, 2))
     );
     // ... negative ones against the vertices before the face.
     assert_eq!(
         error(b"v 0 0 0\nv 1 0 0\nf -1 -2 -3\nv 0 1 0\n"),
-        at(3, IndexOutOfRange)
+        at(3, out_of_range(Vertex, -3, 2))
     );
     assert_eq!(
         error(b"# no vertices yet\nf -1 -2 -3\n"),
-        at(2, IndexOutOfRange)
+        at(2, out_of_range(Vertex, -1, 0))
+    );
+}
+
+#[test]
+fn texture_and_normal_indices_are_checked() {
+    // Issue 7, item 9: one `vt` line, three corners naming vt 1, 2 and 3.
+    assert_eq!(
+        error(&with_triangle("vt 0 0\nf 1/1 2/2 3/3\n")),
+        at(5, out_of_range(Element::TexCoord, 2, 1))
+    );
+    assert_eq!(
+        error(&with_triangle("f 1//1 2//1 3//1\n")),
+        at(4, out_of_range(Element::Normal, 1, 0))
+    );
+    assert_eq!(
+        error(&with_triangle("vn 0 0 1\nf 1//-2 2//-1 3//-1\n")),
+        at(5, out_of_range(Element::Normal, -2, 1))
+    );
+    // Later `vt` lines count for positive indices, as `v` lines do.
+    let mesh = parse(&with_triangle("f 1/2 2/2 3/1\nvt 0 0\nvt 1 1\n"));
+    assert_eq!(faces(&mesh), [[0, 1, 2]]);
+    assert_eq!(
+        error(&with_triangle("f 1/x 2 3\n")),
+        at(4, ObjErrorKind::BadNumber)
+    );
+}
+
+#[test]
+fn cr_only_line_endings_are_lines() {
+    // Issue 7, item 7: read as one line, this hid the NaN and the bad index.
+    assert_eq!(
+        error(b"v 0 0 0\rv 1 0 nan\rf 1 2 99\r"),
+        at(2, ObjErrorKind::BadNumber)
+    );
+    assert_eq!(
+        error(b"v 0 0 0\rv 1 0 0\rv 0 1 0\rf 1 2 99\r"),
+        at(4, out_of_range(Element::Vertex, 99, 3))
+    );
+    let mesh = parse(b"v 0 0 0\rv 1 0 0\r\nv 0 1 0\r\rf 1 2 3");
+    assert_eq!(
+        (mesh.vertex_count(), faces(&mesh)),
+        (3, vec![vec![0, 1, 2]])
+    );
+    assert_eq!(count(b"v 0 0 0\r\rv 1 0 0\r").map(|c| c.vertices), Ok(2));
+}
+
+#[test]
+fn a_byte_order_mark_is_skipped() {
+    // Issue 7, item 8: the BOM made line 1 an unknown keyword.
+    let bom = [&b"\xEF\xBB\xBF"[..], TRIANGLE, b"f 1 2 3\n"].concat();
+    let mesh = parse(&bom);
+    assert_eq!((mesh.vertex_count(), mesh.face_count()), (3, 1));
+    let bad = [&b"\xEF\xBB\xBFv 0 0\n"[..], TRIANGLE].concat();
+    assert_eq!(error(&bad), at(1, ObjErrorKind::MissingCoordinate));
+    // A BOM anywhere else is not skipped.
+    assert_eq!(
+        error(&[TRIANGLE, b"\xEF\xBB\xBFv 0 0 0\nf 1 2 4\n"].concat()),
+        at(5, out_of_range(Element::Vertex, 4, 3))
     );
 }
 
@@ -405,7 +473,7 @@ fn load_replaces_and_failed_load_empties() {
     assert_eq!((mesh.texcoord_count(), mesh.normal_count()), (0, 1));
     assert_eq!(
         mesh.load(&with_triangle("f 1 2 3\nf 1 2 9\n")),
-        Err(at(5, ObjErrorKind::IndexOutOfRange))
+        Err(at(5, out_of_range(Element::Vertex, 9, 3)))
     );
     assert_eq!((mesh.vertex_count(), mesh.face_count()), (0, 0));
     assert!(mesh.corners().is_empty() && mesh.normal_count() == 0);
@@ -414,7 +482,25 @@ fn load_replaces_and_failed_load_empties() {
 #[test]
 fn display_names_the_line() {
     let e = error(&with_triangle("\nf 1 2 0\n"));
-    assert_eq!(e.to_string(), "OBJ line 5: vertex index out of range");
+    assert_eq!(
+        e.to_string(),
+        "OBJ line 5: vertex index 0 out of range (3 vertices in the file)"
+    );
+    let e = error(&with_triangle("f 1 2 -7\n"));
+    assert_eq!(
+        e.to_string(),
+        "OBJ line 4: vertex index -7 out of range (3 vertices defined before this line)"
+    );
+    let e = error(&with_triangle("f 1 2 99999999999999999999\n"));
+    assert_eq!(
+        e.to_string(),
+        "OBJ line 4: vertex index too large (3 vertices in the file)"
+    );
+    let e = error(&with_triangle("vt 0 0\nf 1/2 2 3\n"));
+    assert_eq!(
+        e.to_string(),
+        "OBJ line 5: texture coordinate index 2 out of range (1 texture coordinate in the file)"
+    );
     let e = at(12, ObjErrorKind::CapacityExceeded(Capacity::Faces));
     assert_eq!(e.to_string(), "OBJ line 12: face capacity exceeded");
     let boxed: Box<dyn std::error::Error> = Box::new(e);

@@ -9,9 +9,10 @@
 
 mod common;
 
-use common::{capture, covers, exact_depth, exactly_rounded, format_scale};
+use common::capture;
 use proptest::prelude::*;
 use zline::fixed::{DEPTH_MAX, SUBPIXEL_STEPS};
+use zline::methods::exact::check_frame;
 use zline::{Admission, Depth16, Depth24, DepthFormat, Renderer, ScreenVertex};
 
 const W: usize = 40;
@@ -40,71 +41,19 @@ fn check<D: DepthFormat>(scene: &[Vec<ScreenVertex>])
 where
     D::Value: Into<u64>,
 {
-    let mut renderer: Renderer<u32, D, W, 64, 12, 64, 12, 64, 6> = Renderer::new(H, 0).unwrap();
-    let mut kept = Vec::new();
-    for (k, poly) in scene.iter().enumerate() {
-        if let Admission::Queued(_) = renderer.push_polygon_vertices(poly, k as u32 + 1).unwrap() {
-            kept.push(k);
-        } else {
-            // Left out: must truly cover no sample (or have zero area).
-            for j in 0..i32::from(H) {
-                for i in 0..W as i32 {
-                    let (_, den) = exact_depth(poly, i, j);
-                    assert!(
-                        den == 0 || !covers(poly, i, j),
-                        "left out polygon {k} covers ({i}, {j})"
-                    );
-                }
-            }
-        }
-    }
+    let mut renderer: Renderer<u32, D, W, 64, 12, 64, 12, 64> = Renderer::new(H, 0).unwrap();
+    let polygons: Vec<(Vec<ScreenVertex>, bool)> = scene
+        .iter()
+        .enumerate()
+        .map(|(k, poly)| {
+            let admission = renderer.push_polygon_vertices(poly, k as u32 + 1).unwrap();
+            (poly.clone(), matches!(admission, Admission::Queued(_)))
+        })
+        .collect();
     let (frame, _) = capture(&mut renderer);
-    let (lsb, max) = format_scale::<D>();
-    for j in 0..i32::from(H) {
-        for i in 0..W as i32 {
-            // (exact depth as f64 in stored steps, exactly rounded, colour)
-            let mut candidates: Vec<(f64, i128, u32)> = kept
-                .iter()
-                .filter(|&&k| covers(&scene[k], i, j))
-                .map(|&k| {
-                    let (num, den) = exact_depth(&scene[k], i, j);
-                    (
-                        num as f64 / den as f64 / lsb as f64,
-                        exactly_rounded(num, den, lsb, max),
-                        k as u32 + 1,
-                    )
-                })
-                .collect();
-            candidates.sort_by(|a, b| a.0.total_cmp(&b.0));
-            let drawn = frame.color(i as usize, j as usize);
-            let stored = i128::from(frame.depth(i as usize, j as usize).into());
-            // Quantised to the far plane (the clear value) is not drawn.
-            candidates.retain(|c| c.1 < max);
-            if candidates.is_empty() {
-                assert_eq!(drawn, 0, "pixel ({i}, {j}) should be background");
-                continue;
-            }
-            // Ties the format cannot order: exactly rounded values (clamped
-            // to the format's range) within 2 steps of the nearest.
-            let best_rounded = candidates.iter().map(|c| c.1).min().unwrap_or(0);
-            let near: Vec<&(f64, i128, u32)> = candidates
-                .iter()
-                .filter(|c| c.1 - best_rounded <= 2)
-                .collect();
-            let hit = near.iter().find(|c| c.2 == drawn);
-            let hit = hit.unwrap_or_else(|| {
-                panic!(
-                    "{}: pixel ({i}, {j}) drew {drawn}, expected one of {near:?}",
-                    D::NAME
-                )
-            });
-            assert!(
-                (stored - hit.1).abs() <= 1,
-                "{}: pixel ({i}, {j}) depth {stored} vs {}",
-                D::NAME,
-                hit.1
-            );
-        }
+    let depths: Vec<u64> = frame.depths.iter().map(|&d| d.into()).collect();
+    if let Err(e) = check_frame::<D>(&polygons, W, usize::from(H), &frame.colors, &depths) {
+        panic!("{}: {e}", D::NAME);
     }
 }
 

@@ -52,7 +52,7 @@ impl DrawTarget for Recorder {
 
 #[test]
 fn one_fill_contiguous_per_row() {
-    let mut renderer: Renderer<Rgb565, Depth16, 24, 8, 2, 8, 2, 8, 4> =
+    let mut renderer: Renderer<Rgb565, Depth16, 24, 8, 2, 8, 2, 8> =
         Renderer::new(10, Rgb565::BLUE).unwrap();
     let v = |x, y| ScreenVertex::from_f32(x, y, 0.5).unwrap();
     renderer
@@ -78,7 +78,7 @@ fn one_fill_contiguous_per_row() {
 
 #[test]
 fn origin_offsets_every_row() {
-    let mut renderer: Renderer<Rgb565, Depth16, 24, 8, 2, 8, 2, 8, 4> =
+    let mut renderer: Renderer<Rgb565, Depth16, 24, 8, 2, 8, 2, 8> =
         Renderer::new(3, Rgb565::BLACK).unwrap();
     let mut recorder = Recorder::default();
     renderer
@@ -95,7 +95,7 @@ fn origin_offsets_every_row() {
 fn runtime_width_below_capacity() {
     // Row capacity 24, frame 10 wide: rows are 10 long and a triangle
     // reaching past x = 10 is clipped there.
-    let mut renderer: Renderer<Rgb565, Depth16, 24, 8, 2, 8, 2, 8, 4> =
+    let mut renderer: Renderer<Rgb565, Depth16, 24, 8, 2, 8, 2, 8> =
         Renderer::with_size(10, 4, Rgb565::BLACK).unwrap();
     let v = |x, y| ScreenVertex::from_f32(x, y, 0.5).unwrap();
     renderer

@@ -7,7 +7,7 @@ use common::capture;
 use zline::fixed::DEPTH_ONE;
 use zline::geometry::{Mat4, Vec3};
 use zline::mesh::StaticMesh;
-use zline::scene::{Camera, Cull, DrawStats, VertexCache, draw_mesh, reference_model};
+use zline::scene::{Camera, Cull, DrawError, DrawStats, VertexCache, draw_mesh, reference_model};
 use zline::{Depth24, Renderer};
 
 /// Unit cube, quads wound counter-clockwise seen from outside.
@@ -36,7 +36,7 @@ static CUBE: StaticMesh<'static> = match StaticMesh::new(
     Err(_) => panic!("bad cube"),
 };
 
-type R = Renderer<u32, Depth24, 96, 256, 64, 256, 64, 256, 32>;
+type R = Renderer<u32, Depth24, 96, 256, 64, 256, 64, 256>;
 
 fn draw(
     mesh: &StaticMesh,
@@ -56,7 +56,7 @@ fn draw(
 #[test]
 fn cube_shows_three_faces_and_culling_changes_nothing_visible() {
     let camera = Camera::reference(96, 72);
-    let model = reference_model(&CUBE, 30.0, 20.0);
+    let model = reference_model(&CUBE, 30.0, 20.0).unwrap();
     let (culled, stats) = draw(&CUBE, &model, &camera, Cull::Back);
     assert_eq!((stats.faces, stats.queued, stats.back_faces), (6, 3, 3));
     // Ry(30°) turns +z to (0.5, 0, 0.87) and -x to (-0.87, 0, 0.5), both
@@ -183,8 +183,8 @@ fn huge_triangle_beyond_the_guard_band_is_clipped_to_it() {
 #[test]
 fn mesh_behind_the_camera_is_culled_and_nan_is_skipped() {
     let camera = Camera::reference(96, 72);
-    let behind =
-        Mat4::translation(Vec3::new(0.0, 0.0, 10.0)).mul(&reference_model(&CUBE, 0.0, 0.0));
+    let behind = Mat4::translation(Vec3::new(0.0, 0.0, 10.0))
+        .mul(&reference_model(&CUBE, 0.0, 0.0).unwrap());
     let (frame, stats) = draw(&CUBE, &behind, &camera, Cull::None);
     assert_eq!((stats.outside, stats.queued), (6, 0));
     assert!(frame.colors.iter().all(|&c| c == 0));
@@ -208,5 +208,11 @@ fn a_cache_smaller_than_the_mesh_is_an_error() {
         Cull::None,
         |_| 1,
     );
-    assert_eq!(result, Err(zline::Error::MeshIndexOutOfRange));
+    assert_eq!(
+        result,
+        Err(DrawError {
+            face: None,
+            error: zline::Error::VertexCacheTooSmall
+        })
+    );
 }

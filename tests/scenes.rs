@@ -8,7 +8,7 @@ mod common;
 use common::{art, capture, vtx};
 use zline::{Admission, Depth16, Depth24, DepthFormat, Renderer};
 
-type Small<D> = Renderer<u32, D, 16, 64, 16, 64, 16, 64, 8>;
+type Small<D> = Renderer<u32, D, 16, 64, 16, 64, 16, 64>;
 
 fn rect(x0: f32, y0: f32, x1: f32, y1: f32, z: f32) -> [zline::ScreenVertex; 4] {
     [

@@ -84,7 +84,7 @@ fn compare_culled_and_unculled() {
     let mut host = HostScanline::<Depth24>::new(160, 120).unwrap();
     let camera = Camera::reference(160, 120);
     for mesh in [shapes::icosphere(3), shapes::torus_knot(2, 3, 64, 8, 0.4)] {
-        let model = reference_model(&mesh, 30.0, 20.0);
+        let model = reference_model(&mesh, 30.0, 20.0).unwrap();
         let (none, _) = host
             .render(&mesh, &model, &camera, Cull::None, &Shading::FaceId)
             .unwrap();

@@ -50,7 +50,7 @@ fn coverage_counts(vertices: &[ScreenVertex], triangles: &[[usize; 3]]) -> Vec<u
         counts: vec![0; W * usize::from(H)],
     };
     for t in triangles {
-        let mut renderer: Renderer<BinaryColor, Depth16, W, 3, 1, 3, 1, 3, 3> =
+        let mut renderer: Renderer<BinaryColor, Depth16, W, 3, 1, 3, 1, 3> =
             Renderer::new(H, BinaryColor::Off).unwrap();
         let corners = [vertices[t[0]], vertices[t[1]], vertices[t[2]]];
         renderer

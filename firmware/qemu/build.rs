@@ -32,7 +32,7 @@ const SCENES: [(&str, f32, f32); 4] = [
     ("boxes", 30.0, 20.0),
 ];
 
-type HostRenderer<D> = Renderer<Rgb565, D, 240, 65536, 65536, 262_144, 16_384, 16_384, 32>;
+type HostRenderer<D> = Renderer<Rgb565, D, 240, 65536, 65536, 262_144, 16_384, 16_384>;
 
 fn main() {
     let out = PathBuf::from(std::env::var("OUT_DIR").expect("OUT_DIR"));
@@ -62,7 +62,6 @@ struct Needs {
     active_polygons: u32,
     pooled_edges: u32,
     mesh_vertices: usize,
-    corners_per_face: usize,
 }
 
 impl Needs {
@@ -105,11 +104,6 @@ fn generate() -> String {
             out.push_str(&source);
             out.push('\n');
             needs.mesh_vertices = needs.mesh_vertices.max(mesh.vertex_count());
-            let widest = (0..mesh.face_count())
-                .map(|f| mesh.face(f).len())
-                .max()
-                .unwrap_or(3);
-            needs.corners_per_face = needs.corners_per_face.max(widest);
             meshes.push((shape, mesh));
         }
     }
@@ -145,13 +139,12 @@ fn generate() -> String {
         out,
         "// Capacities: the exact largest needs over all scenes, measured on the host.\n\
          const V: usize = {};\nconst P: usize = {};\nconst E: usize = {};\nconst AP: usize = {};\nconst AE: usize = {};\n\
-         const N: usize = {};\nconst VM: usize = {};",
+         const VM: usize = {};",
         needs.vertices,
         needs.polygons,
         needs.corners,
         needs.active_polygons,
         needs.pooled_edges,
-        needs.corners_per_face + 6,
         needs.mesh_vertices
     );
     out
@@ -170,7 +163,7 @@ fn expected<D: DepthFormat>(
         renderer,
         cache,
         mesh,
-        zline::scene::bounding_sphere(mesh),
+        zline::scene::bounding_sphere(mesh).expect("mesh size"),
         yaw,
         pitch,
         &mut crc,

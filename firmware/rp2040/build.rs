@@ -19,7 +19,7 @@ use std::process::ExitCode;
 use embedded_graphics_core::pixelcolor::Rgb565;
 use zline::mesh::{Mesh, StaticMesh};
 use zline::methods::{HostMesh, HostScanline, shapes, static_mesh_source};
-use zline::scene::{Camera, Cull, MAX_CLIPPED_CORNERS, MAX_FACE_CORNERS, reference_model};
+use zline::scene::{Camera, Cull, MAX_FACE_CORNERS, reference_model};
 use zline::shade::Shading;
 use zline::{Depth16, FrameStats};
 
@@ -149,7 +149,8 @@ fn measure_views(mesh: &HostMesh, origin: &str) -> Result<String, String> {
     let camera = Camera::reference(WIDTH, HEIGHT);
     let mut peak = FrameStats::default();
     for step in 0..YAW_STEPS {
-        let model = reference_model(mesh, yaw_deg(step), PITCH_DEG);
+        let model = reference_model(mesh, yaw_deg(step), PITCH_DEG)
+            .map_err(|e| format!("{origin}: {e}"))?;
         let (_, s) = host
             .render(mesh, &model, &camera, Cull::Back, &Shading::FaceId)
             .map_err(|e| format!("{origin}: view {step} does not render on the host: {e}"))?;
@@ -168,7 +169,6 @@ fn measure_views(mesh: &HostMesh, origin: &str) -> Result<String, String> {
     let corners = margin(peak.corners);
     let active_polygons = margin(peak.peak_active_polygons);
     let pooled_edges = margin(peak.peak_pooled_edges);
-    let polygon_corners = (max_face_corners(mesh) + 6).clamp(9, MAX_CLIPPED_CORNERS);
     let mesh_vertices = mesh.vertex_count().max(1);
 
     let sized = FrameStats {
@@ -216,7 +216,7 @@ fn measure_views(mesh: &HostMesh, origin: &str) -> Result<String, String> {
         s,
         "// Estimated RAM (renderer + cache + SPI buffer): {ram} bytes.\n"
     );
-    let items: [(&str, &str, String); 13] = [
+    let items: [(&str, &str, String); 12] = [
         ("WIDTH", "u16", WIDTH.to_string()),
         ("HEIGHT", "u16", HEIGHT.to_string()),
         ("YAW_STEPS", "u32", YAW_STEPS.to_string()),
@@ -229,7 +229,6 @@ fn measure_views(mesh: &HostMesh, origin: &str) -> Result<String, String> {
         ("CORNERS", "usize", corners.to_string()),
         ("ACTIVE_POLYGONS", "usize", active_polygons.to_string()),
         ("POOLED_EDGES", "usize", pooled_edges.to_string()),
-        ("POLYGON_CORNERS", "usize", polygon_corners.to_string()),
     ];
     for (name, ty, value) in items {
         let _ = writeln!(s, "pub const {name}: {ty} = {value};");

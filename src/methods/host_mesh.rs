@@ -4,6 +4,7 @@ use std::vec::Vec;
 
 use crate::mesh::{Mesh, face_of};
 use crate::obj::{ObjError, ObjReader, Statement};
+use crate::scene::MAX_FACE_CORNERS;
 
 /// Positions and faces in growable storage, in the layout of
 /// [`StaticMesh`](crate::mesh::StaticMesh).
@@ -18,12 +19,11 @@ pub struct HostMesh {
 }
 
 impl HostMesh {
-    /// Reads an OBJ file with the no_std reader (faces of up to 256
-    /// corners; the pipeline draws up to
-    /// [`MAX_FACE_CORNERS`](crate::scene::MAX_FACE_CORNERS)).
+    /// Reads an OBJ file with the no_std reader (faces of up to
+    /// [`MAX_FACE_CORNERS`] corners, all the pipeline draws).
     pub fn from_obj(bytes: &[u8]) -> Result<Self, ObjError> {
         let mut mesh = Self::default();
-        for statement in ObjReader::<256>::new(bytes) {
+        for statement in ObjReader::<MAX_FACE_CORNERS>::new(bytes) {
             match statement? {
                 Statement::Vertex(p) => mesh.positions.push(p),
                 Statement::Face(corners) => {

@@ -4,6 +4,8 @@
 //! the core.
 
 mod accuracy;
+pub mod exact;
+pub mod fuzz_checks;
 mod host_mesh;
 mod reference;
 mod rust_source;

@@ -72,15 +72,27 @@ pub fn static_mesh_source(mesh: &HostMesh, name: &str, origin: &str) -> Result<S
     Ok(out)
 }
 
+/// Rust's strict and reserved keywords (edition 2024): none can name a
+/// static.
+const KEYWORDS: [&str; 52] = [
+    "as", "async", "await", "break", "const", "continue", "crate", "dyn", "else", "enum", "extern",
+    "false", "fn", "for", "gen", "if", "impl", "in", "let", "loop", "match", "mod", "move", "mut",
+    "pub", "ref", "return", "self", "Self", "static", "struct", "super", "trait", "true", "type",
+    "unsafe", "use", "where", "while", "abstract", "become", "box", "do", "final", "macro",
+    "override", "priv", "try", "typeof", "unsized", "virtual", "yield",
+];
+
 fn check_name(name: &str) -> Result<(), String> {
     let mut chars = name.chars();
     let first_ok = chars
         .next()
         .is_some_and(|c| c.is_ascii_alphabetic() || c == '_');
-    if first_ok && chars.all(|c| c.is_ascii_alphanumeric() || c == '_') && name != "_" {
-        Ok(())
-    } else {
+    if !first_ok || !chars.all(|c| c.is_ascii_alphanumeric() || c == '_') || name == "_" {
         Err(format!("NAME {name:?} is not a Rust identifier"))
+    } else if KEYWORDS.contains(&name) {
+        Err(format!("NAME {name:?} is a Rust keyword"))
+    } else {
+        Ok(())
     }
 }
 

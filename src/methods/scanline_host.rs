@@ -14,7 +14,7 @@ use crate::error::{Error, RenderError};
 use crate::geometry::Mat4;
 use crate::mesh::Mesh;
 use crate::scanline::{FrameStats, Renderer};
-use crate::scene::{Camera, Cull, DrawStats, VertexCache, draw_mesh};
+use crate::scene::{Camera, Cull, DrawError, DrawStats, VertexCache, draw_mesh};
 use crate::shade::Shading;
 use crate::sink::FnSink;
 
@@ -28,8 +28,7 @@ pub struct HostPixel {
 }
 
 /// The core with capacities for any mesh in `../shared/meshes`.
-pub type HostRenderer<D> =
-    Renderer<HostPixel, D, 4096, 65536, 262_144, 786_432, 32_768, 65_536, 32>;
+pub type HostRenderer<D> = Renderer<HostPixel, D, 4096, 65536, 262_144, 786_432, 32_768, 65_536>;
 
 /// A finished frame: face id and colour per pixel, row-major from the top.
 #[derive(Debug, Clone, PartialEq)]
@@ -90,9 +89,8 @@ where
         camera: &Camera,
         cull: Cull,
         shading: &Shading,
-    ) -> Result<(DrawStats, FrameStats), Error> {
+    ) -> Result<(DrawStats, FrameStats), DrawError> {
         self.renderer.clear();
-        self.cache.clear();
         let draw = draw_mesh(
             &mut *self.renderer,
             &mut *self.cache,
@@ -121,7 +119,7 @@ where
                 },
             ))
             .map_err(|e| match e {
-                RenderError::Table(e) => e,
+                RenderError::Table(error) => DrawError { face: None, error },
                 RenderError::Sink(never) => match never {},
             })?;
         Ok((draw, stats))

@@ -1,6 +1,10 @@
 //! The active tables: the active polygon table (APT), whose entries hold
 //! their left/right edge pair inline, and a pool of further active edges
 //! for polygons that cross a row more than twice (concave ones).
+//!
+//! A polygon's pooled edges form a list kept sorted by crossing, so its
+//! spans come out of a merge of the inline pair and the list: no buffer
+//! per polygon, whatever its number of corners.
 
 use heapless::Vec;
 
@@ -37,16 +41,8 @@ pub(crate) struct ActivePolygon<C> {
     /// The edge pair: up to two active edges held inline.
     pair: [ActiveEdge; 2],
     pair_len: u8,
-    /// Further active edges, a list in the [`EdgePool`].
+    /// Further active edges: a list in the [`EdgePool`], sorted by `x`.
     extra: u32,
-}
-
-/// Crossings of one polygon with the current row.
-pub(crate) enum Crossings<const N: usize> {
-    /// The common case: one left/right pair.
-    Pair(i32, i32),
-    /// Any other number, sorted; pair them even-odd.
-    Sorted(Vec<i32, N>),
 }
 
 impl<C: Copy> ActivePolygon<C> {
@@ -73,33 +69,58 @@ impl<C: Copy> ActivePolygon<C> {
             self.pair[usize::from(self.pair_len)] = edge;
             self.pair_len += 1;
             pool.live += 1;
-            Ok(())
         } else {
-            self.extra = pool.insert(edge, self.extra)?;
-            Ok(())
+            self.extra = pool.insert_sorted(edge, self.extra)?;
         }
+        Ok(())
     }
 
-    /// This row's crossings.
-    pub fn crossings<const N: usize, const AE: usize>(&self, pool: &EdgePool<AE>) -> Crossings<N> {
+    /// Calls `fill(left, right)` for each span of this row: the crossings
+    /// in increasing order, paired even-odd. `left` and `right` are the
+    /// first pixel inside and the first pixel after the span.
+    #[inline]
+    pub fn for_each_span<const AE: usize>(
+        &self,
+        pool: &EdgePool<AE>,
+        mut fill: impl FnMut(i32, i32),
+    ) {
+        let (a, b) = (self.pair[0].x, self.pair[1].x);
         if self.pair_len == 2 && self.extra == NO_EDGE {
-            let (a, b) = (self.pair[0].x, self.pair[1].x);
-            return Crossings::Pair(a.min(b), a.max(b));
+            fill(a.min(b), a.max(b));
+            return;
         }
-        let mut xs: Vec<i32, N> = self.pair[..usize::from(self.pair_len)]
-            .iter()
-            .map(|e| e.x)
-            .collect();
+        // Merge the (sorted) inline pair with the sorted pool list.
+        let mut inline = match self.pair_len {
+            2 => [a.min(b), a.max(b)],
+            _ => [a, a],
+        };
+        let mut inline_left = usize::from(self.pair_len);
+        let mut pending: Option<i32> = None;
         let mut index = self.extra;
-        while let Some(edge) = pool.edges.get(index as usize) {
-            // A polygon of at most N corners has at most N active edges.
-            if xs.push(edge.x).is_err() {
-                break;
+        loop {
+            let pooled = pool.edges.get(index as usize).map(|e| e.x);
+            let x = match (inline_left, pooled) {
+                (0, None) => break,
+                (0, Some(x)) => {
+                    index = pool.edges[index as usize].next;
+                    x
+                }
+                (_, Some(x)) if x < inline[0] => {
+                    index = pool.edges[index as usize].next;
+                    x
+                }
+                _ => {
+                    let x = inline[0];
+                    inline[0] = inline[1];
+                    inline_left -= 1;
+                    x
+                }
+            };
+            match pending.take() {
+                Some(left) => fill(left, x),
+                None => pending = Some(x),
             }
-            index = edge.next;
         }
-        xs.sort_unstable();
-        Crossings::Sorted(xs)
     }
 
     /// Steps every edge to `next_row`, dropping those that ended there.
@@ -116,7 +137,8 @@ impl<C: Copy> ActivePolygon<C> {
             }
         }
         if self.extra != NO_EDGE {
-            self.extra = pool.advance_list(self.extra, next_row);
+            let head = pool.advance_list(self.extra, next_row);
+            self.extra = pool.sort_list(head);
         }
     }
 }
@@ -151,13 +173,13 @@ impl<const AE: usize> EdgePool<AE> {
         self.pooled = 0;
     }
 
-    /// Stores `edge` at the head of the list starting at `head`; returns
-    /// the new head. `Err` when more edges are active than the capacity.
-    fn insert(&mut self, mut edge: ActiveEdge, head: u32) -> Result<u32, ()> {
+    /// Stores `edge` in the list starting at `head`, keeping it sorted by
+    /// `x`; returns the new head. `Err` when more edges are active than the
+    /// capacity.
+    fn insert_sorted(&mut self, edge: ActiveEdge, head: u32) -> Result<u32, ()> {
         if self.pooled as usize >= AE {
             return Err(());
         }
-        edge.next = head;
         let index = if self.free != NO_EDGE {
             let index = self.free;
             self.free = self.edges[index as usize].next;
@@ -170,7 +192,56 @@ impl<const AE: usize> EdgePool<AE> {
         };
         self.live += 1;
         self.pooled += 1;
-        Ok(index)
+        Ok(self.link_sorted(index, head))
+    }
+
+    /// Links entry `index` into the sorted list starting at `head`; returns
+    /// the new head.
+    fn link_sorted(&mut self, index: u32, head: u32) -> u32 {
+        let x = self.edges[index as usize].x;
+        match self.edges.get(head as usize) {
+            Some(first) if first.x < x => {}
+            _ => {
+                self.edges[index as usize].next = head;
+                return index;
+            }
+        }
+        let mut at = head;
+        loop {
+            let next = self.edges[at as usize].next;
+            match self.edges.get(next as usize) {
+                Some(e) if e.x < x => at = next,
+                _ => break,
+            }
+        }
+        self.edges[index as usize].next = self.edges[at as usize].next;
+        self.edges[at as usize].next = index;
+        head
+    }
+
+    /// Re-sorts the list starting at `head` by `x` after a step (insertion
+    /// sort: linear when the order did not change, as is usual); returns
+    /// the new head.
+    fn sort_list(&mut self, head: u32) -> u32 {
+        let (mut sorted, mut tail, mut index) = (NO_EDGE, NO_EDGE, head);
+        while let Some(edge) = self.edges.get(index as usize) {
+            let next = edge.next;
+            let x = edge.x;
+            match self.edges.get(tail as usize) {
+                Some(last) if last.x > x => sorted = self.link_sorted(index, sorted),
+                Some(_) => {
+                    self.edges[tail as usize].next = index;
+                    self.edges[index as usize].next = NO_EDGE;
+                    tail = index;
+                }
+                None => {
+                    self.edges[index as usize].next = NO_EDGE;
+                    (sorted, tail) = (index, index);
+                }
+            }
+            index = next;
+        }
+        sorted
     }
 
     /// Steps the list starting at `head` to `next_row`, freeing edges that
@@ -195,5 +266,48 @@ impl<const AE: usize> EdgePool<AE> {
             index = next;
         }
         new_head
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn edge(x: i32) -> ActiveEdge {
+        let mut e = ActiveEdge::EMPTY;
+        e.x = x;
+        e.end_row = 100;
+        e.set_step_for_tests(0);
+        e
+    }
+
+    fn spans(p: &ActivePolygon<u8>, pool: &EdgePool<16>) -> Vec<(i32, i32), 8> {
+        let mut out = Vec::new();
+        p.for_each_span(pool, |l, r| out.push((l, r)).unwrap());
+        out
+    }
+
+    #[test]
+    fn spans_merge_the_pair_with_the_sorted_pool() {
+        let mut pool = EdgePool::<16>::new();
+        let mut p = ActivePolygon::new(0, 10, 0u8, SpanDepth::Exact);
+        for x in [9, 2, 7, 4, 12, 0] {
+            p.add_edge(edge(x), &mut pool).unwrap();
+        }
+        assert_eq!(spans(&p, &pool), [(0, 2), (4, 7), (9, 12)]);
+        // Stepping reorders the crossings; the list is sorted again.
+        let mut q = ActivePolygon::new(0, 10, 0u8, SpanDepth::Exact);
+        let mut pool = EdgePool::<16>::new();
+        q.add_edge(edge(5), &mut pool).unwrap();
+        q.add_edge(edge(6), &mut pool).unwrap();
+        for (x, step) in [(1, 10), (3, 0), (8, -10)] {
+            let mut e = edge(x);
+            e.set_step_for_tests(step);
+            q.add_edge(e, &mut pool).unwrap();
+        }
+        q.advance_edges(1, &mut pool);
+        // Crossings now 5, 6, 11, 3, -2: sorted -2, 3, 5, 6, 11 (odd count:
+        // the last is unpaired, as a polygon's never is).
+        assert_eq!(spans(&q, &pool), [(-2, 3), (5, 6)]);
     }
 }

@@ -13,6 +13,23 @@
 //! Stepping is exact rational arithmetic (a Bresenham-style DDA): with
 //! `N = x·D - r` and `0 <= r < D`, the crossing never drifts, so the edge
 //! lands on the same pixels however many rows it is stepped.
+//!
+//! # Ranges
+//! For every edge the API accepts (ends inside the guard band, `|x|, |y| <
+//! 2^21` sub-pixel steps) and every row it covers:
+//!
+//! | quantity | bound | held in |
+//! |---|---|---|
+//! | `dx`, `dy` | `|dx| < 2^22`, `0 < dy < 2^22` | `i32` |
+//! | `den = 256·dy` | `< 2^30` | `i32` |
+//! | set-up numerator `(x_top - 128)·dy + (y_sample - y_top)·dx` | `< 2^44 + 2^43` (`0 <= y_sample - y_top < dy`) | `i64` |
+//! | crossing `x` (pixels) | `|x| <= 2^13 + 1` | `i32` |
+//! | `remainder`, `step_remainder` | `[0, den)` | `i32` |
+//! | `remainder - step_remainder` while stepping | `(-2^30, 2^30)` | `i32` |
+//! | `step = floor(dx / dy)` | `|step| < 2^22` | `i32` |
+//!
+//! The tests below step edges between the guard band's corners over every
+//! row they cover and compare each crossing with the exact `i128` value.
 
 use crate::fixed::{HALF_PIXEL, SUBPIXEL_STEPS, first_sample_at_or_after};
 use crate::vertex::ScreenVertex;
@@ -156,6 +173,14 @@ impl ActiveEdge {
         }
     }
 
+    /// Makes the edge move `step` whole pixels per row (unit tests of the
+    /// active tables).
+    #[cfg(test)]
+    pub fn set_step_for_tests(&mut self, step: i32) {
+        self.step = step;
+        self.step_remainder = 0;
+    }
+
     /// Moves the crossing down one scanline.
     #[inline]
     pub fn advance(&mut self) {
@@ -173,6 +198,64 @@ impl ActiveEdge {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Exact crossing of the edge at `row`: the first pixel whose sample
+    /// lies at or right of it.
+    fn exact_x(top: ScreenVertex, bottom: ScreenVertex, row: i32) -> i128 {
+        let (dx, dy) = (i128::from(bottom.x - top.x), i128::from(bottom.y - top.y));
+        let yc = i128::from(row) * 256 + 128;
+        let num = (i128::from(top.x) - 128) * dy + (yc - i128::from(top.y)) * dx;
+        let den = 256 * dy;
+        num.div_euclid(den) + i128::from(num.rem_euclid(den) != 0)
+    }
+
+    /// Steps `top`-`bottom` from its first row inside the frame to its
+    /// last (at most `rows` of them), checking every crossing.
+    fn check_edge(top: ScreenVertex, bottom: ScreenVertex, rows: i32) {
+        let first = first_sample_at_or_after(top.y).max(0);
+        let end = first_sample_at_or_after(bottom.y).min(rows);
+        if first >= end {
+            return;
+        }
+        let mut edge = ActiveEdge::start(top, bottom, first as u16, end as u16, 0);
+        for row in first..end {
+            assert_eq!(
+                i128::from(edge.x),
+                exact_x(top, bottom, row),
+                "{top:?} {bottom:?} row {row}"
+            );
+            assert!(edge.x.unsigned_abs() <= (1 << 13) + 1);
+            edge.advance();
+        }
+    }
+
+    const G: i32 = crate::fixed::GUARD_BAND - 1;
+
+    #[test]
+    fn extreme_edges_step_exactly() {
+        let v = |x, y| ScreenVertex { x, y, z: 0 };
+        let ends = [-G, -G + 1, -1, 0, 1, 127, 128, 129, G - 1, G];
+        for &x0 in &ends {
+            for &x1 in &ends {
+                for &(y0, y1) in &[(-G, G), (-G, 1), (0, G), (127, 129), (-G, -G + 300)] {
+                    check_edge(v(x0, y0), v(x1, y1), 4096);
+                }
+            }
+        }
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn random_edges_step_exactly(
+            x0 in -G..=G, x1 in -G..=G, y0 in -G..=G, dy in 1..=2 * G,
+        ) {
+            let y1 = (y0 + dy).min(G);
+            if y1 > y0 {
+                let v = |x, y| ScreenVertex { x, y, z: 0 };
+                check_edge(v(x0, y0), v(x1, y1), 4096);
+            }
+        }
+    }
 
     #[test]
     fn ceil_division_with_remainder() {

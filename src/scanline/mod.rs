@@ -35,17 +35,28 @@ use heapless::Vec;
 
 use crate::depth::DepthFormat;
 use crate::error::{Error, RenderError};
-use crate::fixed::{MAX_FRAME_SIZE, first_sample_at_or_after};
+use crate::fixed::{MAX_FRAME_SIZE, MAX_POLYGON_CORNERS, first_sample_at_or_after};
 use crate::sink::RowSink;
-use crate::vertex::ScreenVertex;
-use active::{ActivePolygon, Crossings, EdgePool, SpanDepth};
+use crate::vertex::{Outline, OutlineBuilder, ScreenVertex};
+use active::{ActivePolygon, EdgePool, SpanDepth};
 use edge::{ActiveEdge, EdgeEntry, edge_rows};
 use plane::Plane;
-pub(crate) use plane::twice_area;
 
 /// What scene building needs from a renderer: its frame, its vertex table
 /// and its polygon table. [`Renderer`] implements it for every
 /// configuration, so [`crate::scene`] needs none of the capacities.
+///
+/// A polygon enters in one of two ways, neither needing a buffer per
+/// polygon:
+/// * [`Self::offer_polygon`] takes its corners as an iterator of vertex
+///   indices, judges it and copies the corners only if it is queued;
+/// * corner by corner: [`Self::begin_polygon`], [`Self::add_corner`] for
+///   each corner (vertices may be added in between: they belong to the
+///   polygon), then [`Self::finish_polygon`], which either queues it or
+///   removes its corners and the vertices added since `begin_polygon`.
+///   The corners occupy table space while the polygon is open, so callers
+///   judge it first (the pipeline does, for the clipped faces that use
+///   this way in).
 pub trait PolygonTables<C> {
     /// Frame width in pixels.
     fn frame_width(&self) -> u16;
@@ -55,8 +66,35 @@ pub trait PolygonTables<C> {
     fn add_vertex(&mut self, vertex: ScreenVertex) -> Result<u16, Error>;
     /// A vertex added before.
     fn get_vertex(&self, index: u16) -> Option<ScreenVertex>;
-    /// Offers a polygon; see [`Renderer::push_polygon`].
-    fn add_polygon(&mut self, corners: &[u16], color: C) -> Result<Admission, Error>;
+    /// Offers a polygon by its corners' vertex indices. Polygons of zero
+    /// area or covering no pixel sample are counted and left out (see
+    /// [`Admission`]); otherwise `decide` sees its [`Outline`] and gives
+    /// its colour, or `None` to leave it out ([`Admission::Declined`]).
+    /// Nothing is stored unless it is queued; on `Err` nothing was added.
+    fn offer_polygon<I>(
+        &mut self,
+        corners: I,
+        decide: impl FnOnce(&Outline) -> Option<C>,
+    ) -> Result<Admission, Error>
+    where
+        I: IntoIterator<Item = u16>,
+        I::IntoIter: Clone;
+    /// Opens a new polygon, dropping any polygon left open.
+    fn begin_polygon(&mut self);
+    /// Drops the open polygon, if any: its corners and the vertices added
+    /// since [`Self::begin_polygon`]. No polygon is open afterwards.
+    fn discard_polygon(&mut self);
+    /// Appends a corner (a vertex index) to the open polygon. On `Err`
+    /// the open polygon stays as it was.
+    fn add_corner(&mut self, vertex: u16) -> Result<(), Error>;
+    /// Closes the open polygon and offers it as [`Self::offer_polygon`]
+    /// does; whatever the outcome it is closed, and if it was not queued
+    /// its corners and the vertices added since [`Self::begin_polygon`]
+    /// are removed.
+    fn finish_polygon(
+        &mut self,
+        decide: impl FnOnce(&Outline) -> Option<C>,
+    ) -> Result<Admission, Error>;
 }
 
 /// What happened to a polygon offered to the tables.
@@ -68,6 +106,8 @@ pub enum Admission {
     OffScreen,
     /// Its projected area is zero: it cannot cover a sample.
     Degenerate,
+    /// The caller's `decide` closure declined it (for example a back face).
+    Declined,
 }
 
 /// Counts for one rendered frame.
@@ -142,8 +182,10 @@ struct PolygonEntry<C> {
 /// * `E`: edge-table capacity; it also bounds the total number of polygon
 ///   corners, so a mesh of `T` triangles needs `E >= 3·T`.
 /// * `AP`, `AE`: active polygon and active edge capacities (largest number
-///   crossing one row).
-/// * `N`: most corners of one polygon (3 to 256).
+///   crossing one row; `AE` counts only the edges beyond each polygon's
+///   first two, so triangles and convex polygons need none).
+///
+/// A polygon has 3 to [`MAX_POLYGON_CORNERS`] corners.
 ///
 /// Exceeding any capacity is an [`Error`] naming it. The whole renderer
 /// lives in one value of `core::mem::size_of::<Self>()` bytes; it allocates
@@ -158,7 +200,6 @@ pub struct Renderer<
     const E: usize,
     const AP: usize,
     const AE: usize,
-    const N: usize,
 > {
     width: u16,
     height: u16,
@@ -176,6 +217,12 @@ pub struct Renderer<
     current_row: u16,
     depth_row: [D::Value; W],
     color_row: [C; W],
+    /// Corners of queued polygons; `corners` beyond it belong to the open
+    /// polygon.
+    committed_corners: usize,
+    /// `Some(vertex count when it began)` while a polygon is open: vertices
+    /// beyond it are removed with it if it is not queued.
+    open_polygon: Option<usize>,
     next_id: u32,
     off_screen: u32,
     degenerate: u32,
@@ -190,8 +237,7 @@ impl<
     const E: usize,
     const AP: usize,
     const AE: usize,
-    const N: usize,
-> Renderer<C, D, W, V, P, E, AP, AE, N>
+> Renderer<C, D, W, V, P, E, AP, AE>
 {
     /// An empty renderer for frames `W` wide and `height` tall, clearing
     /// to `background`.
@@ -223,7 +269,6 @@ impl<
         const {
             assert!(W > 0 && W <= MAX_FRAME_SIZE, "W must be 1..=4096");
             assert!(V <= 1 << 16, "V must be at most 65536");
-            assert!(N >= 3 && N <= 256, "N must be 3..=256");
             assert!(P <= edge::MAX_POLYGONS, "P must be at most 2^20");
         }
         if width == 0 || width as usize > W || height == 0 || height as usize > MAX_FRAME_SIZE {
@@ -248,6 +293,8 @@ impl<
             current_row: 0,
             depth_row: [D::CLEAR; W],
             color_row: [background; W],
+            committed_corners: 0,
+            open_polygon: None,
             next_id: 0,
             off_screen: 0,
             degenerate: 0,
@@ -275,6 +322,8 @@ impl<
         self.polygons.clear();
         self.corners.clear();
         self.edges.clear();
+        self.committed_corners = 0;
+        self.open_polygon = None;
         self.next_id = 0;
         self.off_screen = 0;
         self.degenerate = 0;
@@ -314,49 +363,10 @@ impl<
         if corners.len() < 3 {
             return Err(Error::TooFewCorners);
         }
-        if corners.len() > N {
+        if corners.len() > MAX_POLYGON_CORNERS {
             return Err(Error::TooManyCorners);
         }
-        if corners
-            .iter()
-            .any(|&i| usize::from(i) >= self.vertices.len())
-        {
-            return Err(Error::VertexOutOfRange);
-        }
-        let corner_vertices: Vec<ScreenVertex, N> = corners
-            .iter()
-            .map(|&i| self.vertices[usize::from(i)])
-            .collect();
-        if plane::twice_area(&corner_vertices) == 0 {
-            self.degenerate += 1;
-            return Ok(Admission::Degenerate);
-        }
-        let Some((first_row, end_row)) = self.visible_rows(corner_vertices.iter().copied()) else {
-            self.off_screen += 1;
-            return Ok(Admission::OffScreen);
-        };
-        if self.polygons.is_full() {
-            return Err(Error::PolygonTableFull);
-        }
-        if self.corners.capacity() - self.corners.len() < corners.len() {
-            return Err(Error::EdgeTableFull);
-        }
-        let entry = PolygonEntry {
-            corner_start: self.corners.len() as u32,
-            corner_count: corners.len() as u16,
-            first_row,
-            end_row,
-            color,
-        };
-        // Both pushes were checked to fit just above.
-        self.corners
-            .extend_from_slice(corners)
-            .map_err(|_| Error::EdgeTableFull)?;
-        self.polygons
-            .push(entry)
-            .map_err(|_| Error::PolygonTableFull)?;
-        self.next_id += 1;
-        Ok(Admission::Queued(self.next_id - 1))
+        self.offer_polygon(corners.iter().copied(), |_| Some(color))
     }
 
     /// Adds the polygon's corners to the vertex table and the polygon to
@@ -366,38 +376,171 @@ impl<
         corners: &[ScreenVertex],
         color: C,
     ) -> Result<Admission, Error> {
-        if corners.len() > N {
+        if corners.len() < 3 {
+            return Err(Error::TooFewCorners);
+        }
+        if corners.len() > MAX_POLYGON_CORNERS {
             return Err(Error::TooManyCorners);
         }
-        let mark = self.vertices.len();
-        let mut indices: Vec<u16, N> = Vec::new();
-        let result = corners.iter().try_for_each(|&v| {
-            let index = self.push_vertex(v)?;
-            indices.push(index).map_err(|_| Error::TooManyCorners)
-        });
-        let result = result.and_then(|()| self.push_polygon(&indices, color));
-        if !matches!(result, Ok(Admission::Queued(_))) {
-            self.vertices.truncate(mark);
+        self.begin_polygon();
+        for &v in corners {
+            if let Err(e) = self.push_vertex(v).and_then(|index| self.add_corner(index)) {
+                self.discard_open_polygon();
+                return Err(e);
+            }
         }
-        result
+        self.finish_polygon(|_| Some(color))
     }
 
-    /// Visible rows `[first, end)` of a polygon, or `None` if its bounding
-    /// box holds no pixel sample of the frame.
-    fn visible_rows(&self, mut corners: impl Iterator<Item = ScreenVertex>) -> Option<(u16, u16)> {
-        let first = corners.next()?;
-        let (mut x0, mut x1, mut y0, mut y1) = (first.x, first.x, first.y, first.y);
-        for v in corners {
-            x0 = x0.min(v.x);
-            x1 = x1.max(v.x);
-            y0 = y0.min(v.y);
-            y1 = y1.max(v.y);
+    /// Offers a polygon by an iterator of vertex indices; see
+    /// [`PolygonTables::offer_polygon`].
+    pub fn offer_polygon<I>(
+        &mut self,
+        corners: I,
+        decide: impl FnOnce(&Outline) -> Option<C>,
+    ) -> Result<Admission, Error>
+    where
+        I: IntoIterator<Item = u16>,
+        I::IntoIter: Clone,
+    {
+        let corners = corners.into_iter();
+        let mut outline = OutlineBuilder::default();
+        for index in corners.clone() {
+            if outline.corners() == MAX_POLYGON_CORNERS {
+                return Err(Error::TooManyCorners);
+            }
+            let vertex = self.vertices.get(usize::from(index));
+            outline.add(*vertex.ok_or(Error::VertexOutOfRange)?);
         }
-        let columns = first_sample_at_or_after(x0).max(0)
-            ..first_sample_at_or_after(x1).min(i32::from(self.width));
-        let rows = first_sample_at_or_after(y0).max(0)
-            ..first_sample_at_or_after(y1).min(i32::from(self.height));
-        (!columns.is_empty() && !rows.is_empty()).then_some((rows.start as u16, rows.end as u16))
+        let outline = outline.finish();
+        let rows = match self.judge(&outline)? {
+            Ok(rows) => rows,
+            Err(admission) => return Ok(admission),
+        };
+        let Some(color) = decide(&outline) else {
+            return Ok(Admission::Declined);
+        };
+        if self.polygons.is_full() {
+            return Err(Error::PolygonTableFull);
+        }
+        if self.corners.capacity() - self.corners.len() < outline.corners {
+            return Err(Error::EdgeTableFull);
+        }
+        let start = self.corners.len();
+        for index in corners {
+            // Room for every corner was checked above.
+            self.corners.push(index).map_err(|_| Error::EdgeTableFull)?;
+        }
+        self.committed_corners = self.corners.len();
+        Ok(self.queue(start, outline.corners, rows, color))
+    }
+
+    /// The core's verdict on an outline: `Ok(Ok(rows))` when it can cover
+    /// a pixel sample, `Ok(Err(admission))` (counted) when it cannot.
+    fn judge(&mut self, outline: &Outline) -> Result<Result<(u16, u16), Admission>, Error> {
+        if outline.corners < 3 {
+            return Err(Error::TooFewCorners);
+        }
+        if outline.twice_area == 0 {
+            self.degenerate += 1;
+            return Ok(Err(Admission::Degenerate));
+        }
+        match outline
+            .rect
+            .and_then(|r| r.sample_rows(self.width, self.height))
+        {
+            Some(rows) => Ok(Ok(rows)),
+            None => {
+                self.off_screen += 1;
+                Ok(Err(Admission::OffScreen))
+            }
+        }
+    }
+
+    /// Enters a polygon whose corners are `corners[start..start + count]`
+    /// in the polygon table (which has room).
+    fn queue(&mut self, start: usize, count: usize, rows: (u16, u16), color: C) -> Admission {
+        let entry = PolygonEntry {
+            corner_start: start as u32,
+            corner_count: count as u16,
+            first_row: rows.0,
+            end_row: rows.1,
+            color,
+        };
+        if self.polygons.push(entry).is_err() {
+            // The callers checked for room: cannot happen.
+            return Admission::OffScreen;
+        }
+        self.next_id += 1;
+        Admission::Queued(self.next_id - 1)
+    }
+
+    /// Opens a polygon; see [`PolygonTables`].
+    pub fn begin_polygon(&mut self) {
+        self.discard_open_polygon();
+        self.open_polygon = Some(self.vertices.len());
+    }
+
+    /// Drops the open polygon; see [`PolygonTables::discard_polygon`].
+    pub fn discard_polygon(&mut self) {
+        self.discard_open_polygon();
+    }
+
+    /// Appends a corner to the open polygon; see [`PolygonTables`].
+    pub fn add_corner(&mut self, vertex: u16) -> Result<(), Error> {
+        if usize::from(vertex) >= self.vertices.len() {
+            return Err(Error::VertexOutOfRange);
+        }
+        if self.corners.len() - self.committed_corners >= MAX_POLYGON_CORNERS {
+            return Err(Error::TooManyCorners);
+        }
+        if self.open_polygon.is_none() {
+            self.open_polygon = Some(self.vertices.len());
+        }
+        self.corners
+            .push(vertex)
+            .map_err(|_| Error::EdgeTableFull)
+    }
+
+    /// Closes the open polygon; see [`PolygonTables::finish_polygon`].
+    pub fn finish_polygon(
+        &mut self,
+        decide: impl FnOnce(&Outline) -> Option<C>,
+    ) -> Result<Admission, Error> {
+        let start = self.committed_corners;
+        let mut outline = OutlineBuilder::default();
+        for &index in &self.corners[start..] {
+            outline.add(self.vertices[usize::from(index)]);
+        }
+        let outline = outline.finish();
+        let verdict = self.judge(&outline);
+        let rows = match verdict {
+            Ok(Ok(rows)) => rows,
+            other => {
+                self.discard_open_polygon();
+                return other.map(|v| v.err().unwrap_or(Admission::Declined));
+            }
+        };
+        let Some(color) = decide(&outline) else {
+            self.discard_open_polygon();
+            return Ok(Admission::Declined);
+        };
+        if self.polygons.is_full() {
+            self.discard_open_polygon();
+            return Err(Error::PolygonTableFull);
+        }
+        self.committed_corners = self.corners.len();
+        self.open_polygon = None;
+        Ok(self.queue(start, outline.corners, rows, color))
+    }
+
+    /// Removes the open polygon's corners and the vertices added since it
+    /// began.
+    fn discard_open_polygon(&mut self) {
+        self.corners.truncate(self.committed_corners);
+        if let Some(mark) = self.open_polygon.take() {
+            self.vertices.truncate(mark);
+        }
     }
 
     fn polygon_corners<'a>(
@@ -472,6 +615,8 @@ impl<
     where
         S: RowSink<C, D::Value>,
     {
+        // A polygon left open is not part of the scene.
+        self.discard_open_polygon();
         self.build_edge_table()?;
         self.active_polygons.clear();
         self.edge_pool.clear();
@@ -550,19 +695,18 @@ impl<
 
     /// The exact plane of a polygon-table entry; `None` for zero area.
     fn plane(&self, polygon: &PolygonEntry<C>) -> Option<Plane> {
-        let corners: Vec<ScreenVertex, N> = self.polygon_corners(polygon).collect();
-        Plane::new(&corners)
+        Plane::new(self.polygon_corners(polygon))
     }
 
     /// Starts every edge of the active polygon at `slot` whose first
     /// visible row is `row`; returns how many.
     fn activate_edges(&mut self, slot: usize, row: u16) -> Result<u32, Error> {
         let polygon = &self.polygons[self.active_polygons[slot].position as usize];
-        let corners: Vec<ScreenVertex, N> = self.polygon_corners(polygon).collect();
+        let corners = entry_corners(polygon, &self.corners, &self.vertices);
         let end_limit = i32::from(self.height);
         let mut entered = 0;
-        let next = corners.iter().skip(1).chain(corners.first());
-        for (&a, &b) in corners.iter().zip(next) {
+        let next = corners.clone().skip(1).chain(corners.clone().take(1));
+        for (a, b) in corners.zip(next) {
             let (top, bottom) = if a.y < b.y { (a, b) } else { (b, a) };
             let starts_here = top.y != bottom.y && EdgeEntry::first_row(top.y) == row;
             let end_row = first_sample_at_or_after(bottom.y).min(end_limit);
@@ -604,9 +748,7 @@ impl<
                 } => SpanSource::Stepped { dz_dx, row_value },
                 SpanDepth::Exact => {
                     let entry = &self.polygons[polygon.position as usize];
-                    let corners: Vec<ScreenVertex, N> =
-                        entry_corners(entry, &self.corners, &self.vertices).collect();
-                    match Plane::new(&corners) {
+                    match Plane::new(entry_corners(entry, &self.corners, &self.vertices)) {
                         Some(plane) => SpanSource::Exact(plane, row),
                         None => continue,
                     }
@@ -628,14 +770,7 @@ impl<
                     );
                 }
             };
-            match polygon.crossings::<N, AE>(&self.edge_pool) {
-                Crossings::Pair(left, right) => fill(left, right),
-                Crossings::Sorted(xs) => {
-                    for pair in xs.chunks_exact(2) {
-                        fill(pair[0], pair[1]);
-                    }
-                }
-            }
+            polygon.for_each_span(&self.edge_pool, &mut fill);
         }
         spans
     }
@@ -674,8 +809,7 @@ impl<
     const E: usize,
     const AP: usize,
     const AE: usize,
-    const N: usize,
-> PolygonTables<C> for Renderer<C, D, W, V, P, E, AP, AE, N>
+> PolygonTables<C> for Renderer<C, D, W, V, P, E, AP, AE>
 {
     fn frame_width(&self) -> u16 {
         self.width
@@ -693,8 +827,35 @@ impl<
         self.vertex(index)
     }
 
-    fn add_polygon(&mut self, corners: &[u16], color: C) -> Result<Admission, Error> {
-        self.push_polygon(corners, color)
+    fn begin_polygon(&mut self) {
+        Renderer::begin_polygon(self);
+    }
+
+    fn discard_polygon(&mut self) {
+        Renderer::discard_polygon(self);
+    }
+
+    fn add_corner(&mut self, vertex: u16) -> Result<(), Error> {
+        Renderer::add_corner(self, vertex)
+    }
+
+    fn offer_polygon<I>(
+        &mut self,
+        corners: I,
+        decide: impl FnOnce(&Outline) -> Option<C>,
+    ) -> Result<Admission, Error>
+    where
+        I: IntoIterator<Item = u16>,
+        I::IntoIter: Clone,
+    {
+        Renderer::offer_polygon(self, corners, decide)
+    }
+
+    fn finish_polygon(
+        &mut self,
+        decide: impl FnOnce(&Outline) -> Option<C>,
+    ) -> Result<Admission, Error> {
+        Renderer::finish_polygon(self, decide)
     }
 }
 

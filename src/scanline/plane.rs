@@ -3,9 +3,7 @@
 //!
 //! With the polygon's normal `(a, b, c)` from Newell's method over its
 //! corners, depth is `z(x, y) = z0 - (a·(x - x0) + b·(y - y0)) / c` through
-//! the first corner, so `dz/dx = -a/c` and `dz/dy = -b/c`. Coordinates are
-//! relative to the first corner, so inside the guard band `|a|, |b| < 2^57`
-//! and `|c| < 2^55` for up to 256 corners, all in `i64`.
+//! the first corner, so `dz/dx = -a/c` and `dz/dy = -b/c`.
 //!
 //! Values are *plane units*: input depth steps with
 //! [`PLANE_FRAC_BITS`] fractional bits. The gradients are rounded to the
@@ -13,14 +11,51 @@
 //! stored value differs from the exact plane by at most
 //! `2^-17 · (1 + rows stepped + pixels stepped)` input steps plus the
 //! format's final rounding (see [`crate::depth`]).
+//!
+//! # Ranges
+//! For every input the API accepts (corners inside the guard band, so
+//! coordinate differences `|dx|, |dy| < 2^22` sub-pixel steps; depths
+//! `0..=DEPTH_MAX`, so `|dz| < 2^24`; at most [`MAX_POLYGON_CORNERS`]
+//! `< 2^10` corners, so at most `2^10` fan triangles):
+//!
+//! | quantity | bound | held in |
+//! |---|---|---|
+//! | one fan triangle's `a`, `b` term (`py·qz - pz·qy`) | `< 2^47` | `i64` |
+//! | one fan triangle's `c` term (`px·qy - py·qx`) | `< 2^45` | `i64` |
+//! | Newell `a`, `b` | [`NEWELL_AB_BOUND`] `= 2^57` | `i64` |
+//! | Newell `c` (twice the area, also [`OutlineBuilder`](crate::vertex::OutlineBuilder)'s sum) | [`NEWELL_C_BOUND`] `= 2^55` | `i64` |
+//! | gradient numerator `-a · 2^8` | `< 2^65` | `i128` |
+//! | `a·dx + b·dy` in [`Plane::value_at`] | `< 2^80` (`< 2^62` on its `i64` path, taken when `|a|, |b| < 2^39`) | `i128` / `i64` |
+//! | quotient of [`div_round_q16`] | `< 2^97` | `i128` |
+//! | plane value returned by [`Plane::value_at`] | clamped to `±`[`PLANE_VALUE_LIMIT`] `= 2^60` | `i64` |
+//! | stepped gradient (else the polygon is `Exact`) | `< 2^40` per pixel | `i64` |
+//! | plane value of a stepped polygon anywhere in the guard band | `< 2^56 + 2^40` (so never clamped) | `i64` |
+//!
+//! The tests in this module build the extremes (corners on the guard
+//! band, depths at both ends, 1,024-corner polygons winding as often as
+//! they can) and check each bound and each result against `i128`
+//! arithmetic, with overflow checks on.
 
-use crate::fixed::{HALF_PIXEL, PLANE_FRAC_BITS, SUBPIXEL_BITS, SUBPIXEL_STEPS, div_round_q16};
+use crate::fixed::{
+    HALF_PIXEL, MAX_POLYGON_CORNERS, PLANE_FRAC_BITS, SUBPIXEL_BITS, SUBPIXEL_STEPS, div_round_q16,
+};
 use crate::vertex::ScreenVertex;
 
 /// A gradient of this magnitude (plane units per pixel) or more changes
 /// depth by the whole depth range within one pixel: such a polygon is
 /// (nearly) edge-on and its depth is evaluated exactly per pixel instead.
 pub(crate) const STEEP_GRADIENT: i64 = 1 << (crate::fixed::DEPTH_BITS + PLANE_FRAC_BITS);
+
+/// Bound on `|a|` and `|b|` of Newell's normal.
+pub(crate) const NEWELL_AB_BOUND: u64 = 1 << 57;
+/// Bound on `|c|` of Newell's normal (twice the projected area).
+pub(crate) const NEWELL_C_BOUND: u64 = 1 << 55;
+/// Plane values are clamped to `±PLANE_VALUE_LIMIT`: far beyond the depth
+/// range (`2^40` plane units), so clamping never changes a stored depth,
+/// and far enough from `i64::MAX` that rounding cannot overflow.
+pub(crate) const PLANE_VALUE_LIMIT: i64 = 1 << 60;
+
+const _: () = assert!(MAX_POLYGON_CORNERS <= 1 << 10);
 
 /// Exact plane of a polygon: normal from Newell's method, through corner 0.
 #[derive(Debug, Clone, Copy)]
@@ -31,29 +66,12 @@ pub(crate) struct Plane {
     origin: ScreenVertex,
 }
 
-/// Twice the signed area of the polygon projected on the screen (`c` of
-/// Newell's normal), in square sub-pixel steps; positive when the corners
-/// run counter-clockwise with y pointing up.
-pub(crate) fn twice_area(corners: &[ScreenVertex]) -> i64 {
-    let Some(&origin) = corners.first() else {
-        return 0;
-    };
-    let mut area = 0i64;
-    let (x0, y0) = (i64::from(origin.x), i64::from(origin.y));
-    for pair in corners.windows(2).skip(1) {
-        // Fan from corner 0: the sum of the triangles' cross products.
-        let (ax, ay) = (i64::from(pair[0].x) - x0, i64::from(pair[0].y) - y0);
-        let (bx, by) = (i64::from(pair[1].x) - x0, i64::from(pair[1].y) - y0);
-        area += ax * by - bx * ay;
-    }
-    area
-}
-
 /// Newell's normal `(a, b, c)` of the corners, relative to corner 0 so
-/// every product stays small. For a triangle it is the cross product of
-/// two edges.
-fn newell(corners: &[ScreenVertex]) -> (i64, i64, i64, ScreenVertex) {
-    let origin = corners.first().copied().unwrap_or_default();
+/// every product stays small, and corner 0. For a triangle it is the cross
+/// product of two edges.
+fn newell(corners: impl IntoIterator<Item = ScreenVertex>) -> (i64, i64, i64, ScreenVertex) {
+    let mut corners = corners.into_iter();
+    let origin = corners.next().unwrap_or_default();
     let rel = |v: ScreenVertex| {
         (
             i64::from(v.x) - i64::from(origin.x),
@@ -62,33 +80,40 @@ fn newell(corners: &[ScreenVertex]) -> (i64, i64, i64, ScreenVertex) {
         )
     };
     let (mut a, mut b, mut c) = (0i64, 0i64, 0i64);
+    let Some(second) = corners.next() else {
+        return (0, 0, 0, origin);
+    };
     // With corner 0 at the origin, Newell's sum is the fan of cross
     // products p_k × p_(k+1).
-    for pair in corners.windows(2).skip(1) {
-        let (px, py, pz) = rel(pair[0]);
-        let (qx, qy, qz) = rel(pair[1]);
+    let (mut px, mut py, mut pz) = rel(second);
+    for q in corners {
+        let (qx, qy, qz) = rel(q);
         a += py * qz - pz * qy;
         b += pz * qx - px * qz;
         c += px * qy - py * qx;
+        (px, py, pz) = (qx, qy, qz);
     }
+    debug_assert!(a.unsigned_abs() < NEWELL_AB_BOUND && b.unsigned_abs() < NEWELL_AB_BOUND);
+    debug_assert!(c.unsigned_abs() < NEWELL_C_BOUND);
     (a, b, c, origin)
 }
 
 impl Plane {
     /// The plane of a polygon; `None` when its projected area is zero.
-    pub fn new(corners: &[ScreenVertex]) -> Option<Self> {
+    pub fn new(corners: impl IntoIterator<Item = ScreenVertex>) -> Option<Self> {
         let (a, b, c, origin) = newell(corners);
         (c != 0).then_some(Self { a, b, c, origin })
     }
 
-    /// Exact plane value at sub-pixel point `(x, y)`, rounded to the nearest
-    /// plane unit.
+    /// Exact plane value at sub-pixel point `(x, y)` (inside the guard
+    /// band), rounded to the nearest plane unit and clamped to
+    /// `±PLANE_VALUE_LIMIT`.
     pub fn value_at(&self, x: i32, y: i32) -> i64 {
-        // Inside the guard band both offsets are below 2^23.
+        // Inside the guard band both offsets are below 2^22.
         let dx = i64::from(x) - i64::from(self.origin.x);
         let dy = i64::from(y) - i64::from(self.origin.y);
         // On a 32-bit MCU i128 products are slow: use i64 when |a|, |b| <
-        // 2^39 (then each product is below 2^62), which is every polygon of
+        // 2^39 (then each product is below 2^61), which is every polygon of
         // ordinary size.
         const SMALL: u64 = 1 << 39;
         let num = if self.a.unsigned_abs() < SMALL && self.b.unsigned_abs() < SMALL {
@@ -98,7 +123,8 @@ impl Plane {
         };
         let offset = div_round_q16(num, self.c);
         let value = (i128::from(self.origin.z) << PLANE_FRAC_BITS) + offset;
-        value.clamp(i128::from(i64::MIN), i128::from(i64::MAX)) as i64
+        let limit = i128::from(PLANE_VALUE_LIMIT);
+        value.clamp(-limit, limit) as i64
     }
 
     /// Plane value at the sample point of pixel `(column, row)`.
@@ -119,5 +145,185 @@ impl Plane {
     /// steep (at least the whole depth range per pixel).
     pub fn gradients(&self) -> Option<(i64, i64)> {
         Some((self.gradient(self.a)?, self.gradient(self.b)?))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fixed::{DEPTH_MAX, GUARD_BAND, div_round_i128};
+    use proptest::prelude::*;
+    use std::vec::Vec;
+
+    /// Largest coordinate magnitude the guard band admits.
+    const G: i32 = GUARD_BAND - 1;
+
+    fn v(x: i32, y: i32, z: u32) -> ScreenVertex {
+        ScreenVertex::new(x, y, z).unwrap()
+    }
+
+    /// Newell's normal in i128, straight from the cyclic definition.
+    fn newell_i128(poly: &[ScreenVertex]) -> (i128, i128, i128) {
+        let (mut a, mut b, mut c) = (0i128, 0i128, 0i128);
+        for k in 0..poly.len() {
+            let (p, q) = (poly[k], poly[(k + 1) % poly.len()]);
+            let (px, py, pz) = (i128::from(p.x), i128::from(p.y), i128::from(p.z));
+            let (qx, qy, qz) = (i128::from(q.x), i128::from(q.y), i128::from(q.z));
+            a += (py - qy) * (pz + qz);
+            b += (pz - qz) * (px + qx);
+            c += (px - qx) * (py + qy);
+        }
+        // Expanded, each sum is the fan form's: (y_i - y_j)(z_i + z_j)
+        // sums to y_i·z_j - z_i·y_j over the cycle.
+        (a, b, c)
+    }
+
+    /// Checks every set-up quantity of `poly` against its bound and its
+    /// exact value (overflow checks are on in tests).
+    fn check(poly: &[ScreenVertex]) {
+        let (a, b, c) = newell_i128(poly);
+        assert!(a.unsigned_abs() < u128::from(NEWELL_AB_BOUND), "a = {a}");
+        assert!(b.unsigned_abs() < u128::from(NEWELL_AB_BOUND), "b = {b}");
+        assert!(c.unsigned_abs() < u128::from(NEWELL_C_BOUND), "c = {c}");
+        let mut outline = crate::vertex::OutlineBuilder::default();
+        poly.iter().for_each(|&v| outline.add(v));
+        assert_eq!(i128::from(outline.finish().twice_area), c);
+        let Some(plane) = Plane::new(poly.iter().copied()) else {
+            assert_eq!(c, 0);
+            return;
+        };
+        assert_eq!(
+            (plane.a as i128, plane.b as i128, plane.c as i128),
+            (a, b, c)
+        );
+        // Gradients: exactly rounded, or steep.
+        for (coef, got) in [(a, plane.gradient(plane.a)), (b, plane.gradient(plane.b))] {
+            let exact = div_round_i128(-coef << (SUBPIXEL_BITS + PLANE_FRAC_BITS), c);
+            match got {
+                Some(g) => assert_eq!(i128::from(g), exact),
+                None => assert!(exact.abs() >= i128::from(STEEP_GRADIENT)),
+            }
+        }
+        // Plane values at the guard band's corners and centre, and at the
+        // frame's far corner, against the exactly rounded, clamped value.
+        let o = poly[0];
+        for (x, y) in [
+            (-G, -G),
+            (G, -G),
+            (-G, G),
+            (G, G),
+            (0, 0),
+            (4095 * 256, 4095 * 256),
+        ] {
+            let num =
+                -(a * (i128::from(x) - i128::from(o.x)) + b * (i128::from(y) - i128::from(o.y)));
+            let exact =
+                (i128::from(o.z) << PLANE_FRAC_BITS) + div_round_i128(num << PLANE_FRAC_BITS, c);
+            let limit = i128::from(PLANE_VALUE_LIMIT);
+            let got = plane.value_at(x, y);
+            assert_eq!(i128::from(got), exact.clamp(-limit, limit));
+            if plane.gradients().is_some() {
+                // A stepped polygon's plane never reaches the clamp.
+                assert!(exact.abs() < (1 << 56) + (1 << 40), "stepped value {exact}");
+            }
+        }
+    }
+
+    #[test]
+    fn extreme_triangles() {
+        let xs = [-G, G];
+        let zs = [0, DEPTH_MAX];
+        let mut corners = Vec::new();
+        for x in xs {
+            for y in xs {
+                for z in zs {
+                    corners.push(v(x, y, z));
+                }
+            }
+        }
+        for &p in &corners {
+            for &q in &corners {
+                for &r in &corners {
+                    check(&[p, q, r]);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn extreme_polygons_winding_many_times() {
+        // 1,024 corners running round the guard band's corners 256 times:
+        // |c| is 256 times twice the band's area, the largest a polygon of
+        // this many corners can reach. The same in the depth planes.
+        let ring = [(-G, -G), (G, -G), (G, G), (-G, G)];
+        let flat: Vec<ScreenVertex> = (0..MAX_POLYGON_CORNERS)
+            .map(|k| {
+                let (x, y) = ring[k % 4];
+                v(x, y, DEPTH_MAX / 2)
+            })
+            .collect();
+        check(&flat);
+        let depth_ring = [(-G, 0), (G, 0), (G, DEPTH_MAX), (-G, DEPTH_MAX)];
+        for &(flip, y_step) in &[(false, 1), (true, 1), (false, 0)] {
+            let poly: Vec<ScreenVertex> = (0..MAX_POLYGON_CORNERS)
+                .map(|k| {
+                    let (x, z) = depth_ring[k % 4];
+                    // A small y offset gives the polygon some area.
+                    let y = if (k / 2) % 2 == 0 {
+                        -G
+                    } else {
+                        -G + y_step * 2 * G
+                    };
+                    if flip { v(y, x, z) } else { v(x, y, z) }
+                })
+                .collect();
+            check(&poly);
+        }
+    }
+
+    #[test]
+    fn issue_7_item_1_gradient_has_the_right_sign() {
+        // The x-gradient numerator is 2^46 - 256: the one-division shortcut
+        // used to overflow and return a gradient of the wrong sign.
+        let tri = [
+            v(5120, 2560, 1_000_000),
+            v(7680, 2560, 6_242_860),
+            v(5120, 54_989, 1_000_000),
+        ];
+        check(&tri);
+        let plane = Plane::new(tri).unwrap();
+        let (dz_dx, _) = plane.gradients().unwrap();
+        assert!(dz_dx > 0, "depth grows to the right: {dz_dx}");
+    }
+
+    fn extreme_coordinate() -> impl Strategy<Value = i32> {
+        prop_oneof![
+            Just(-G),
+            Just(G),
+            -G..=G,
+            -G..-G + 512,
+            G - 512..=G,
+            -512..512
+        ]
+    }
+
+    fn extreme_depth() -> impl Strategy<Value = u32> {
+        prop_oneof![
+            Just(0),
+            Just(DEPTH_MAX),
+            0..=DEPTH_MAX,
+            0u32..16,
+            DEPTH_MAX - 16..=DEPTH_MAX
+        ]
+    }
+
+    proptest! {
+        #[test]
+        fn random_polygons_near_the_limits(
+            poly in prop::collection::vec((extreme_coordinate(), extreme_coordinate(), extreme_depth()), 3..40)
+        ) {
+            let poly: Vec<ScreenVertex> = poly.into_iter().map(|(x, y, z)| v(x, y, z)).collect();
+            check(&poly);
+        }
     }
 }

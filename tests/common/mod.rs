@@ -1,99 +1,10 @@
-//! Exact references shared by the integration tests: coverage by the
-//! even-odd rule with the top-left convention, and the plane's depth, both
-//! in exact integer (rational) arithmetic, written independently of the
-//! renderer's incremental code.
+//! What the integration tests share: the exact oracle (from
+//! `zline::methods::exact`), frame capture, and recording tables.
 #![allow(dead_code)]
 
-use zline::fixed::{HALF_PIXEL, SUBPIXEL_STEPS};
+#[allow(unused_imports)]
+pub use zline::methods::exact::{covers, exact_depth, exactly_rounded, format_scale, sample};
 use zline::{DepthFormat, FnSink, Renderer, ScreenVertex};
-
-/// Sample point of pixel `(i, j)` in sub-pixel steps.
-pub fn sample(i: i32, j: i32) -> (i64, i64) {
-    (
-        i64::from(i * SUBPIXEL_STEPS + HALF_PIXEL),
-        i64::from(j * SUBPIXEL_STEPS + HALF_PIXEL),
-    )
-}
-
-/// Whether pixel `(i, j)`'s sample is inside `poly`: the number of edges
-/// crossing the sample's row (top inclusive, bottom exclusive) at or left of
-/// the sample is odd.
-pub fn covers(poly: &[ScreenVertex], i: i32, j: i32) -> bool {
-    let (xs, ys) = sample(i, j);
-    let mut inside = false;
-    for k in 0..poly.len() {
-        let (mut a, mut b) = (poly[k], poly[(k + 1) % poly.len()]);
-        if a.y == b.y {
-            continue;
-        }
-        if a.y > b.y {
-            core::mem::swap(&mut a, &mut b);
-        }
-        let (ax, ay, bx, by) = (
-            i64::from(a.x),
-            i64::from(a.y),
-            i64::from(b.x),
-            i64::from(b.y),
-        );
-        if ay <= ys && ys < by {
-            // crossing x = ax + (ys - ay)(bx - ax)/(by - ay) <= xs
-            if (ax - xs) * (by - ay) + (ys - ay) * (bx - ax) <= 0 {
-                inside = !inside;
-            }
-        }
-    }
-    inside
-}
-
-/// The plane through `poly` (Newell's normal, through corner 0) as
-/// `(numerator, denominator)` of the depth at pixel `(i, j)`'s sample, in
-/// input depth steps (Q0.24 units): depth = num / den exactly, den > 0.
-pub fn exact_depth(poly: &[ScreenVertex], i: i32, j: i32) -> (i128, i128) {
-    let o = poly[0];
-    let rel = |v: ScreenVertex| {
-        (
-            i128::from(v.x) - i128::from(o.x),
-            i128::from(v.y) - i128::from(o.y),
-            i128::from(v.z) - i128::from(o.z),
-        )
-    };
-    let (mut a, mut b, mut c) = (0i128, 0i128, 0i128);
-    for k in 0..poly.len() {
-        let (px, py, pz) = rel(poly[k]);
-        let (qx, qy, qz) = rel(poly[(k + 1) % poly.len()]);
-        a += (py - qy) * (pz + qz);
-        b += (pz - qz) * (px + qx);
-        c += (px - qx) * (py + qy);
-    }
-    let (xs, ys) = sample(i, j);
-    let num = i128::from(o.z) * c
-        - a * (i128::from(xs) - i128::from(o.x))
-        - b * (i128::from(ys) - i128::from(o.y));
-    if c < 0 { (-num, -c) } else { (num, c) }
-}
-
-/// Exact depth as f64 (for tie tolerance only).
-pub fn exact_depth_f64(poly: &[ScreenVertex], i: i32, j: i32) -> f64 {
-    let (n, d) = exact_depth(poly, i, j);
-    n as f64 / d as f64
-}
-
-/// The exactly rounded stored value of a format with `lsb` input steps per
-/// step and `max` its largest value: round-half-up of num/(den·lsb),
-/// clamped.
-pub fn exactly_rounded(num: i128, den: i128, lsb: i128, max: i128) -> i128 {
-    let d = den * lsb;
-    (2 * num + d).div_euclid(2 * d).clamp(0, max)
-}
-
-/// Input-depth steps per stored step and largest stored value of a format.
-pub fn format_scale<D: DepthFormat>() -> (i128, i128) {
-    match D::BITS {
-        16 => (256, i128::from(u16::MAX)),
-        24 => (1, i128::from(zline::fixed::DEPTH_MAX)),
-        bits => panic!("unknown format with {bits} bits"),
-    }
-}
 
 /// A frame captured from the renderer: colour and depth per pixel.
 pub struct Frame<Z> {
@@ -136,9 +47,8 @@ pub fn capture<
     const E: usize,
     const AP: usize,
     const AE: usize,
-    const N: usize,
 >(
-    renderer: &mut Renderer<u32, D, W, V, P, E, AP, AE, N>,
+    renderer: &mut Renderer<u32, D, W, V, P, E, AP, AE>,
 ) -> (Frame<D::Value>, zline::FrameStats) {
     let h = usize::from(renderer.height());
     let mut frame = Frame {
@@ -175,4 +85,110 @@ pub fn art(text: &str) -> String {
         .filter(|l| !l.is_empty())
         .map(|l| format!("{l}\n"))
         .collect()
+}
+
+/// Polygon tables that only record what the scene pipeline offers them:
+/// every queued polygon's corners as screen vertices. They judge polygons
+/// with the core's own outline (zero area, no sample) so the pipeline sees
+/// the same verdicts.
+pub struct Recorder {
+    pub width: u16,
+    pub height: u16,
+    pub vertices: Vec<zline::ScreenVertex>,
+    pub polygons: Vec<(Vec<zline::ScreenVertex>, u32)>,
+    open: Vec<u16>,
+    mark: Option<usize>,
+}
+
+impl Recorder {
+    pub fn new(width: u16, height: u16) -> Self {
+        Self {
+            width,
+            height,
+            vertices: Vec::new(),
+            polygons: Vec::new(),
+            open: Vec::new(),
+            mark: None,
+        }
+    }
+
+    fn offer(
+        &mut self,
+        ids: Vec<u16>,
+        decide: impl FnOnce(&zline::Outline) -> Option<u32>,
+    ) -> zline::Admission {
+        let corners: Vec<zline::ScreenVertex> =
+            ids.iter().map(|&i| self.vertices[usize::from(i)]).collect();
+        let mut outline = zline::OutlineBuilder::default();
+        corners.iter().for_each(|&v| outline.add(v));
+        let outline = outline.finish();
+        if outline.twice_area == 0 {
+            return zline::Admission::Degenerate;
+        }
+        let rect = outline.rect.expect("corners");
+        if rect.sample_rows(self.width, self.height).is_none() {
+            return zline::Admission::OffScreen;
+        }
+        match decide(&outline) {
+            Some(color) => {
+                self.polygons.push((corners, color));
+                zline::Admission::Queued(self.polygons.len() as u32 - 1)
+            }
+            None => zline::Admission::Declined,
+        }
+    }
+}
+
+impl zline::PolygonTables<u32> for Recorder {
+    fn frame_width(&self) -> u16 {
+        self.width
+    }
+    fn frame_height(&self) -> u16 {
+        self.height
+    }
+    fn add_vertex(&mut self, vertex: zline::ScreenVertex) -> Result<u16, zline::Error> {
+        self.vertices.push(vertex);
+        Ok((self.vertices.len() - 1) as u16)
+    }
+    fn get_vertex(&self, index: u16) -> Option<zline::ScreenVertex> {
+        self.vertices.get(usize::from(index)).copied()
+    }
+    fn offer_polygon<I>(
+        &mut self,
+        corners: I,
+        decide: impl FnOnce(&zline::Outline) -> Option<u32>,
+    ) -> Result<zline::Admission, zline::Error>
+    where
+        I: IntoIterator<Item = u16>,
+        I::IntoIter: Clone,
+    {
+        let ids: Vec<u16> = corners.into_iter().collect();
+        Ok(self.offer(ids, decide))
+    }
+    fn begin_polygon(&mut self) {
+        self.discard_polygon();
+        self.mark = Some(self.vertices.len());
+    }
+    fn discard_polygon(&mut self) {
+        self.open.clear();
+        if let Some(mark) = self.mark.take() {
+            self.vertices.truncate(mark);
+        }
+    }
+    fn add_corner(&mut self, vertex: u16) -> Result<(), zline::Error> {
+        self.open.push(vertex);
+        Ok(())
+    }
+    fn finish_polygon(
+        &mut self,
+        decide: impl FnOnce(&zline::Outline) -> Option<u32>,
+    ) -> Result<zline::Admission, zline::Error> {
+        let ids = std::mem::take(&mut self.open);
+        let admission = self.offer(ids, decide);
+        if !matches!(admission, zline::Admission::Queued(_)) {
+            self.discard_polygon();
+        }
+        self.mark = None;
+        Ok(admission)
+    }
 }

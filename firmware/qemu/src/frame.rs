@@ -26,10 +26,9 @@ pub fn render_frame<
     const E: usize,
     const AP: usize,
     const AE: usize,
-    const N: usize,
     const VM: usize,
 >(
-    renderer: &mut Renderer<Rgb565, D, W, V, P, E, AP, AE, N>,
+    renderer: &mut Renderer<Rgb565, D, W, V, P, E, AP, AE>,
     cache: &mut VertexCache<VM>,
     mesh: &StaticMesh<'_>,
     (centre, radius): (Vec3, f32),
@@ -42,7 +41,6 @@ where
     S: RowSink<Rgb565, D::Value>,
 {
     renderer.clear();
-    cache.clear();
     let model = reference_model_around(centre, radius, yaw, pitch);
     let camera = Camera::reference(SIZE, SIZE);
     let shading = Shading::lambert();

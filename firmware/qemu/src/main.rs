@@ -44,11 +44,11 @@ struct Scene {
     expected_crc: u32,
 }
 
-// Meshes, SCENES and the capacities V, P, E, AP, AE, N, VM (from build.rs).
+// Meshes, SCENES and the capacities V, P, E, AP, AE, VM (from build.rs).
 include!(concat!(env!("OUT_DIR"), "/scenes.rs"));
 
-type Renderer16 = Renderer<Rgb565, Depth16, { frame::SIZE as usize }, V, P, E, AP, AE, N>;
-type Renderer24 = Renderer<Rgb565, Depth24, { frame::SIZE as usize }, V, P, E, AP, AE, N>;
+type Renderer16 = Renderer<Rgb565, Depth16, { frame::SIZE as usize }, V, P, E, AP, AE>;
+type Renderer24 = Renderer<Rgb565, Depth24, { frame::SIZE as usize }, V, P, E, AP, AE>;
 
 // The renderers live in statics, built at compile time: no copy on the stack.
 static RENDERER16: ConstStaticCell<Renderer16> = ConstStaticCell::new(Renderer16::new_in_static(
@@ -93,7 +93,7 @@ struct Outcome {
 }
 
 fn run<D, const W: usize>(
-    renderer: &mut Renderer<Rgb565, D, W, V, P, E, AP, AE, N>,
+    renderer: &mut Renderer<Rgb565, D, W, V, P, E, AP, AE>,
     cache: &mut VertexCache<VM>,
     scene: &Scene,
     syst: &mut SYST,
@@ -103,7 +103,7 @@ where
 {
     let mut crc = Crc32Sink::new();
     // Once per mesh, outside the timed frame.
-    let sphere = zline::scene::bounding_sphere(scene.mesh);
+    let sphere = zline::scene::bounding_sphere(scene.mesh)?;
     frame::render_frame(
         renderer,
         cache,

@@ -70,7 +70,6 @@ type Zr = Renderer<
     { sizes::CORNERS },
     { sizes::ACTIVE_POLYGONS },
     { sizes::POOLED_EDGES },
-    { sizes::POLYGON_CORNERS },
 >;
 /// Where each mesh vertex went in the vertex table: 2 bytes a vertex.
 type Cache = VertexCache<{ sizes::MESH_VERTICES }>;
@@ -90,7 +89,9 @@ pub static FRAMES: AtomicU32 = AtomicU32::new(0);
 /// Frames skipped or cut short by an error (see [`LAST_ERROR`]).
 pub static SKIPPED: AtomicU32 = AtomicU32::new(0);
 /// Why the last frame was skipped: 0 none, 1 a table was full while the
-/// scene was built, 2 a table was full while rows were scanned, 3 SPI.
+/// scene was built, 2 a table was full while rows were scanned, 3 SPI, 4
+/// the mesh's size could not be normalised (never, for a mesh `build.rs`
+/// accepted).
 pub static LAST_ERROR: AtomicU32 = AtomicU32::new(0);
 /// Microseconds the last frame took: scene, scan and SPI.
 pub static FRAME_US: AtomicU32 = AtomicU32::new(0);
@@ -119,6 +120,7 @@ enum FrameError {
     Scene = 1,
     Scan = 2,
     Spi = 3,
+    MeshExtent = 4,
 }
 
 #[hal::entry]
@@ -145,7 +147,15 @@ fn run() -> Result<core::convert::Infallible, Fault> {
 
     let camera = Camera::reference(sizes::WIDTH, sizes::HEIGHT);
     // The mesh does not change: its bounding sphere is computed once.
-    let sphere = bounding_sphere(&MESH);
+    let sphere = match bounding_sphere(&MESH) {
+        Ok(sphere) => sphere,
+        Err(_) => {
+            // build.rs normalised this mesh on the host, so this cannot
+            // happen; if it did, the mesh is drawn unscaled.
+            LAST_ERROR.store(FrameError::MeshExtent as u32, Ordering::Relaxed);
+            (Vec3::default(), 0.0)
+        }
+    };
     let shading = Shading::lambert();
     let mut step = 0u32;
     loop {
@@ -195,7 +205,6 @@ fn draw_frame<D: DrawTarget<Color = Rgb565>>(
     yaw: f32,
 ) -> Result<FrameStats, FrameError> {
     renderer.clear();
-    cache.clear();
     let model = reference_model_around(centre, radius, yaw, sizes::PITCH_DEG);
     draw_mesh(renderer, cache, &MESH, &model, camera, Cull::Back, |face| {
         Rgb565::from(shading.color(face))

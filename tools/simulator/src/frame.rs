@@ -25,7 +25,7 @@ pub const MAX_MESH_VERTICES: usize = 65_536;
 /// The core with host-sized capacities: rows up to 4096 pixels, 65,536
 /// table vertices, 262,144 polygons, 786,432 corners, 32,768 active
 /// polygons, 65,536 pooled edges, 32 corners per polygon.
-type WindowRenderer<D> = Renderer<Rgb888, D, 4096, 65_536, 262_144, 786_432, 32_768, 65_536, 32>;
+type WindowRenderer<D> = Renderer<Rgb888, D, 4096, 65_536, 262_144, 786_432, 32_768, 65_536>;
 
 /// Which renderer draws the frame.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -137,14 +137,14 @@ impl View {
     /// The model matrix: [`reference_model`], then the zoom as a uniform
     /// scale (left out at zoom 0, so the default view is exactly the render
     /// tool's).
-    pub fn model(&self, mesh: &HostMesh) -> Mat4 {
-        let model = reference_model(mesh, self.yaw, self.pitch);
-        if self.zoom == 0 {
+    pub fn model(&self, mesh: &HostMesh) -> Result<Mat4, String> {
+        let model = reference_model(mesh, self.yaw, self.pitch).map_err(|e| e.to_string())?;
+        Ok(if self.zoom == 0 {
             model
         } else {
             let s = 1.1f32.powi(self.zoom);
             Mat4::scale(Vec3::new(s, s, s)).mul(&model)
-        }
+        })
     }
 }
 
@@ -287,11 +287,10 @@ fn scanline<D: DepthFormat>(
     display: &mut SimulatorDisplay<Rgb888>,
 ) -> Result<FrameReport, String> {
     let camera = Camera::reference(renderer.width(), renderer.height());
-    let model = view.model(mesh);
+    let model = view.model(mesh)?;
     let shade = shading(view.shading);
     let start = Instant::now();
     renderer.clear();
-    cache.clear();
     draw_mesh(renderer, cache, mesh, &model, &camera, view.cull, |f| {
         shade.color(f)
     })

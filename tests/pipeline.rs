@@ -1,0 +1,267 @@
+//! The scene pipeline's guarantees that once failed at the edges of the
+//! input range (issue 7): meshes of any finite size are normalised, one
+//! vertex cache serves several meshes, and faces of many corners draw.
+
+mod common;
+
+use common::capture;
+use zline::geometry::{Mat4, Vec3};
+use zline::mesh::{Mesh, StaticMesh};
+use zline::methods::{HostMesh, shapes};
+use zline::scene::{
+    Camera, Cull, DrawError, MAX_FACE_CORNERS, VertexCache, bounding_sphere, draw_mesh,
+    reference_model,
+};
+use zline::{Depth24, Error, Renderer};
+
+type Big = Renderer<u32, Depth24, 96, 2048, 2048, 6144, 512, 512>;
+const W: u16 = 96;
+const H: u16 = 72;
+
+/// Face ids (+1, 0 for background) of `mesh` in the reference view.
+fn ids(mesh: &HostMesh, model: &Mat4) -> Vec<u32> {
+    let mut renderer = Box::new(Big::with_size(W, H, 0).unwrap());
+    let mut cache: Box<VertexCache<4096>> = Box::new(VertexCache::new());
+    let camera = Camera::reference(W, H);
+    draw_mesh(
+        &mut *renderer,
+        &mut *cache,
+        mesh,
+        model,
+        &camera,
+        Cull::None,
+        |f| f.face + 1,
+    )
+    .unwrap();
+    capture(&mut *renderer).0.colors
+}
+
+fn scaled(mesh: &HostMesh, factor: f32) -> HostMesh {
+    let mut out = mesh.clone();
+    for p in &mut out.positions {
+        *p = p.map(|c| c * factor);
+    }
+    out
+}
+
+fn knot() -> HostMesh {
+    shapes::torus_knot(2, 3, 48, 8, 0.45)
+}
+
+#[test]
+fn issue_7_item_4_meshes_of_any_size_are_normalised() {
+    let mesh = knot();
+    let base = ids(&mesh, &reference_model(&mesh, 30.0, 20.0).unwrap());
+    assert!(base.iter().filter(|&&c| c != 0).count() > 1000);
+    // Scaling by a power of two is exact: the frame is bit for bit the
+    // same from 2^-100 to 2^100 (f32 squares overflowed beyond 2^63).
+    for e in (-100..=100).step_by(10) {
+        let big = scaled(&mesh, 2f32.powi(e));
+        let model = reference_model(&big, 30.0, 20.0).unwrap();
+        assert_eq!(ids(&big, &model), base, "scaled by 2^{e}");
+    }
+    // Powers of ten round each coordinate: nearly every pixel agrees.
+    for factor in [1e-30f32, 1e-19, 1e19, 1e30, 1e36] {
+        let other = scaled(&mesh, factor);
+        let frame = ids(&other, &reference_model(&other, 30.0, 20.0).unwrap());
+        let same = frame.iter().zip(&base).filter(|(a, b)| a == b).count();
+        assert!(
+            same * 100 >= base.len() * 99,
+            "scaled by {factor:e}: {same} of {} pixels agree",
+            base.len()
+        );
+    }
+    // Beyond f32's normal range the scale is refused, not drawn blank.
+    let huge = scaled(&mesh, 2f32.powi(126));
+    assert_eq!(bounding_sphere(&huge), Err(Error::MeshExtent));
+    assert!(reference_model(&huge, 0.0, 0.0).is_err());
+    let tiny = scaled(&mesh, 2f32.powi(-128));
+    assert_eq!(bounding_sphere(&tiny), Err(Error::MeshExtent));
+    let infinite = scaled(&mesh, 2f32.powi(127));
+    assert_eq!(bounding_sphere(&infinite), Err(Error::MeshExtent));
+    // A one-point mesh has radius 0 and is drawn at its place unscaled.
+    let point = StaticMesh::new(&[[1.0, 2.0, 3.0]; 3], &[0, 1, 2], &[0]).unwrap();
+    assert_eq!(bounding_sphere(&point), Ok((Vec3::new(1.0, 2.0, 3.0), 0.0)));
+}
+
+#[test]
+fn issue_7_item_5_one_cache_serves_two_meshes() {
+    // Two meshes side by side in one frame, sharing one cache, against the
+    // same two meshes merged into one.
+    let knot = knot();
+    let sphere = shapes::icosphere(1);
+    let left = Mat4::translation(Vec3::new(-0.9, 0.0, 0.0))
+        .mul(&reference_model(&knot, 30.0, 20.0).unwrap())
+        .mul(&Mat4::scale(Vec3::new(1.0, 1.0, 1.0)));
+    let right =
+        Mat4::translation(Vec3::new(0.9, 0.2, -0.5)).mul(&Mat4::scale(Vec3::new(0.5, 0.5, 0.5)));
+    let camera = Camera::reference(W, H);
+    let mut renderer = Box::new(Big::with_size(W, H, 0).unwrap());
+    let mut cache: Box<VertexCache<4096>> = Box::new(VertexCache::new());
+    draw_mesh(
+        &mut *renderer,
+        &mut *cache,
+        &knot,
+        &left,
+        &camera,
+        Cull::Back,
+        |f| f.face + 1,
+    )
+    .unwrap();
+    let offset = knot.face_count() as u32;
+    draw_mesh(
+        &mut *renderer,
+        &mut *cache,
+        &sphere,
+        &right,
+        &camera,
+        Cull::Back,
+        |f| offset + f.face + 1,
+    )
+    .unwrap();
+    let two = capture(&mut *renderer).0.colors;
+
+    // The merged mesh, positions already placed in the world.
+    let mut merged = HostMesh::default();
+    for (mesh, model) in [(&knot, &left), (&sphere, &right)] {
+        let base = merged.positions.len() as u16;
+        for p in &mesh.positions {
+            let q = model.transform_point(Vec3::from_array(*p));
+            merged.positions.push([q.x, q.y, q.z]);
+        }
+        for f in 0..mesh.face_count() {
+            merged.face_starts.push(merged.corners.len() as u32);
+            merged
+                .corners
+                .extend(mesh.face(f).iter().map(|&c| c + base));
+        }
+    }
+    let mut renderer = Box::new(Big::with_size(W, H, 0).unwrap());
+    draw_mesh(
+        &mut *renderer,
+        &mut *cache,
+        &merged,
+        &Mat4::IDENTITY,
+        &camera,
+        Cull::Back,
+        |f| f.face + 1,
+    )
+    .unwrap();
+    let one = capture(&mut *renderer).0.colors;
+    let both_seen = [1..=offset, offset + 1..=u32::MAX]
+        .iter()
+        .all(|r| two.iter().any(|c| r.contains(c)));
+    assert!(both_seen, "both meshes are visible");
+    let same = one.iter().zip(&two).filter(|(a, b)| a == b).count();
+    // Transforming in two steps rounds differently from one: a few edge
+    // pixels may differ, never whole faces.
+    assert!(
+        same * 1000 >= one.len() * 995,
+        "{same} of {} pixels agree",
+        one.len()
+    );
+
+    // The same mesh drawn twice with two model matrices: both copies show.
+    let mut renderer = Box::new(Big::with_size(W, H, 0).unwrap());
+    for (k, model) in [&left, &right].into_iter().enumerate() {
+        draw_mesh(
+            &mut *renderer,
+            &mut *cache,
+            &sphere,
+            model,
+            &camera,
+            Cull::Back,
+            |_| k as u32 + 1,
+        )
+        .unwrap();
+    }
+    let twice = capture(&mut *renderer).0.colors;
+    for k in 1..=2 {
+        let n = twice.iter().filter(|&&c| c == k).count();
+        assert!(n > 200, "copy {k} covers {n} pixels");
+    }
+}
+
+/// A disc of `n` corners (a planar face), facing the viewer.
+fn disc(n: usize) -> HostMesh {
+    let mut mesh = HostMesh::default();
+    for k in 0..n {
+        let a = std::f32::consts::TAU * k as f32 / n as f32;
+        mesh.positions.push([libm::cosf(a), libm::sinf(a), 0.0]);
+    }
+    mesh.face_starts.push(0);
+    mesh.corners.extend(0..n as u16);
+    mesh
+}
+
+#[test]
+fn issue_7_item_6_faces_of_many_corners_draw() {
+    let camera = Camera::reference(W, H);
+    let t = (22.5f64).to_radians().tan();
+    for n in [27, 64, 256, MAX_FACE_CORNERS] {
+        let mesh = disc(n);
+        let frame = ids(&mesh, &Mat4::IDENTITY);
+        // The unit disc at distance 3: a pixel whose ray meets z = 0
+        // within radius cos(pi/n) (the polygon's inner circle) is drawn,
+        // one beyond radius 1 is not.
+        let (mut inside, mut outside) = (0, 0);
+        for j in 0..usize::from(H) {
+            for i in 0..usize::from(W) {
+                let x = ((i as f64 + 0.5) / f64::from(W) * 2.0 - 1.0) * t * f64::from(W)
+                    / f64::from(H)
+                    * 3.0;
+                let y = (1.0 - (j as f64 + 0.5) / f64::from(H) * 2.0) * t * 3.0;
+                let r = (x * x + y * y).sqrt();
+                let drawn = frame[j * usize::from(W) + i] == 1;
+                if r < (std::f64::consts::PI / n as f64).cos() - 1e-3 {
+                    assert!(drawn, "{n} corners: ({i}, {j}) at r = {r}");
+                    inside += 1;
+                } else if r > 1.0 + 1e-3 {
+                    assert!(!drawn, "{n} corners: ({i}, {j}) at r = {r}");
+                    outside += 1;
+                }
+            }
+        }
+        assert!(inside > 500 && outside > 500);
+        let _ = camera;
+    }
+    // One corner more than the pipeline draws: an error naming the face.
+    let mut mesh = disc(8);
+    let big = disc(MAX_FACE_CORNERS + 1);
+    mesh.positions = big.positions;
+    mesh.face_starts.push(mesh.corners.len() as u32);
+    mesh.corners.extend(0..(MAX_FACE_CORNERS + 1) as u16);
+    let mut renderer = Box::new(Big::with_size(W, H, 0).unwrap());
+    let mut cache: Box<VertexCache<4096>> = Box::new(VertexCache::new());
+    let result = draw_mesh(
+        &mut *renderer,
+        &mut *cache,
+        &mesh,
+        &Mat4::IDENTITY,
+        &camera,
+        Cull::None,
+        |_| 1,
+    );
+    let expected = DrawError {
+        face: Some(1),
+        error: Error::TooManyCorners,
+    };
+    assert_eq!(result, Err(expected));
+    assert!(
+        expected
+            .to_string()
+            .starts_with("face 1: polygon has more than 1024 corners")
+    );
+    // The OBJ reader refuses such a face at its line.
+    let mut obj = String::new();
+    for p in &mesh.positions {
+        obj.push_str(&format!("v {} {} {}\n", p[0], p[1], p[2]));
+    }
+    obj.push('f');
+    for k in 1..=MAX_FACE_CORNERS + 1 {
+        obj.push_str(&format!(" {k}"));
+    }
+    let error = zline::obj::count(obj.as_bytes()).unwrap_err();
+    assert_eq!(error.line, MAX_FACE_CORNERS as u32 + 2);
+    assert_eq!(error.kind, zline::obj::ObjErrorKind::TooManyCorners);
+}
