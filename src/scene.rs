@@ -621,17 +621,23 @@ where
         let mut unprojectable = false;
         let tables = &*self.tables;
         let slots = &self.cache.slots[..];
-        clip_face(frame, self.mesh, slots, corners, &mut |v: ClipVertex| -> Result<(), Error> {
-            let screen = match v.tag {
-                Some(id) => tables.get_vertex(id),
-                None => frame.project64(v.point),
-            };
-            match screen {
-                Some(screen) if outline.corners() < MAX_POLYGON_CORNERS => outline.add(screen),
-                _ => unprojectable = true,
-            }
-            Ok(())
-        })?;
+        clip_face(
+            frame,
+            self.mesh,
+            slots,
+            corners,
+            &mut |v: ClipVertex| -> Result<(), Error> {
+                let screen = match v.tag {
+                    Some(id) => tables.get_vertex(id),
+                    None => frame.project64(v.point),
+                };
+                match screen {
+                    Some(screen) if outline.corners() < MAX_POLYGON_CORNERS => outline.add(screen),
+                    _ => unprojectable = true,
+                }
+                Ok(())
+            },
+        )?;
         if unprojectable {
             // Cannot happen for finite input (the clipped corners lie well
             // inside the core's range), but it is counted, never silent.
@@ -648,12 +654,17 @@ where
             return Ok(());
         }
         let (width, height) = (self.tables.frame_width(), self.tables.frame_height());
-        if outline.rect.and_then(|r| r.sample_rows(width, height)).is_none() {
+        if outline
+            .rect
+            .and_then(|r| r.sample_rows(width, height))
+            .is_none()
+        {
             self.stats.off_screen += 1;
             return Ok(());
         }
         let (mesh, stats, shade) = (self.mesh, &mut *self.stats, &mut *self.shade);
-        let Some(color) = shade_front_face(frame, mesh, face, corners, &outline, stats, shade) else {
+        let Some(color) = shade_front_face(frame, mesh, face, corners, &outline, stats, shade)
+        else {
             return Ok(());
         };
 
@@ -661,17 +672,23 @@ where
         self.tables.begin_polygon();
         let tables = &mut *self.tables;
         let slots = &self.cache.slots[..];
-        let streamed = clip_face(frame, self.mesh, slots, corners, &mut |v: ClipVertex| -> Result<(), Error> {
-            let id = match v.tag {
-                Some(id) => id,
-                // Projectable: pass 1 projected the same point.
-                None => match frame.project64(v.point) {
-                    Some(screen) => tables.add_vertex(screen)?,
-                    None => return Err(Error::OutsideGuardBand),
-                },
-            };
-            tables.add_corner(id)
-        });
+        let streamed = clip_face(
+            frame,
+            self.mesh,
+            slots,
+            corners,
+            &mut |v: ClipVertex| -> Result<(), Error> {
+                let id = match v.tag {
+                    Some(id) => id,
+                    // Projectable: pass 1 projected the same point.
+                    None => match frame.project64(v.point) {
+                        Some(screen) => tables.add_vertex(screen)?,
+                        None => return Err(Error::OutsideGuardBand),
+                    },
+                };
+                tables.add_corner(id)
+            },
+        );
         if let Err(e) = streamed {
             self.tables.discard_polygon();
             return Err(e);
@@ -680,7 +697,6 @@ where
         self.count(admission);
         Ok(())
     }
-
 }
 
 /// Runs a face's corners through the guard-band clipper into `out`.

@@ -157,8 +157,14 @@ impl OutlineBuilder {
             None => self.first = Some(v),
             Some(o) => {
                 if let Some(p) = self.previous {
-                    let (px, py) = (i64::from(p.x) - i64::from(o.x), i64::from(p.y) - i64::from(o.y));
-                    let (qx, qy) = (i64::from(v.x) - i64::from(o.x), i64::from(v.y) - i64::from(o.y));
+                    let (px, py) = (
+                        i64::from(p.x) - i64::from(o.x),
+                        i64::from(p.y) - i64::from(o.y),
+                    );
+                    let (qx, qy) = (
+                        i64::from(v.x) - i64::from(o.x),
+                        i64::from(v.y) - i64::from(o.y),
+                    );
                     self.twice_area += px * qy - py * qx;
                 }
                 self.previous = Some(v);

@@ -497,9 +497,7 @@ impl<
         if self.open_polygon.is_none() {
             self.open_polygon = Some(self.vertices.len());
         }
-        self.corners
-            .push(vertex)
-            .map_err(|_| Error::EdgeTableFull)
+        self.corners.push(vertex).map_err(|_| Error::EdgeTableFull)
     }
 
     /// Closes the open polygon; see [`PolygonTables::finish_polygon`].
