@@ -1,0 +1,129 @@
+//! The command line.
+
+use std::path::PathBuf;
+
+use crate::view::{Cull, DEFAULT_PITCH_DEG, DEFAULT_YAW_DEG};
+
+/// Usage text.
+pub const USAGE: &str = "\
+usage: zline-bench [--sizes WxH,...] [--cull none,back] [--rounds N] [--quick]
+                   [--out FILE.csv] [--yaw DEG] [--pitch DEG] [--dump DIR]
+                   MESH.obj|MESH_DIR...
+
+Times zline, euc 0.5 and embedded-3dgfx 0.7 drawing the same reference view
+of each mesh (a directory means every .obj in it, sorted), in interleaved
+rounds, by per-thread CPU time, and compares each frame's face ids with
+zline's float64 reference.
+
+  --sizes LIST   frame sizes [240x240,320x240,800x600]
+  --cull LIST    none, back or both [none,back]
+  --rounds N     timed rounds after one warm-up frame each [15]
+  --quick        240x240 only, 3 rounds, at most the 3 smallest mesh files
+                 (overrides --sizes and --rounds)
+  --out FILE     CSV output [target/bench/peers.csv]
+  --yaw DEG      rotation about +Y [30]
+  --pitch DEG    rotation about +X after yaw [20]
+  --dump DIR     also write every renderer's last frame, and the reference's,
+                 as PNG images";
+
+/// Most rounds `--rounds` accepts.
+pub const MAX_ROUNDS: usize = 100_000;
+
+/// Parsed options.
+#[derive(Debug, Clone)]
+pub struct Options {
+    /// Frame sizes.
+    pub sizes: Vec<(u16, u16)>,
+    /// Cull settings.
+    pub culls: Vec<Cull>,
+    /// Timed rounds.
+    pub rounds: usize,
+    /// CI mode: one small size, few rounds, few meshes.
+    pub quick: bool,
+    /// CSV path.
+    pub out: PathBuf,
+    /// Yaw, degrees.
+    pub yaw: f32,
+    /// Pitch, degrees.
+    pub pitch: f32,
+    /// Where to write PNG images of the frames, if anywhere.
+    pub dump: Option<PathBuf>,
+    /// Mesh files and directories as given.
+    pub inputs: Vec<PathBuf>,
+    /// `-h` or `--help` was given.
+    pub help: bool,
+}
+
+/// Parses the arguments after the program name.
+pub fn parse(args: &[String]) -> Result<Options, String> {
+    let mut o = Options {
+        sizes: vec![(240, 240), (320, 240), (800, 600)],
+        culls: vec![Cull::None, Cull::Back],
+        rounds: 15,
+        quick: false,
+        out: PathBuf::from("target/bench/peers.csv"),
+        yaw: DEFAULT_YAW_DEG,
+        pitch: DEFAULT_PITCH_DEG,
+        dump: None,
+        inputs: Vec::new(),
+        help: false,
+    };
+    let mut it = args.iter();
+    while let Some(arg) = it.next() {
+        let mut value = || it.next().ok_or_else(|| format!("{arg} needs a value"));
+        match arg.as_str() {
+            "--sizes" => o.sizes = list(value()?, parse_size)?,
+            "--cull" => o.culls = list(value()?, Cull::parse)?,
+            "--rounds" => {
+                o.rounds = value()?
+                    .parse()
+                    .ok()
+                    .filter(|n| (1..=MAX_ROUNDS).contains(n))
+                    .ok_or_else(|| format!("--rounds: expected 1 to {MAX_ROUNDS}"))?
+            }
+            "--quick" => o.quick = true,
+            "--out" => o.out = PathBuf::from(value()?),
+            "--yaw" => o.yaw = parse_angle("--yaw", value()?)?,
+            "--pitch" => o.pitch = parse_angle("--pitch", value()?)?,
+            "--dump" => o.dump = Some(PathBuf::from(value()?)),
+            "-h" | "--help" => o.help = true,
+            s if s.starts_with('-') && s.len() > 1 => return Err(format!("unknown option {s}")),
+            s => o.inputs.push(PathBuf::from(s)),
+        }
+    }
+    if o.quick {
+        o.sizes = vec![(240, 240)];
+        o.rounds = 3;
+    }
+    if o.inputs.is_empty() && !o.help {
+        return Err("no mesh given".into());
+    }
+    Ok(o)
+}
+
+fn list<T>(s: &str, item: impl Fn(&str) -> Result<T, String>) -> Result<Vec<T>, String> {
+    let items: Vec<T> = s
+        .split(',')
+        .filter(|p| !p.is_empty())
+        .map(item)
+        .collect::<Result<_, _>>()?;
+    if items.is_empty() {
+        return Err(format!("empty list '{s}'"));
+    }
+    Ok(items)
+}
+
+/// `WxH`, each side 1 to 4096.
+fn parse_size(s: &str) -> Result<(u16, u16), String> {
+    let bad = || format!("--sizes: expected WxH with each side 1 to 4096, got '{s}'");
+    let (w, h) = s.split_once('x').ok_or_else(bad)?;
+    let side = |v: &str| v.parse::<u16>().ok().filter(|n| (1..=4096).contains(n));
+    Ok((side(w).ok_or_else(bad)?, side(h).ok_or_else(bad)?))
+}
+
+fn parse_angle(name: &str, s: &str) -> Result<f32, String> {
+    s.parse::<f32>()
+        .ok()
+        .filter(|a| a.is_finite())
+        .ok_or_else(|| format!("{name}: expected degrees, got '{s}'"))
+}

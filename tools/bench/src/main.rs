@@ -1,0 +1,268 @@
+//! `zline-bench`: zline against two peer rasterisers, embedded-3dgfx 0.7
+//! and euc 0.5, drawing the same reference view (see [`view`]) of real
+//! meshes, side by side.
+//!
+//! For each mesh × size × cull it builds every renderer once, draws one
+//! warm-up frame with each, then times N interleaved rounds (each round
+//! draws one frame with every renderer, in an order that rotates from
+//! round to round) by per-thread CPU time, single-threaded. It writes
+//! the median and minimum to a CSV, prints them as a Markdown table with
+//! each renderer's share of pixels whose face differs from zline's
+//! float64 `ReferenceFrame`, and reports progress on stderr.
+//!
+//! ```sh
+//! cargo run --release --manifest-path tools/bench/Cargo.toml -- --quick ../shared/meshes
+//! ```
+
+mod cli;
+mod framebuffer;
+mod peers;
+mod png;
+mod renderer;
+mod report;
+mod timing;
+mod view;
+mod zline_renderer;
+
+use std::io::Write as _;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use zline::methods::ReferenceFrame;
+
+use crate::cli::Options;
+use crate::peers::embedded_3dgfx::{Embedded3dgfxRenderer, MeshData};
+use crate::peers::euc::EucRenderer;
+use crate::renderer::Renderer;
+use crate::report::Row;
+use crate::view::{Scene, View};
+use crate::zline_renderer::ZlineRenderer;
+
+/// Stack for the worker thread: zline's host renderer is built on the
+/// stack (about 20 MB) before it moves to the heap.
+const STACK_BYTES: usize = 512 << 20;
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let worker = std::thread::Builder::new()
+        .name("zline-bench".into())
+        .stack_size(STACK_BYTES)
+        .spawn(move || run(&args));
+    match worker.map(|w| w.join()) {
+        Ok(Ok(Ok(()))) => ExitCode::SUCCESS,
+        Ok(Ok(Err(message))) => {
+            eprintln!("zline-bench: {message}");
+            eprintln!("{}", cli::USAGE.lines().next().unwrap_or_default());
+            ExitCode::from(2)
+        }
+        Ok(Err(_)) => {
+            eprintln!("zline-bench: internal failure (panic)");
+            ExitCode::FAILURE
+        }
+        Err(e) => {
+            eprintln!("zline-bench: cannot start worker thread: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn run(args: &[String]) -> Result<(), String> {
+    let options = cli::parse(args)?;
+    if options.help {
+        return say(cli::USAGE);
+    }
+    let scenes = mesh_files(&options)?
+        .iter()
+        .map(|path| Scene::load(path))
+        .collect::<Result<Vec<_>, _>>()?;
+    report::prepare_output(&options.out)?;
+    say(&format!(
+        "# zline vs embedded-3dgfx 0.7 and euc 0.5\n\n\
+         - machine: {}\n\
+         - date: {}\n\
+         - view: yaw {}°, pitch {}°; {} timed rounds per configuration; thread CPU time\n",
+        report::machine(),
+        report::now_utc(),
+        options.yaw,
+        options.pitch,
+        options.rounds
+    ))?;
+
+    let mut rows = Vec::new();
+    for (i, scene) in scenes.iter().enumerate() {
+        eprintln!(
+            "[{}/{}] {}: {} vertices, {} faces, {} triangles",
+            i + 1,
+            scenes.len(),
+            scene.name,
+            scene.mesh.positions.len(),
+            scene.face_count(),
+            scene.triangles.len()
+        );
+        let e3d = MeshData::new(scene);
+        for &(width, height) in &options.sizes {
+            for &cull in &options.culls {
+                let view = View {
+                    width,
+                    height,
+                    yaw_deg: options.yaw,
+                    pitch_deg: options.pitch,
+                    cull,
+                };
+                rows.extend(bench_view(scene, &e3d, &view, &options)?);
+            }
+        }
+    }
+
+    report::write_csv(&options.out, &rows)?;
+    say(&report::markdown(&rows))?;
+    eprintln!("wrote {}", options.out.display());
+    Ok(())
+}
+
+/// Prints `text` and a newline to stdout; a closed pipe is not an error
+/// (the CSV is still written).
+fn say(text: &str) -> Result<(), String> {
+    let mut out = std::io::stdout().lock();
+    match writeln!(out, "{text}").and_then(|()| out.flush()) {
+        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(format!("stdout: {e}")),
+        _ => Ok(()),
+    }
+}
+
+/// The mesh files named on the command line: files as given, directories
+/// as their `.obj` files sorted by name; with `--quick`, the 3 smallest
+/// files.
+fn mesh_files(options: &Options) -> Result<Vec<PathBuf>, String> {
+    let mut files = Vec::new();
+    for input in &options.inputs {
+        if input.is_dir() {
+            let entries =
+                std::fs::read_dir(input).map_err(|e| format!("{}: {e}", input.display()))?;
+            let mut found: Vec<PathBuf> = entries
+                .filter_map(|e| e.ok().map(|e| e.path()))
+                .filter(|p| {
+                    p.is_file() && p.extension().is_some_and(|x| x.eq_ignore_ascii_case("obj"))
+                })
+                .collect();
+            if found.is_empty() {
+                return Err(format!("{}: no .obj files", input.display()));
+            }
+            found.sort();
+            files.extend(found);
+        } else if input.is_file() {
+            files.push(input.clone());
+        } else {
+            return Err(format!("{}: no such file or directory", input.display()));
+        }
+    }
+    if options.quick {
+        let mut sized = files
+            .into_iter()
+            .map(|p| {
+                let len = std::fs::metadata(&p)
+                    .map_err(|e| format!("{}: {e}", p.display()))?
+                    .len();
+                Ok((len, p))
+            })
+            .collect::<Result<Vec<_>, String>>()?;
+        sized.sort();
+        files = sized.into_iter().take(3).map(|(_, p)| p).collect();
+    }
+    Ok(files)
+}
+
+/// Builds every renderer for one view, times them, and measures their
+/// face ids against the reference.
+fn bench_view(
+    scene: &Scene,
+    e3d: &MeshData<'_>,
+    view: &View,
+    options: &Options,
+) -> Result<Vec<Row>, String> {
+    let label = format!("{} {} {}", scene.name, view.size_label(), view.cull.name());
+    eprintln!("  {label}: reference");
+    let reference = ReferenceFrame::render(&scene.mesh, &view.reference());
+
+    let mut renderers: Vec<Box<dyn Renderer + '_>> = vec![
+        Box::new(ZlineRenderer::new(scene, view)?),
+        Box::new(EucRenderer::new(scene, view)?),
+        Box::new(Embedded3dgfxRenderer::new(e3d, view)?),
+    ];
+    for r in &mut renderers {
+        r.render()?;
+    }
+    let n = renderers.len();
+    let mut times = vec![Vec::with_capacity(options.rounds); n];
+    for round in 0..options.rounds {
+        for k in 0..n {
+            let which = (round + k) % n;
+            let renderer = &mut renderers[which];
+            times[which].push(timing::time_ms(|| renderer.render())?);
+        }
+    }
+    let stats: Vec<(f64, f64)> = times.iter().map(|t| timing::median_min(t)).collect();
+    let zline_median = stats[0].0;
+
+    let mut rows = Vec::with_capacity(n);
+    let mut summary = Vec::with_capacity(n);
+    for (renderer, &(median_ms, min_ms)) in renderers.iter_mut().zip(&stats) {
+        let wrong = match renderer.face_ids()? {
+            Some(ids) => Some(wrong_fraction(&ids, &reference.ids)?),
+            None => None,
+        };
+        if let Some(dir) = &options.dump {
+            dump(dir, &label, renderer.name(), view, &renderer.rgb565())?;
+        }
+        summary.push(format!("{} {median_ms:.2} ms", renderer.name()));
+        rows.push(Row {
+            mesh: scene.name.clone(),
+            size: view.size_label(),
+            cull: view.cull.name().into(),
+            renderer: renderer.name().into(),
+            median_ms,
+            min_ms,
+            ratio: median_ms / zline_median,
+            wrong,
+        });
+    }
+    if let Some(dir) = &options.dump {
+        let colors = scene.face_colors(view);
+        let frame: Vec<u16> = reference
+            .ids
+            .iter()
+            .map(|&id| colors.get(id as usize).copied().unwrap_or(0))
+            .collect();
+        dump(dir, &label, "reference", view, &frame)?;
+    }
+    eprintln!("  {label}: {}", summary.join(", "));
+    Ok(rows)
+}
+
+/// Share of pixels whose face id differs from the reference's.
+fn wrong_fraction(ids: &[u32], reference: &[u32]) -> Result<f64, String> {
+    if ids.len() != reference.len() || ids.is_empty() {
+        return Err(format!(
+            "face ids: {} pixels, reference {}",
+            ids.len(),
+            reference.len()
+        ));
+    }
+    let wrong = ids.iter().zip(reference).filter(|(a, b)| a != b).count();
+    Ok(wrong as f64 / ids.len() as f64)
+}
+
+/// Writes a frame as PNG, `DIR/LABEL-RENDERER.png`.
+fn dump(
+    dir: &Path,
+    label: &str,
+    renderer: &str,
+    view: &View,
+    rgb565: &[u16],
+) -> Result<(), String> {
+    std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    let path = dir.join(format!("{}-{renderer}.png", label.replace(' ', "-")));
+    let rgb: Vec<[u8; 3]> = rgb565.iter().map(|&p| framebuffer::rgb888(p)).collect();
+    let bytes = png::encode(u32::from(view.width), u32::from(view.height), &rgb);
+    std::fs::write(&path, bytes).map_err(|e| format!("{}: {e}", path.display()))
+}
