@@ -16,12 +16,10 @@
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use zline::methods::{
-    Comparison, HostMesh, HostScanline, ReferenceFrame, ReferenceView, compare, parse_size,
-    run_tool,
-};
-use zline::scene::{Camera, Cull, reference_model};
-use zline::shade::Shading;
+use zline::front::scene::{Camera, Cull, reference_model};
+use zline::front::shade::Shading;
+use zline::host::{HostMesh, parse_size, run_tool};
+use zline::methods::{Comparison, HostScanline, ReferenceFrame, ReferenceView, compare};
 use zline::{Depth16, Depth24, DepthFormat};
 
 /// (yaw, pitch) of the three views, degrees.

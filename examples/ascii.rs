@@ -6,12 +6,14 @@
 //! cargo run --example ascii
 //! ```
 
+use zline::raster::{ScanArrays, TableArrays};
 use zline::{Depth16, FnSink, Renderer, ScreenVertex};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     // 64 columns; 24 vertices, 3 polygons, 24 edges (corners), 3 active
     // polygons, 24 pooled active edges.
-    let mut renderer: Renderer<char, Depth16, 64, 24, 3, 24, 3, 24> = Renderer::new(24, '.')?;
+    let mut renderer: Renderer<TableArrays<char, 24, 3, 24>, ScanArrays<char, Depth16, 64, 3, 24>> =
+        Renderer::new(24, '.')?;
     let v = |x: f32, y: f32, z: f32| ScreenVertex::from_f32(x, y, z);
     // A square at mid depth.
     renderer.push_polygon_vertices(

@@ -17,11 +17,10 @@
 use std::process::ExitCode;
 use std::time::Instant;
 
-use zline::methods::{
-    HostScanline, ReferenceFrame, ReferenceView, load_model, parse_size, run_tool,
-};
-use zline::scene::{Camera, Cull, reference_model};
-use zline::shade::Shading;
+use zline::front::scene::{Camera, Cull, reference_model};
+use zline::front::shade::Shading;
+use zline::host::{load_model, parse_size, run_tool};
+use zline::methods::{HostScanline, ReferenceFrame, ReferenceView};
 use zline::{Depth16, Depth24};
 
 /// One configuration to time.

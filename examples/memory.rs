@@ -7,14 +7,16 @@
 
 use core::mem::size_of;
 use embedded_graphics::pixelcolor::Rgb565;
+use zline::raster::{ScanArrays, TableArrays};
 use zline::{Depth16, Depth24, Renderer};
 
 /// 240x240, a 1,000-triangle mesh (about 500 vertices), generous active
 /// tables (triangles keep their edge pairs inline: the edge pool only
 /// serves concave polygons).
-type Small<D> = Renderer<Rgb565, D, 240, 600, 1000, 3000, 256, 32>;
+type Small<D> = Renderer<TableArrays<Rgb565, 600, 1000, 3000>, ScanArrays<Rgb565, D, 240, 256, 32>>;
 /// 320x240, a 5,000-triangle mesh.
-type Large<D> = Renderer<Rgb565, D, 320, 2600, 5000, 15000, 512, 32>;
+type Large<D> =
+    Renderer<TableArrays<Rgb565, 2600, 5000, 15000>, ScanArrays<Rgb565, D, 320, 512, 32>>;
 
 fn row(name: &str, w: usize, h: usize, z16: usize, z24: usize) {
     let full = w * h * 2 * 2;

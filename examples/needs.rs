@@ -14,10 +14,11 @@
 use std::process::ExitCode;
 
 use embedded_graphics::pixelcolor::Rgb565;
-use zline::methods::{HostScanline, load_model, parse_size, run_tool};
-use zline::scene::{Camera, Cull, reference_model};
-use zline::shade::Shading;
-use zline::{Depth16, Depth24, FrameStats};
+use zline::front::scene::{Camera, Cull, reference_model};
+use zline::front::shade::Shading;
+use zline::host::{load_model, parse_size, run_tool};
+use zline::methods::HostScanline;
+use zline::{Capacities, Depth16, Depth24, FrameStats};
 
 fn run(args: &[String]) -> Result<(), String> {
     let (mut path, mut size, mut cull, mut pitch, mut views) =
@@ -66,13 +67,7 @@ fn run(args: &[String]) -> Result<(), String> {
         let (_, s) = host
             .render(&mesh, &model, &camera, cull, &Shading::FaceId)
             .map_err(|e| e.to_string())?;
-        peak.vertices = peak.vertices.max(s.vertices);
-        peak.polygons = peak.polygons.max(s.polygons);
-        peak.corners = peak.corners.max(s.corners);
-        peak.edges = peak.edges.max(s.edges);
-        peak.peak_active_polygons = peak.peak_active_polygons.max(s.peak_active_polygons);
-        peak.peak_active_edges = peak.peak_active_edges.max(s.peak_active_edges);
-        peak.peak_pooled_edges = peak.peak_pooled_edges.max(s.peak_pooled_edges);
+        peak = peak.max(s);
     }
     let w = usize::from(size.0);
     println!("mesh={path}");
@@ -96,13 +91,22 @@ fn run(args: &[String]) -> Result<(), String> {
         "full_frame_z16_plus_rgb565_bytes={}",
         w * usize::from(size.1) * 4
     );
+    let caps = Capacities::from_stats(&peak, w);
     println!(
-        "type Zr = zline::Renderer<Rgb565, zline::Depth16, {w}, {}, {}, {}, {}, {}>; // VertexCache<{}>",
-        peak.vertices,
-        peak.polygons,
-        peak.corners,
-        peak.peak_active_polygons,
-        peak.peak_pooled_edges,
+        "\n// Capacities for this mesh at {}x{} (cull {cull:?}), as measured:\n\
+         const CAPS: zline::Capacities = zline::Capacities {{\n    width: {},\n    vertices: {},\n    polygons: {},\n    corners: {},\n    active_polygons: {},\n    pooled_edges: {},\n}};\n\
+         type Tables = zline::TableArrays<Rgb565, {{ CAPS.vertices }}, {{ CAPS.polygons }}, {{ CAPS.corners }}>;\n\
+         type Rows = zline::ScanArrays<Rgb565, zline::Depth16, {{ CAPS.width }}, {{ CAPS.active_polygons }}, {{ CAPS.pooled_edges }}>;\n\
+         type Zr = zline::Renderer<Tables, Rows>;\n\
+         type Cache = zline::front::scene::VertexCache<{}>;",
+        size.0,
+        size.1,
+        caps.width,
+        caps.vertices,
+        caps.polygons,
+        caps.corners,
+        caps.active_polygons,
+        caps.pooled_edges,
         mesh.positions.len()
     );
     Ok(())

@@ -1,15 +1,15 @@
 //! Converts a Wavefront OBJ file into Rust source for a
-//! [`StaticMesh`](zline::mesh::StaticMesh) static:
+//! [`StaticMesh`](zline::front::mesh::StaticMesh) static:
 //!
 //! ```sh
 //! cargo run --example obj2rust -- MODEL.obj NAME > name.rs
 //! ```
 //!
-//! `name.rs` defines `pub static NAME: zline::mesh::StaticMesh<'static>`
+//! `name.rs` defines `pub static NAME: zline::front::mesh::StaticMesh<'static>`
 //! over three `const` arrays (positions, corners, face starts). Include it
 //! in firmware with `include!("name.rs")`: the arrays are read-only data,
 //! so they stay in flash and cost no RAM. The mesh is checked by the
-//! `const` [`StaticMesh::new`](zline::mesh::StaticMesh::new) while
+//! `const` [`StaticMesh::new`](zline::front::mesh::StaticMesh::new) while
 //! compiling, so an invalid mesh is a compile error, not a runtime one.
 //!
 //! Positions are printed with `{:?}`, which round-trips every `f32`
@@ -21,7 +21,7 @@
 use std::io::Write as _;
 use std::process::ExitCode;
 
-use zline::methods::{HostMesh, static_mesh_source};
+use zline::host::{HostMesh, static_mesh_source};
 
 fn run(args: &[String]) -> Result<(), String> {
     let [path, name] = args else {

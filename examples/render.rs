@@ -26,7 +26,7 @@
 //! The view: positions normalised to the unit sphere about their bounding
 //! box centre, rotated `Rx(pitch) · Ry(yaw)`, eye at (0, 0, 3) looking down
 //! -Z, 45° vertical field of view, near 0.1, far 10 (see
-//! `zline::scene::reference_model` and `zline::methods::ReferenceView`).
+//! `zline::front::scene::reference_model` and `zline::methods::ReferenceView`).
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -36,12 +36,10 @@ use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use embedded_graphics_simulator::{OutputSettings, SimulatorDisplay};
-use zline::methods::{
-    BACKGROUND, HostMesh, HostScanline, ReferenceFrame, ReferenceView, load_model, parse_size,
-    run_tool,
-};
-use zline::scene::{Camera, Cull, reference_model};
-use zline::shade::Shading;
+use zline::front::scene::{Camera, Cull, reference_model};
+use zline::front::shade::Shading;
+use zline::host::{HostMesh, load_model, parse_size, run_tool};
+use zline::methods::{BACKGROUND, HostScanline, ReferenceFrame, ReferenceView};
 use zline::{Depth16, Depth24, DepthFormat, FrameStats};
 
 /// Parsed command line.

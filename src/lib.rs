@@ -6,20 +6,27 @@
 //! embedded-graphics [`DrawTarget`](embedded_graphics_core::draw_target::DrawTarget).
 //!
 //! The pipeline, one module a stage:
-//! [`fixed`] (number formats) → [`vertex`] (screen-space input) →
-//! [`scanline`] (polygon and edge tables, active lists, row buffers) →
-//! [`sink`] (finished rows to a display). [`depth`] holds the depth
-//! formats the row can store.
+//!
+//! | stage | module | what it does |
+//! |---|---|---|
+//! | front end | [`front`] | meshes ([`front::mesh`], [`front::obj`]) in world space through the camera ([`front::geometry`]), culled, clipped ([`front::clip`]), projected and shaded ([`front::shade`]) into screen polygons ([`front::scene`]) |
+//! | core | [`raster`] | screen polygons ([`raster::vertex`], [`raster::fixed`]) into the scene-sized tables ([`raster::tables`]), scanned row by row ([`raster::scan`]) into one depth row ([`raster::depth`]) and one colour row |
+//! | blitter | [`sink`] | finished rows to a `DrawTarget`, a closure or a checksum |
+//! | | [`error`] | what can go wrong, by name |
+//! | host side (feature `std`) | [`methods`] | the comparison renderers and checks: the float64 reference, the exact rational oracle, the accuracy comparison, the scanline core on `Vec`s |
+//! | | [`host`] | the tools' support: meshes in `Vec`s and `Vec`-backed storage, procedural shapes, the mesh-to-Rust writer, command-line helpers, the fuzzers' checks |
 //!
 //! ```
 //! use embedded_graphics::mock_display::MockDisplay;
 //! use embedded_graphics::pixelcolor::BinaryColor;
-//! use zline::{Depth16, DrawTargetSink, Renderer, ScreenVertex};
+//! use zline::raster::{Renderer, ScanArrays, TableArrays};
+//! use zline::{Depth16, DrawTargetSink, ScreenVertex};
 //!
-//! // 16x16 frame: up to 8 vertices, 2 polygons, 8 edges (corners), 2
-//! // active polygons, no pooled active edges (triangles need none).
-//! let mut renderer: Renderer<BinaryColor, Depth16, 16, 8, 2, 8, 2, 0> =
-//!     Renderer::new(16, BinaryColor::Off).unwrap();
+//! // A 16x16 frame. Tables: 8 vertices, 2 polygons, 8 corners. Scanner:
+//! // rows of 16 pixels, 2 active polygons, no pooled edges (triangles need
+//! // none).
+//! type Zr = Renderer<TableArrays<BinaryColor, 8, 2, 8>, ScanArrays<BinaryColor, Depth16, 16, 2, 0>>;
+//! let mut renderer = Zr::with_size(16, 16, BinaryColor::Off).unwrap();
 //! let v = |x: f32, y: f32, z: f32| ScreenVertex::from_f32(x, y, z).unwrap();
 //! renderer
 //!     .push_polygon_vertices(&[v(2.0, 2.0, 0.5), v(14.0, 2.0, 0.5), v(8.0, 14.0, 0.5)], BinaryColor::On)
@@ -36,26 +43,23 @@
 #[cfg(feature = "std")]
 extern crate std;
 
-pub mod clip;
-pub mod depth;
 pub mod error;
-pub mod fixed;
-pub mod geometry;
-pub mod mesh;
+pub mod front;
+#[cfg(feature = "std")]
+pub mod host;
 #[cfg(feature = "std")]
 pub mod methods;
-pub mod obj;
-pub mod scanline;
-pub mod scene;
-pub mod shade;
+pub mod raster;
 pub mod sink;
-pub mod vertex;
 
-pub use depth::{Depth16, Depth24, DepthFormat};
 pub use error::{Error, RenderError};
-pub use scanline::{Admission, FrameStats, PolygonTables, Renderer};
+pub use raster::depth::{Depth16, Depth24, DepthFormat};
+pub use raster::vertex::ScreenVertex;
+pub use raster::{
+    Admission, Capacities, FrameStats, PolygonTables, Renderer, ScanArrays, ScanStorage, Scanner,
+    TableArrays, TableStorage, Tables, scan,
+};
 pub use sink::{Crc32Sink, DrawTargetSink, FnSink, RowSink};
-pub use vertex::{Outline, OutlineBuilder, ScreenRect, ScreenVertex};
 
 /// Compiles the README's code examples as doctests.
 #[cfg(doctest)]

@@ -7,13 +7,14 @@ mod common;
 
 use common::{Recorder, capture};
 use proptest::prelude::*;
-use zline::fixed::SUBPIXEL_STEPS;
-use zline::geometry::{Mat4, Vec3};
-use zline::mesh::StaticMesh;
-use zline::scene::{Camera, Cull, GUARD_BAND_PX, VertexCache, draw_mesh};
+use zline::front::geometry::{Mat4, Vec3};
+use zline::front::mesh::StaticMesh;
+use zline::front::scene::{CLIP_BAND_PX, Camera, Cull, VertexCache, draw_mesh};
+use zline::raster::fixed::SUBPIXEL_STEPS;
+use zline::raster::{ScanArrays, TableArrays};
 use zline::{Depth24, Renderer};
 
-type R = Renderer<u32, Depth24, 160, 64, 16, 64, 16, 16>;
+type R = Renderer<TableArrays<u32, 64, 16, 64>, ScanArrays<u32, Depth24, 160, 16, 16>>;
 
 /// A line `a·x + b·y = c` in pixels, with `(a, b)` a unit normal.
 #[derive(Debug, Clone, Copy)]
@@ -103,7 +104,7 @@ impl View {
                 self.project(near_points[1]),
             ));
         }
-        let g = f64::from(GUARD_BAND_PX);
+        let g = f64::from(CLIP_BAND_PX);
         let (w, h) = (self.width, self.height);
         for (x, y) in [(w - g, 0.0), (g, 0.0)] {
             lines.push(Line::through([x, y], [x, y + 1.0]));

@@ -10,7 +10,8 @@ mod common;
 
 use common::{capture, covers, exact_depth, exactly_rounded, format_scale};
 use proptest::prelude::*;
-use zline::fixed::{DEPTH_MAX, SUBPIXEL_STEPS};
+use zline::raster::fixed::{DEPTH_MAX, SUBPIXEL_STEPS};
+use zline::raster::{ScanArrays, TableArrays};
 use zline::{Depth16, Depth24, DepthFormat, Renderer, ScreenVertex};
 
 const S: i32 = SUBPIXEL_STEPS;
@@ -56,7 +57,8 @@ fn check<D: DepthFormat, const W: usize>(
 where
     D::Value: Into<u64>,
 {
-    let mut renderer: Renderer<u32, D, W, 3, 1, 3, 1, 3> = Renderer::new(height, 0).unwrap();
+    let mut renderer: Renderer<TableArrays<u32, 3, 1, 3>, ScanArrays<u32, D, W, 1, 3>> =
+        Renderer::new(height, 0).unwrap();
     renderer.push_polygon_vertices(&tri, 1).unwrap();
     let (frame, _) = capture(&mut renderer);
     let (lsb, max) = format_scale::<D>();
@@ -154,7 +156,8 @@ fn check_polygon<D: DepthFormat, const W: usize>(poly: &[ScreenVertex], height: 
 where
     D::Value: Into<u64>,
 {
-    let mut renderer: Renderer<u32, D, W, 8, 1, 8, 1, 8> = Renderer::new(height, 0).unwrap();
+    let mut renderer: Renderer<TableArrays<u32, 8, 1, 8>, ScanArrays<u32, D, W, 1, 8>> =
+        Renderer::new(height, 0).unwrap();
     renderer.push_polygon_vertices(poly, 1).unwrap();
     let (frame, _) = capture(&mut renderer);
     let (lsb, max) = format_scale::<D>();
@@ -232,8 +235,8 @@ proptest! {
     fn extreme_polygons_within_one_lsb(
         poly in prop::collection::vec(
             (
-                prop_oneof![Just(1 - zline::fixed::GUARD_BAND), Just(zline::fixed::GUARD_BAND - 1), -S..40 * S, -20_000..20_000],
-                prop_oneof![Just(1 - zline::fixed::GUARD_BAND), Just(zline::fixed::GUARD_BAND - 1), -S..40 * S, -20_000..20_000],
+                prop_oneof![Just(1 - zline::raster::fixed::GUARD_BAND), Just(zline::raster::fixed::GUARD_BAND - 1), -S..40 * S, -20_000..20_000],
+                prop_oneof![Just(1 - zline::raster::fixed::GUARD_BAND), Just(zline::raster::fixed::GUARD_BAND - 1), -S..40 * S, -20_000..20_000],
                 prop_oneof![Just(0), Just(DEPTH_MAX), 0..=DEPTH_MAX],
             ),
             3..=8,

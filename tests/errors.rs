@@ -5,7 +5,8 @@
 mod common;
 
 use common::{capture, vtx};
-use zline::fixed::{DEPTH_MAX, GUARD_BAND, MAX_POLYGON_CORNERS, SUBPIXEL_STEPS};
+use zline::raster::fixed::{DEPTH_MAX, GUARD_BAND, MAX_POLYGON_CORNERS, SUBPIXEL_STEPS};
+use zline::raster::{ScanArrays, TableArrays};
 use zline::{Admission, Depth16, Depth24, Error, FnSink, RenderError, Renderer, ScreenVertex};
 
 const S: i32 = SUBPIXEL_STEPS;
@@ -16,7 +17,8 @@ fn tri(x: f32, y: f32) -> [ScreenVertex; 3] {
 
 #[test]
 fn vertex_table_full() {
-    let mut r: Renderer<u32, Depth16, 16, 4, 4, 16, 4, 16> = Renderer::new(16, 0).unwrap();
+    let mut r: Renderer<TableArrays<u32, 4, 4, 16>, ScanArrays<u32, Depth16, 16, 4, 16>> =
+        Renderer::new(16, 0).unwrap();
     for _ in 0..4 {
         r.push_vertex(vtx(1.0, 1.0, 0.5)).unwrap();
     }
@@ -26,7 +28,8 @@ fn vertex_table_full() {
     );
     assert_eq!(r.vertex_count(), 4);
     // A polygon needing 3 more vertices fails whole: nothing half-added.
-    let mut r: Renderer<u32, Depth16, 16, 5, 4, 16, 4, 16> = Renderer::new(16, 0).unwrap();
+    let mut r: Renderer<TableArrays<u32, 5, 4, 16>, ScanArrays<u32, Depth16, 16, 4, 16>> =
+        Renderer::new(16, 0).unwrap();
     r.push_polygon_vertices(&tri(1.0, 1.0), 1).unwrap();
     assert_eq!(
         r.push_polygon_vertices(&tri(5.0, 5.0), 2),
@@ -37,7 +40,8 @@ fn vertex_table_full() {
 
 #[test]
 fn polygon_table_full() {
-    let mut r: Renderer<u32, Depth16, 16, 16, 2, 16, 4, 16> = Renderer::new(16, 0).unwrap();
+    let mut r: Renderer<TableArrays<u32, 16, 2, 16>, ScanArrays<u32, Depth16, 16, 4, 16>> =
+        Renderer::new(16, 0).unwrap();
     r.push_polygon_vertices(&tri(1.0, 1.0), 1).unwrap();
     r.push_polygon_vertices(&tri(5.0, 5.0), 2).unwrap();
     assert_eq!(
@@ -50,7 +54,8 @@ fn polygon_table_full() {
 #[test]
 fn edge_table_full() {
     // E = 5: one triangle (3 corners) fits, a second does not.
-    let mut r: Renderer<u32, Depth16, 16, 16, 4, 5, 4, 5> = Renderer::new(16, 0).unwrap();
+    let mut r: Renderer<TableArrays<u32, 16, 4, 5>, ScanArrays<u32, Depth16, 16, 4, 5>> =
+        Renderer::new(16, 0).unwrap();
     r.push_polygon_vertices(&tri(1.0, 1.0), 1).unwrap();
     assert_eq!(
         r.push_polygon_vertices(&tri(5.0, 5.0), 2),
@@ -62,7 +67,8 @@ fn edge_table_full() {
 #[test]
 fn active_tables_full_stop_the_frame_at_the_row() {
     // Three triangles overlapping rows 4..8, but only two active polygons.
-    let mut r: Renderer<u32, Depth16, 16, 16, 4, 16, 2, 16> = Renderer::new(16, 0).unwrap();
+    let mut r: Renderer<TableArrays<u32, 16, 4, 16>, ScanArrays<u32, Depth16, 16, 2, 16>> =
+        Renderer::new(16, 0).unwrap();
     r.push_polygon_vertices(&tri(0.0, 4.0), 1).unwrap();
     r.push_polygon_vertices(&tri(5.0, 4.0), 2).unwrap();
     r.push_polygon_vertices(&tri(10.0, 4.0), 3).unwrap();
@@ -78,7 +84,8 @@ fn active_tables_full_stop_the_frame_at_the_row() {
     assert_eq!(rows, [0, 1, 2, 3], "rows above the overflow were delivered");
 
     // Triangles keep their two active edges inline: AE = 0 is enough.
-    let mut r: Renderer<u32, Depth16, 16, 16, 4, 16, 4, 0> = Renderer::new(16, 0).unwrap();
+    let mut r: Renderer<TableArrays<u32, 16, 4, 16>, ScanArrays<u32, Depth16, 16, 4, 0>> =
+        Renderer::new(16, 0).unwrap();
     r.push_polygon_vertices(&tri(0.0, 4.0), 1).unwrap();
     r.push_polygon_vertices(&tri(5.0, 4.0), 2).unwrap();
     let stats = r
@@ -98,14 +105,16 @@ fn active_tables_full_stop_the_frame_at_the_row() {
         vtx(13.0, 9.0, 0.5),
         vtx(1.0, 9.0, 0.5),
     ];
-    let mut r: Renderer<u32, Depth16, 16, 16, 4, 16, 4, 1> = Renderer::new(16, 0).unwrap();
+    let mut r: Renderer<TableArrays<u32, 16, 4, 16>, ScanArrays<u32, Depth16, 16, 4, 1>> =
+        Renderer::new(16, 0).unwrap();
     r.push_polygon_vertices(&u, 1).unwrap();
     let result = r.render(&mut FnSink(|_: u16, _: &[u32], _: &[u16]| Ok::<(), ()>(())));
     assert_eq!(
         result,
         Err(RenderError::Table(Error::ActiveEdgesFull { row: 1 }))
     );
-    let mut r: Renderer<u32, Depth16, 16, 16, 4, 16, 4, 2> = Renderer::new(16, 0).unwrap();
+    let mut r: Renderer<TableArrays<u32, 16, 4, 16>, ScanArrays<u32, Depth16, 16, 4, 2>> =
+        Renderer::new(16, 0).unwrap();
     r.push_polygon_vertices(&u, 1).unwrap();
     let stats = r
         .render(&mut FnSink(|_: u16, _: &[u32], _: &[u16]| Ok::<(), ()>(())))
@@ -115,7 +124,8 @@ fn active_tables_full_stop_the_frame_at_the_row() {
 
 #[test]
 fn sink_errors_come_back() {
-    let mut r: Renderer<u32, Depth16, 16, 16, 4, 16, 4, 16> = Renderer::new(16, 0).unwrap();
+    let mut r: Renderer<TableArrays<u32, 16, 4, 16>, ScanArrays<u32, Depth16, 16, 4, 16>> =
+        Renderer::new(16, 0).unwrap();
     let result = r.render(&mut FnSink(
         |y: u16, _: &[u32], _: &[u16]| if y == 3 { Err(y) } else { Ok(()) },
     ));
@@ -124,7 +134,8 @@ fn sink_errors_come_back() {
 
 #[test]
 fn corner_counts_and_indices() {
-    let mut r: Renderer<u32, Depth16, 16, 16, 4, 16, 4, 16> = Renderer::new(16, 0).unwrap();
+    let mut r: Renderer<TableArrays<u32, 16, 4, 16>, ScanArrays<u32, Depth16, 16, 4, 16>> =
+        Renderer::new(16, 0).unwrap();
     let a = r.push_vertex(vtx(1.0, 1.0, 0.5)).unwrap();
     let b = r.push_vertex(vtx(9.0, 1.0, 0.5)).unwrap();
     let c = r.push_vertex(vtx(9.0, 9.0, 0.5)).unwrap();
@@ -191,7 +202,8 @@ fn bad_vertices_are_refused() {
         Err(Error::DepthOutOfRange)
     );
     assert!(ScreenVertex::new(GUARD_BAND - 1, 1 - GUARD_BAND, DEPTH_MAX).is_ok());
-    let mut r: Renderer<u32, Depth16, 16, 16, 4, 16, 4, 16> = Renderer::new(16, 0).unwrap();
+    let mut r: Renderer<TableArrays<u32, 16, 4, 16>, ScanArrays<u32, Depth16, 16, 4, 16>> =
+        Renderer::new(16, 0).unwrap();
     let raw = ScreenVertex {
         x: GUARD_BAND,
         y: 0,
@@ -203,7 +215,7 @@ fn bad_vertices_are_refused() {
 
 #[test]
 fn frame_size_is_checked() {
-    type R = Renderer<u32, Depth16, 16, 4, 4, 16, 4, 16>;
+    type R = Renderer<TableArrays<u32, 4, 4, 16>, ScanArrays<u32, Depth16, 16, 4, 16>>;
     assert_eq!(R::new(0, 0).err(), Some(Error::BadFrameSize));
     assert_eq!(R::new(5000, 0).err(), Some(Error::BadFrameSize));
     assert!(R::new(4096, 0).is_ok());
@@ -214,7 +226,8 @@ fn frame_size_is_checked() {
 
 #[test]
 fn off_screen_and_zero_area_polygons_are_counted_not_drawn() {
-    let mut r: Renderer<u32, Depth16, 16, 64, 8, 64, 8, 64> = Renderer::new(16, 0).unwrap();
+    let mut r: Renderer<TableArrays<u32, 64, 8, 64>, ScanArrays<u32, Depth16, 16, 8, 64>> =
+        Renderer::new(16, 0).unwrap();
     // Collinear: zero area.
     let line = [vtx(1.0, 1.0, 0.1), vtx(5.0, 5.0, 0.2), vtx(9.0, 9.0, 0.3)];
     assert_eq!(r.push_polygon_vertices(&line, 1), Ok(Admission::Degenerate));
@@ -282,7 +295,8 @@ fn slivers_and_edge_on_triangles_stay_within_their_depth_range() {
             y: y0 + (dy as i64 * t as i64 / (S as i64 * 64)) as i32 - off,
             z: next(DEPTH_MAX as i32) as u32,
         };
-        let mut r: Renderer<u32, Depth24, 32, 3, 1, 3, 1, 3> = Renderer::new(32, 0).unwrap();
+        let mut r: Renderer<TableArrays<u32, 3, 1, 3>, ScanArrays<u32, Depth24, 32, 1, 3>> =
+            Renderer::new(32, 0).unwrap();
         match r.push_polygon_vertices(&[a, b, c], 1).unwrap() {
             Admission::Queued(_) => {}
             Admission::Degenerate | Admission::OffScreen | Admission::Declined => continue,

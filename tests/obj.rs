@@ -2,8 +2,8 @@
 //! error kind with its line, and random inputs that must never panic.
 
 use proptest::prelude::*;
-use zline::mesh::{Mesh, StaticMesh};
-use zline::obj::{
+use zline::front::mesh::{Mesh, StaticMesh};
+use zline::front::obj::{
     Capacity, Element, ObjCounts, ObjError, ObjErrorKind, ObjMesh, ObjReader, Statement, count,
 };
 

@@ -5,16 +5,17 @@
 mod common;
 
 use common::capture;
-use zline::geometry::{Mat4, Vec3};
-use zline::mesh::{Mesh, StaticMesh};
-use zline::methods::{HostMesh, shapes};
-use zline::scene::{
+use zline::front::geometry::{Mat4, Vec3};
+use zline::front::mesh::{Mesh, StaticMesh};
+use zline::front::scene::{
     Camera, Cull, DrawError, MAX_FACE_CORNERS, VertexCache, bounding_sphere, draw_mesh,
     reference_model,
 };
+use zline::host::{HostMesh, shapes};
+use zline::raster::{ScanArrays, TableArrays};
 use zline::{Depth24, Error, Renderer};
 
-type Big = Renderer<u32, Depth24, 96, 2048, 2048, 6144, 512, 512>;
+type Big = Renderer<TableArrays<u32, 2048, 2048, 6144>, ScanArrays<u32, Depth24, 96, 512, 512>>;
 const W: u16 = 96;
 const H: u16 = 72;
 
@@ -261,7 +262,7 @@ fn issue_7_item_6_faces_of_many_corners_draw() {
     for k in 1..=MAX_FACE_CORNERS + 1 {
         obj.push_str(&format!(" {k}"));
     }
-    let error = zline::obj::count(obj.as_bytes()).unwrap_err();
+    let error = zline::front::obj::count(obj.as_bytes()).unwrap_err();
     assert_eq!(error.line, MAX_FACE_CORNERS as u32 + 2);
-    assert_eq!(error.kind, zline::obj::ObjErrorKind::TooManyCorners);
+    assert_eq!(error.kind, zline::front::obj::ObjErrorKind::TooManyCorners);
 }

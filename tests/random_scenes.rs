@@ -11,8 +11,9 @@ mod common;
 
 use common::capture;
 use proptest::prelude::*;
-use zline::fixed::{DEPTH_MAX, SUBPIXEL_STEPS};
 use zline::methods::exact::check_frame;
+use zline::raster::fixed::{DEPTH_MAX, SUBPIXEL_STEPS};
+use zline::raster::{ScanArrays, TableArrays};
 use zline::{Admission, Depth16, Depth24, DepthFormat, Renderer, ScreenVertex};
 
 const W: usize = 40;
@@ -41,7 +42,8 @@ fn check<D: DepthFormat>(scene: &[Vec<ScreenVertex>])
 where
     D::Value: Into<u64>,
 {
-    let mut renderer: Renderer<u32, D, W, 64, 12, 64, 12, 64> = Renderer::new(H, 0).unwrap();
+    let mut renderer: Renderer<TableArrays<u32, 64, 12, 64>, ScanArrays<u32, D, W, 12, 64>> =
+        Renderer::new(H, 0).unwrap();
     let polygons: Vec<(Vec<ScreenVertex>, bool)> = scene
         .iter()
         .enumerate()
@@ -57,8 +59,28 @@ where
     }
 }
 
+/// Tiny triangles: corners within a few pixels of each other, anywhere on
+/// the sub-pixel grid, so most hold one sample or none in their bounding
+/// box (the core tests those samples before queuing them).
+fn tiny_triangle() -> impl Strategy<Value = Vec<ScreenVertex>> {
+    (0..W as i32 * S, 0..i32::from(H) * S, 1..3 * S).prop_flat_map(|(x, y, size)| {
+        prop::collection::vec((x..x + size, y..y + size, 0..=DEPTH_MAX), 3).prop_map(|corners| {
+            corners
+                .into_iter()
+                .map(|(x, y, z)| ScreenVertex { x, y, z })
+                .collect()
+        })
+    })
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(128))]
+
+    #[test]
+    fn tiny_triangles_match_the_exact_z_buffer(scene in prop::collection::vec(tiny_triangle(), 1..=12)) {
+        check::<Depth16>(&scene);
+        check::<Depth24>(&scene);
+    }
 
     #[test]
     fn matches_brute_force_exact_z_buffer(scene in prop::collection::vec(polygon(), 1..=12)) {

@@ -4,6 +4,7 @@
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
+use zline::raster::{ScanArrays, TableArrays};
 use zline::{Depth16, DrawTargetSink, Renderer, ScreenVertex};
 
 #[derive(Default)]
@@ -52,8 +53,10 @@ impl DrawTarget for Recorder {
 
 #[test]
 fn one_fill_contiguous_per_row() {
-    let mut renderer: Renderer<Rgb565, Depth16, 24, 8, 2, 8, 2, 8> =
-        Renderer::new(10, Rgb565::BLUE).unwrap();
+    let mut renderer: Renderer<
+        TableArrays<Rgb565, 8, 2, 8>,
+        ScanArrays<Rgb565, Depth16, 24, 2, 8>,
+    > = Renderer::new(10, Rgb565::BLUE).unwrap();
     let v = |x, y| ScreenVertex::from_f32(x, y, 0.5).unwrap();
     renderer
         .push_polygon_vertices(&[v(2.0, 2.0), v(20.0, 3.0), v(8.0, 9.0)], Rgb565::RED)
@@ -78,8 +81,10 @@ fn one_fill_contiguous_per_row() {
 
 #[test]
 fn origin_offsets_every_row() {
-    let mut renderer: Renderer<Rgb565, Depth16, 24, 8, 2, 8, 2, 8> =
-        Renderer::new(3, Rgb565::BLACK).unwrap();
+    let mut renderer: Renderer<
+        TableArrays<Rgb565, 8, 2, 8>,
+        ScanArrays<Rgb565, Depth16, 24, 2, 8>,
+    > = Renderer::new(3, Rgb565::BLACK).unwrap();
     let mut recorder = Recorder::default();
     renderer
         .render(&mut DrawTargetSink::with_origin(
@@ -95,8 +100,10 @@ fn origin_offsets_every_row() {
 fn runtime_width_below_capacity() {
     // Row capacity 24, frame 10 wide: rows are 10 long and a triangle
     // reaching past x = 10 is clipped there.
-    let mut renderer: Renderer<Rgb565, Depth16, 24, 8, 2, 8, 2, 8> =
-        Renderer::with_size(10, 4, Rgb565::BLACK).unwrap();
+    let mut renderer: Renderer<
+        TableArrays<Rgb565, 8, 2, 8>,
+        ScanArrays<Rgb565, Depth16, 24, 2, 8>,
+    > = Renderer::with_size(10, 4, Rgb565::BLACK).unwrap();
     let v = |x, y| ScreenVertex::from_f32(x, y, 0.5).unwrap();
     renderer
         .push_polygon_vertices(&[v(0.0, 0.0), v(30.0, 0.0), v(0.0, 30.0)], Rgb565::RED)

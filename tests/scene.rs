@@ -4,10 +4,13 @@
 mod common;
 
 use common::capture;
-use zline::fixed::DEPTH_ONE;
-use zline::geometry::{Mat4, Vec3};
-use zline::mesh::StaticMesh;
-use zline::scene::{Camera, Cull, DrawError, DrawStats, VertexCache, draw_mesh, reference_model};
+use zline::front::geometry::{Mat4, Vec3};
+use zline::front::mesh::StaticMesh;
+use zline::front::scene::{
+    Camera, Cull, DrawError, DrawStats, VertexCache, draw_mesh, reference_model,
+};
+use zline::raster::fixed::DEPTH_ONE;
+use zline::raster::{ScanArrays, TableArrays};
 use zline::{Depth24, Renderer};
 
 /// Unit cube, quads wound counter-clockwise seen from outside.
@@ -36,7 +39,7 @@ static CUBE: StaticMesh<'static> = match StaticMesh::new(
     Err(_) => panic!("bad cube"),
 };
 
-type R = Renderer<u32, Depth24, 96, 256, 64, 256, 64, 256>;
+type R = Renderer<TableArrays<u32, 256, 64, 256>, ScanArrays<u32, Depth24, 96, 64, 256>>;
 
 fn draw(
     mesh: &StaticMesh,

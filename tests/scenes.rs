@@ -6,9 +6,10 @@
 mod common;
 
 use common::{art, capture, vtx};
+use zline::raster::{ScanArrays, TableArrays};
 use zline::{Admission, Depth16, Depth24, DepthFormat, Renderer};
 
-type Small<D> = Renderer<u32, D, 16, 64, 16, 64, 16, 64>;
+type Small<D> = Renderer<TableArrays<u32, 64, 16, 64>, ScanArrays<u32, D, 16, 16, 64>>;
 
 fn rect(x0: f32, y0: f32, x1: f32, y1: f32, z: f32) -> [zline::ScreenVertex; 4] {
     [
@@ -214,11 +215,12 @@ fn polygons_crossing_every_screen_side() {
     assert_eq!(render::<Depth24>(8, &with_back), sides.replace('.', "G"));
 }
 
-/// Coplanar faces: on exactly equal depth the polygon that starts on an
-/// earlier row keeps the pixel; among polygons starting on the same row,
-/// the one added first.
+/// Coplanar faces: on exactly equal depth the polygon added first keeps
+/// the pixel, whatever rows the polygons start on and whatever order the
+/// scanner meets them in (so the winner cannot change as a camera moves and
+/// their first rows pass each other).
 #[test]
-fn coplanar_faces_earlier_row_then_first_added_wins() {
+fn coplanar_faces_first_added_wins() {
     let upper = rect(2.0, 1.0, 10.0, 5.0, 0.5);
     let lower = rect(6.0, 3.0, 14.0, 7.0, 0.5);
     let upper_wins = art("
@@ -231,36 +233,49 @@ fn coplanar_faces_earlier_row_then_first_added_wins() {
         ......BBBBBBBB..
         ................
     ");
-    assert_eq!(
-        render::<Depth16>(8, &[(&upper, 1), (&lower, 2)]),
-        upper_wins
-    );
-    assert_eq!(
-        render::<Depth24>(8, &[(&lower, 2), (&upper, 1)]),
-        upper_wins
-    );
-    // Same first row: insertion order decides.
-    let tall = rect(6.0, 1.0, 14.0, 7.0, 0.5);
-    let a_first = art("
+    let lower_wins = art("
         ................
-        ..AAAAAAAABBBB..
-        ..AAAAAAAABBBB..
-        ..AAAAAAAABBBB..
-        ..AAAAAAAABBBB..
-        ......BBBBBBBB..
-        ......BBBBBBBB..
-        ................
-    ");
-    let b_first = art("
-        ................
-        ..AAAABBBBBBBB..
-        ..AAAABBBBBBBB..
+        ..AAAAAAAA......
+        ..AAAAAAAA......
         ..AAAABBBBBBBB..
         ..AAAABBBBBBBB..
         ......BBBBBBBB..
         ......BBBBBBBB..
         ................
     ");
-    assert_eq!(render::<Depth16>(8, &[(&upper, 1), (&tall, 2)]), a_first);
-    assert_eq!(render::<Depth24>(8, &[(&tall, 2), (&upper, 1)]), b_first);
+    for depth16 in [true, false] {
+        let render = |scene: &[(&[zline::ScreenVertex], u32)]| {
+            if depth16 {
+                render::<Depth16>(8, scene)
+            } else {
+                render::<Depth24>(8, scene)
+            }
+        };
+        assert_eq!(render(&[(&upper, 1), (&lower, 2)]), upper_wins);
+        assert_eq!(render(&[(&lower, 2), (&upper, 1)]), lower_wins);
+        // The same when both start on one row.
+        let tall = rect(6.0, 1.0, 14.0, 7.0, 0.5);
+        let a_first = art("
+            ................
+            ..AAAAAAAABBBB..
+            ..AAAAAAAABBBB..
+            ..AAAAAAAABBBB..
+            ..AAAAAAAABBBB..
+            ......BBBBBBBB..
+            ......BBBBBBBB..
+            ................
+        ");
+        let b_first = art("
+            ................
+            ..AAAABBBBBBBB..
+            ..AAAABBBBBBBB..
+            ..AAAABBBBBBBB..
+            ..AAAABBBBBBBB..
+            ......BBBBBBBB..
+            ......BBBBBBBB..
+            ................
+        ");
+        assert_eq!(render(&[(&upper, 1), (&tall, 2)]), a_first);
+        assert_eq!(render(&[(&tall, 2), (&upper, 1)]), b_first);
+    }
 }

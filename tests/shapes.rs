@@ -5,10 +5,11 @@
 use std::collections::HashMap;
 
 use zline::Depth24;
-use zline::mesh::Mesh;
-use zline::methods::{HostMesh, HostScanline, shapes};
-use zline::scene::{Camera, Cull, reference_model};
-use zline::shade::Shading;
+use zline::front::mesh::Mesh;
+use zline::front::scene::{Camera, Cull, reference_model};
+use zline::front::shade::Shading;
+use zline::host::{HostMesh, shapes};
+use zline::methods::HostScanline;
 
 fn directed_edges(mesh: &HostMesh) -> HashMap<(u16, u16), u32> {
     let mut edges = HashMap::new();

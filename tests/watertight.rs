@@ -8,7 +8,8 @@ use common::covers;
 use embedded_graphics::pixelcolor::BinaryColor;
 use embedded_graphics::prelude::*;
 use proptest::prelude::*;
-use zline::fixed::SUBPIXEL_STEPS;
+use zline::raster::fixed::SUBPIXEL_STEPS;
+use zline::raster::{ScanArrays, TableArrays};
 use zline::{Depth16, DrawTargetSink, Renderer, ScreenVertex};
 
 const W: usize = 48;
@@ -50,8 +51,10 @@ fn coverage_counts(vertices: &[ScreenVertex], triangles: &[[usize; 3]]) -> Vec<u
         counts: vec![0; W * usize::from(H)],
     };
     for t in triangles {
-        let mut renderer: Renderer<BinaryColor, Depth16, W, 3, 1, 3, 1, 3> =
-            Renderer::new(H, BinaryColor::Off).unwrap();
+        let mut renderer: Renderer<
+            TableArrays<BinaryColor, 3, 1, 3>,
+            ScanArrays<BinaryColor, Depth16, W, 1, 3>,
+        > = Renderer::new(H, BinaryColor::Off).unwrap();
         let corners = [vertices[t[0]], vertices[t[1]], vertices[t[2]]];
         renderer
             .push_polygon_vertices(&corners, BinaryColor::On)

@@ -19,10 +19,11 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
-use zline::mesh::{Mesh, StaticMesh};
-use zline::methods::{HostMesh, shapes, static_mesh_source};
-use zline::scene::VertexCache;
-use zline::{Crc32Sink, Depth16, Depth24, DepthFormat, FrameStats, Renderer};
+use zline::front::mesh::{Mesh, StaticMesh};
+use zline::front::scene::VertexCache;
+use zline::host::{HostMesh, shapes, static_mesh_source};
+use zline::host::{ScanVecs, TableVecs, host_renderer};
+use zline::{Capacities, Crc32Sink, Depth16, Depth24, DepthFormat, FrameStats, Renderer};
 
 /// (shape, yaw, pitch): each is rendered with both depth formats.
 const SCENES: [(&str, f32, f32); 4] = [
@@ -32,7 +33,17 @@ const SCENES: [(&str, f32, f32); 4] = [
     ("boxes", 30.0, 20.0),
 ];
 
-type HostRenderer<D> = Renderer<Rgb565, D, 240, 65536, 65536, 262_144, 16_384, 16_384>;
+type HostRenderer<D> = Renderer<TableVecs<Rgb565>, ScanVecs<Rgb565, D>>;
+
+/// Room for every scene on the host, where the capacities are measured.
+const HOST_CAPACITIES: Capacities = Capacities {
+    width: 240,
+    vertices: 65_536,
+    polygons: 65_536,
+    corners: 262_144,
+    active_polygons: 16_384,
+    pooled_edges: 16_384,
+};
 
 fn main() {
     let out = PathBuf::from(std::env::var("OUT_DIR").expect("OUT_DIR"));
@@ -98,7 +109,7 @@ fn generate() -> String {
             let source = static_mesh_source(
                 &mesh,
                 &const_name(shape),
-                &format!("zline::methods::shapes `{shape}`"),
+                &format!("zline::host::shapes `{shape}`"),
             )
             .expect("mesh source");
             out.push_str(&source);
@@ -107,18 +118,19 @@ fn generate() -> String {
             meshes.push((shape, mesh));
         }
     }
-    let mut z16: Box<HostRenderer<Depth16>> =
-        Box::new(HostRenderer::new(frame::SIZE, Rgb565::BLACK).expect("renderer"));
-    let mut z24: Box<HostRenderer<Depth24>> =
-        Box::new(HostRenderer::new(frame::SIZE, Rgb565::BLACK).expect("renderer"));
+    let (size, black) = (frame::SIZE, Rgb565::BLACK);
+    let mut z16: HostRenderer<Depth16> =
+        host_renderer(&HOST_CAPACITIES, size, size, black).expect("renderer");
+    let mut z24: HostRenderer<Depth24> =
+        host_renderer(&HOST_CAPACITIES, size, size, black).expect("renderer");
     let mut cache: Box<VertexCache<65536>> = Box::default();
     let mut scenes = String::new();
     for &(shape, yaw, pitch) in &scene_list {
         let host = &meshes.iter().find(|(s, _)| *s == shape).expect("mesh").1;
         let mesh =
             StaticMesh::new(&host.positions, &host.corners, &host.face_starts).expect("valid mesh");
-        let crc16 = expected(&mut *z16, &mut cache, &mesh, yaw, pitch, &mut needs);
-        let crc24 = expected(&mut *z24, &mut cache, &mesh, yaw, pitch, &mut needs);
+        let crc16 = expected(&mut z16, &mut cache, &mesh, yaw, pitch, &mut needs);
+        let crc24 = expected(&mut z24, &mut cache, &mesh, yaw, pitch, &mut needs);
         // ZLINE_QEMU_BAD_CRC=1 flips one bit of one expected CRC: a self-test
         // that the emulated run fails when a frame differs from the host's.
         let flip = u32::from(std::env::var_os("ZLINE_QEMU_BAD_CRC").is_some() && scenes.is_empty());
@@ -163,9 +175,8 @@ fn expected<D: DepthFormat>(
         renderer,
         cache,
         mesh,
-        zline::scene::bounding_sphere(mesh).expect("mesh size"),
-        yaw,
-        pitch,
+        zline::front::scene::bounding_sphere(mesh).expect("mesh size"),
+        (yaw, pitch),
         &mut crc,
     )
     .expect("host render");

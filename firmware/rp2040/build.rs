@@ -17,10 +17,11 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use embedded_graphics_core::pixelcolor::Rgb565;
-use zline::mesh::{Mesh, StaticMesh};
-use zline::methods::{HostMesh, HostScanline, shapes, static_mesh_source};
-use zline::scene::{Camera, Cull, MAX_FACE_CORNERS, reference_model};
-use zline::shade::Shading;
+use zline::front::mesh::{Mesh, StaticMesh};
+use zline::front::scene::{Camera, Cull, MAX_FACE_CORNERS, reference_model};
+use zline::front::shade::Shading;
+use zline::host::{HostMesh, shapes, static_mesh_source};
+use zline::methods::HostScanline;
 use zline::{Depth16, FrameStats};
 
 /// LCD size in pixels (ST7789 240x240 module).
@@ -79,7 +80,7 @@ fn run() -> Result<(), String> {
         }
         None => (
             shapes::by_name(DEFAULT_SHAPE).ok_or("built-in shape missing")?,
-            format!("zline::methods::shapes::by_name({DEFAULT_SHAPE:?})"),
+            format!("zline::host::shapes::by_name({DEFAULT_SHAPE:?})"),
         ),
     };
     check_mesh(&mesh, &origin)?;
@@ -216,7 +217,7 @@ fn measure_views(mesh: &HostMesh, origin: &str) -> Result<String, String> {
         s,
         "// Estimated RAM (renderer + cache + SPI buffer): {ram} bytes.\n"
     );
-    let items: [(&str, &str, String); 12] = [
+    let items: [(&str, &str, String); 7] = [
         ("WIDTH", "u16", WIDTH.to_string()),
         ("HEIGHT", "u16", HEIGHT.to_string()),
         ("YAW_STEPS", "u32", YAW_STEPS.to_string()),
@@ -224,15 +225,17 @@ fn measure_views(mesh: &HostMesh, origin: &str) -> Result<String, String> {
         ("PITCH_DEG", "f32", format!("{PITCH_DEG:?}")),
         ("SPI_BUFFER", "usize", SPI_BUFFER.to_string()),
         ("MESH_VERTICES", "usize", mesh_vertices.to_string()),
-        ("VERTICES", "usize", vertices.to_string()),
-        ("POLYGONS", "usize", polygons.to_string()),
-        ("CORNERS", "usize", corners.to_string()),
-        ("ACTIVE_POLYGONS", "usize", active_polygons.to_string()),
-        ("POOLED_EDGES", "usize", pooled_edges.to_string()),
     ];
     for (name, ty, value) in items {
         let _ = writeln!(s, "pub const {name}: {ty} = {value};");
     }
+    let _ = writeln!(
+        s,
+        "/// The renderer's capacities, by name.\n\
+         pub const CAPS: zline::Capacities = zline::Capacities {{\n    width: {WIDTH},\n    \
+         vertices: {vertices},\n    polygons: {polygons},\n    corners: {corners},\n    \
+         active_polygons: {active_polygons},\n    pooled_edges: {pooled_edges},\n}};"
+    );
     Ok(s)
 }
 

@@ -7,9 +7,9 @@ use std::format;
 use std::string::String;
 use std::vec::Vec;
 
-use crate::depth::DepthFormat;
-use crate::fixed::{DEPTH_MAX, HALF_PIXEL, SUBPIXEL_STEPS};
-use crate::vertex::ScreenVertex;
+use crate::raster::depth::DepthFormat;
+use crate::raster::fixed::{DEPTH_MAX, HALF_PIXEL, SUBPIXEL_STEPS};
+use crate::raster::vertex::ScreenVertex;
 
 /// Sample point of pixel `(i, j)` in sub-pixel steps.
 pub fn sample(i: i32, j: i32) -> (i64, i64) {

@@ -20,9 +20,9 @@
 use std::vec;
 use std::vec::Vec;
 
-use crate::geometry::Vec3;
-use crate::mesh::Mesh;
-use crate::scene::FaceInfo;
+use crate::front::geometry::Vec3;
+use crate::front::mesh::Mesh;
+use crate::front::scene::FaceInfo;
 
 /// Face id of pixels no face covers.
 pub const BACKGROUND: u32 = u32::MAX;
@@ -227,17 +227,17 @@ impl ReferenceFrame {
 
     /// What a shader knows of face `id` (for colouring reference frames
     /// like the scanline's); `None` for culled or clipped-away faces.
-    pub fn face_info(&self, id: u32) -> Option<FaceInfo> {
+    pub fn face_info(&self, id: u32) -> Option<FaceInfo<'static>> {
         let face = self.faces.get(id as usize)?.first()?;
         let n = face.normal;
         let len = dot(n, n).sqrt();
         let unit = if len > 0.0 { n.map(|v| v / len) } else { n };
-        Some(FaceInfo {
-            face: id,
-            normal: Vec3::new(unit[0] as f32, unit[1] as f32, unit[2] as f32),
-            front: face.front,
-            view_depth: face.mean_depth as f32,
-        })
+        Some(FaceInfo::new(
+            id,
+            face.front,
+            Vec3::new(unit[0] as f32, unit[1] as f32, unit[2] as f32),
+            face.mean_depth as f32,
+        ))
     }
 
     /// Distance in pixels from pixel `(i, j)`'s sample to the boundary of

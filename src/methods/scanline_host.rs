@@ -9,13 +9,15 @@ use std::vec::Vec;
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 
 use super::reference::BACKGROUND;
-use crate::depth::DepthFormat;
 use crate::error::{Error, RenderError};
-use crate::geometry::Mat4;
-use crate::mesh::Mesh;
-use crate::scanline::{FrameStats, Renderer};
-use crate::scene::{Camera, Cull, DrawError, DrawStats, VertexCache, draw_mesh};
-use crate::shade::Shading;
+use crate::front::geometry::Mat4;
+use crate::front::mesh::Mesh;
+use crate::front::scene::{Camera, Cull, DrawError, DrawStats, VertexCache, draw_mesh};
+use crate::front::shade::Shading;
+use crate::host::{ScanVecs, TableVecs, host_renderer};
+use crate::raster::Capacities;
+use crate::raster::depth::DepthFormat;
+use crate::raster::{FrameStats, Renderer};
 use crate::sink::FnSink;
 
 /// What the host renderer stores per pixel: the face and its colour.
@@ -28,7 +30,19 @@ pub struct HostPixel {
 }
 
 /// The core with capacities for any mesh in `../shared/meshes`.
-pub type HostRenderer<D> = Renderer<HostPixel, D, 4096, 65536, 262_144, 786_432, 32_768, 65_536>;
+pub type HostRenderer<D> = Renderer<TableVecs<HostPixel>, ScanVecs<HostPixel, D>>;
+
+/// Capacities for any mesh the host tools load: 65,536 vertices, 262,144
+/// polygons, 786,432 corners, 32,768 polygons and 65,536 pooled edges
+/// active on a row, rows up to 4,096 pixels (about 15 MB, on the heap).
+pub const HOST_CAPACITIES: Capacities = Capacities {
+    width: 4096,
+    vertices: 65_536,
+    polygons: 262_144,
+    corners: 786_432,
+    active_polygons: 32_768,
+    pooled_edges: 65_536,
+};
 
 /// A finished frame: face id and colour per pixel, row-major from the top.
 #[derive(Debug, Clone, PartialEq)]
@@ -64,11 +78,11 @@ where
             face: BACKGROUND,
             color: Rgb888::BLACK,
         };
-        let renderer = Box::new(HostRenderer::<D>::with_size(width, height, background)?);
+        let renderer = Box::new(host_renderer(&HOST_CAPACITIES, width, height, background)?);
         let (w, h) = (usize::from(width), usize::from(height));
         Ok(Self {
             renderer,
-            cache: Box::new(VertexCache::new()),
+            cache: Box::default(),
             frame: HostFrame {
                 width: w,
                 height: h,
@@ -82,7 +96,7 @@ where
     /// Draws one whole frame: clears the tables, runs the scene pipeline
     /// and the scanline core, and copies each finished row into
     /// [`Self::frame`].
-    pub fn render<M: Mesh + ?Sized>(
+    pub fn render<M: Mesh>(
         &mut self,
         mesh: &M,
         model: &Mat4,

@@ -4,6 +4,7 @@
 
 #[allow(unused_imports)]
 pub use zline::methods::exact::{covers, exact_depth, exactly_rounded, format_scale, sample};
+use zline::raster::{ScanArrays, TableArrays};
 use zline::{DepthFormat, FnSink, Renderer, ScreenVertex};
 
 /// A frame captured from the renderer: colour and depth per pixel.
@@ -48,7 +49,7 @@ pub fn capture<
     const AP: usize,
     const AE: usize,
 >(
-    renderer: &mut Renderer<u32, D, W, V, P, E, AP, AE>,
+    renderer: &mut Renderer<TableArrays<u32, V, P, E>, ScanArrays<u32, D, W, AP, AE>>,
 ) -> (Frame<D::Value>, zline::FrameStats) {
     let h = usize::from(renderer.height());
     let mut frame = Frame {
@@ -115,11 +116,11 @@ impl Recorder {
     fn offer(
         &mut self,
         ids: Vec<u16>,
-        decide: impl FnOnce(&zline::Outline) -> Option<u32>,
+        decide: impl FnOnce(&zline::raster::vertex::Outline) -> Option<u32>,
     ) -> zline::Admission {
         let corners: Vec<zline::ScreenVertex> =
             ids.iter().map(|&i| self.vertices[usize::from(i)]).collect();
-        let mut outline = zline::OutlineBuilder::default();
+        let mut outline = zline::raster::vertex::OutlineBuilder::default();
         corners.iter().for_each(|&v| outline.add(v));
         let outline = outline.finish();
         if outline.twice_area == 0 {
@@ -156,7 +157,7 @@ impl zline::PolygonTables<u32> for Recorder {
     fn offer_polygon<I>(
         &mut self,
         corners: I,
-        decide: impl FnOnce(&zline::Outline) -> Option<u32>,
+        decide: impl FnOnce(&zline::raster::vertex::Outline) -> Option<u32>,
     ) -> Result<zline::Admission, zline::Error>
     where
         I: IntoIterator<Item = u16>,
@@ -181,7 +182,7 @@ impl zline::PolygonTables<u32> for Recorder {
     }
     fn finish_polygon(
         &mut self,
-        decide: impl FnOnce(&zline::Outline) -> Option<u32>,
+        decide: impl FnOnce(&zline::raster::vertex::Outline) -> Option<u32>,
     ) -> Result<zline::Admission, zline::Error> {
         let ids = std::mem::take(&mut self.open);
         let admission = self.offer(ids, decide);

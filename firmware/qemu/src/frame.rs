@@ -4,10 +4,13 @@
 //! arithmetic, same pixels.
 
 use embedded_graphics_core::pixelcolor::Rgb565;
-use zline::geometry::Vec3;
-use zline::mesh::StaticMesh;
-use zline::scene::{Camera, Cull, DrawStats, VertexCache, draw_mesh, reference_model_around};
-use zline::shade::Shading;
+use zline::front::geometry::Vec3;
+use zline::front::mesh::StaticMesh;
+use zline::front::scene::{
+    Camera, Cull, DrawStats, VertexCache, draw_mesh, reference_model_around,
+};
+use zline::front::shade::Shading;
+use zline::raster::{ScanStorage, TableStorage};
 use zline::{DepthFormat, FrameStats, RenderError, Renderer, RowSink};
 
 /// Frame width and height.
@@ -16,29 +19,18 @@ pub const SIZE: u16 = 240;
 /// Draws `mesh`, whose bounding sphere is `(centre, radius)` (computed once
 /// per mesh), in the reference view at `yaw`/`pitch` (Lambert, back faces
 /// culled) and sends the frame to `sink`.
-#[allow(clippy::too_many_arguments)]
-pub fn render_frame<
-    D,
-    S,
-    const W: usize,
-    const V: usize,
-    const P: usize,
-    const E: usize,
-    const AP: usize,
-    const AE: usize,
-    const VM: usize,
->(
-    renderer: &mut Renderer<Rgb565, D, W, V, P, E, AP, AE>,
+pub fn render_frame<T, S, K, const VM: usize>(
+    renderer: &mut Renderer<T, S>,
     cache: &mut VertexCache<VM>,
     mesh: &StaticMesh<'_>,
     (centre, radius): (Vec3, f32),
-    yaw: f32,
-    pitch: f32,
-    sink: &mut S,
-) -> Result<(DrawStats, FrameStats), RenderError<S::Error>>
+    (yaw, pitch): (f32, f32),
+    sink: &mut K,
+) -> Result<(DrawStats, FrameStats), RenderError<K::Error>>
 where
-    D: DepthFormat,
-    S: RowSink<Rgb565, D::Value>,
+    T: TableStorage<Color = Rgb565>,
+    S: ScanStorage<Color = Rgb565>,
+    K: RowSink<Rgb565, <S::Depth as DepthFormat>::Value>,
 {
     renderer.clear();
     let model = reference_model_around(centre, radius, yaw, pitch);

@@ -23,8 +23,9 @@ use cortex_m_rt::entry;
 use cortex_m_semihosting::{debug, hprintln};
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use static_cell::ConstStaticCell;
-use zline::mesh::StaticMesh;
-use zline::scene::VertexCache;
+use zline::front::mesh::StaticMesh;
+use zline::front::scene::VertexCache;
+use zline::raster::{ScanArrays, ScanStorage, TableArrays};
 use zline::{Crc32Sink, Depth16, Depth24, DepthFormat, FnSink, FrameStats, Renderer};
 
 /// Which depth format a scene uses.
@@ -47,8 +48,14 @@ struct Scene {
 // Meshes, SCENES and the capacities V, P, E, AP, AE, VM (from build.rs).
 include!(concat!(env!("OUT_DIR"), "/scenes.rs"));
 
-type Renderer16 = Renderer<Rgb565, Depth16, { frame::SIZE as usize }, V, P, E, AP, AE>;
-type Renderer24 = Renderer<Rgb565, Depth24, { frame::SIZE as usize }, V, P, E, AP, AE>;
+/// The tables, sized by the build script.
+type Tables = TableArrays<Rgb565, V, P, E>;
+/// Rows of 240 pixels with 16-bit depth.
+type Rows16 = ScanArrays<Rgb565, Depth16, { frame::SIZE as usize }, AP, AE>;
+/// Rows of 240 pixels with 24-bit depth.
+type Rows24 = ScanArrays<Rgb565, Depth24, { frame::SIZE as usize }, AP, AE>;
+type Renderer16 = Renderer<Tables, Rows16>;
+type Renderer24 = Renderer<Tables, Rows24>;
 
 // The renderers live in statics, built at compile time: no copy on the stack.
 static RENDERER16: ConstStaticCell<Renderer16> = ConstStaticCell::new(Renderer16::new_in_static(
@@ -92,36 +99,33 @@ struct Outcome {
     stats: FrameStats,
 }
 
-fn run<D, const W: usize>(
-    renderer: &mut Renderer<Rgb565, D, W, V, P, E, AP, AE>,
+fn run<S: ScanStorage<Color = Rgb565>>(
+    renderer: &mut Renderer<Tables, S>,
     cache: &mut VertexCache<VM>,
     scene: &Scene,
     syst: &mut SYST,
-) -> Result<Outcome, zline::RenderError<Infallible>>
-where
-    D: DepthFormat,
-{
+) -> Result<Outcome, zline::RenderError<Infallible>> {
     let mut crc = Crc32Sink::new();
     // Once per mesh, outside the timed frame.
-    let sphere = zline::scene::bounding_sphere(scene.mesh)?;
+    let sphere = zline::front::scene::bounding_sphere(scene.mesh)?;
     frame::render_frame(
         renderer,
         cache,
         scene.mesh,
         sphere,
-        scene.yaw,
-        scene.pitch,
+        (scene.yaw, scene.pitch),
         &mut crc,
     )?;
-    let mut discard = FnSink(|_: u16, _: &[Rgb565], _: &[D::Value]| Ok::<(), Infallible>(()));
+    let mut discard = FnSink(
+        |_: u16, _: &[Rgb565], _: &[<S::Depth as DepthFormat>::Value]| Ok::<(), Infallible>(()),
+    );
     let (result, ticks) = ticks(syst, || {
         frame::render_frame(
             renderer,
             cache,
             scene.mesh,
             sphere,
-            scene.yaw,
-            scene.pitch,
+            (scene.yaw, scene.pitch),
             &mut discard,
         )
     });

@@ -2,7 +2,7 @@
 //! (`zline::methods::ReferenceFrame`, `examples/render.rs`), restated here
 //! in `f32` for the peers.
 //!
-//! * The mesh is an OBJ file read by `zline::methods::HostMesh::from_obj`;
+//! * The mesh is an OBJ file read by `zline::host::HostMesh::from_obj`;
 //!   the peers draw each face as the fan of triangles from its corner 0,
 //!   and every triangle keeps the id (index) of its face.
 //! * Normalise `p' = (p - c) / r` (`c` the centre of the bounding box of
@@ -24,8 +24,9 @@
 
 use std::path::Path;
 
-use zline::mesh::Mesh as _;
-use zline::methods::{HostMesh, ReferenceView};
+use zline::front::mesh::Mesh as _;
+use zline::host::HostMesh;
+use zline::methods::ReferenceView;
 
 /// Face id of pixels that no face covers.
 pub const BACKGROUND: u32 = u32::MAX;
@@ -249,7 +250,7 @@ impl Scene {
     /// zline's `Shading::lambert()` constants (warm white, light from the
     /// upper left behind the viewer, 20 % ambient) of the normal in view
     /// space. The normal is the face's (Newell) normal, or, for a face that
-    /// is not planar (`zline::mesh::Mesh::face_is_planar`), the triangle's
+    /// is not planar (`zline::front::mesh::Mesh::face_is_planar`), the triangle's
     /// own, as zline's pipeline and reference shade such faces.
     pub fn triangle_colors(&self, view: &View) -> Vec<u16> {
         let mv = mul(&view.view_matrix(), &self.model(view));

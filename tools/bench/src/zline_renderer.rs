@@ -1,53 +1,82 @@
 //! zline behind the [`Renderer`] trait. Everything that depends on zline's
 //! rendering API is in this file, so an API change is adapted here alone.
 
-use zline::Depth16;
-use zline::geometry::Mat4 as ZMat4;
+use embedded_graphics::pixelcolor::Rgb565;
+use embedded_graphics::pixelcolor::raw::RawU16;
+use embedded_graphics::prelude::IntoStorage;
+use zline::front::geometry::Mat4 as ZMat4;
+use zline::front::scene::{Camera, Cull as ZCull, VertexCache, draw_mesh, reference_model};
+use zline::front::shade::Shading;
+use zline::host::{ScanVecs, TableVecs, host_renderer};
 use zline::methods::HostScanline;
-use zline::scene::{Camera, Cull as ZCull, reference_model};
-use zline::shade::Shading;
+use zline::{Capacities, Depth16, FnSink, Renderer as ZRenderer};
 
+use crate::framebuffer::Frame565;
 use crate::renderer::Renderer;
-use crate::view::{Cull, Scene, View, rgb565};
+use crate::view::{Cull, Scene, View};
 
-/// zline's scanline core with 16-bit depth, host-sized
-/// (`zline::methods::HostScanline<Depth16>`).
+/// zline's scanline core with 16-bit depth, in `Vec` storage sized for the
+/// mesh.
 ///
-/// Timed region (one `HostScanline::render` call): clear the polygon
-/// tables, transform every vertex (model matrix from
-/// `zline::scene::reference_model`, `Camera::reference`), cull (when
-/// `--cull back`: faces running clockwise on screen, by their projected
-/// winding), clip, project, shade each face (`Shading::lambert()`), build
-/// the edge and polygon tables, scan every row with the z row, and copy
-/// each finished row into the host frame (face id, Rgb888 colour and depth
-/// per pixel). Gives face ids.
+/// Timed region (one frame): clear the tables, `draw_mesh` (transform
+/// every vertex with the model matrix from
+/// `zline::front::scene::reference_model` and `Camera::reference`; cull,
+/// when `--cull back`, faces running clockwise on screen; clip; project;
+/// shade each face with `Shading::lambert()`, converted to Rgb565; offer
+/// it to the tables), then prepare the tables (bucket sort by first row)
+/// and scan every row with the one z row, each finished row copied into the
+/// same Rgb565 frame the peers draw into. Shading: each face's colour
+/// from the same per-face Lambert table the peers use
+/// ([`Scene::face_colors`], computed before timing); zline's shading
+/// closure looks it up by face id. Face ids (untimed) come from a second,
+/// host-sized render of the same view.
 pub struct ZlineRenderer<'a> {
     scene: &'a Scene,
-    host: HostScanline<Depth16>,
+    renderer: ZRenderer<TableVecs<Rgb565>, ScanVecs<Rgb565, Depth16>>,
+    cache: Box<VertexCache<65536>>,
+    frame: Frame565,
     model: ZMat4,
     camera: Camera,
     cull: ZCull,
-    shading: Shading,
+    colors: Vec<Rgb565>,
+    view: View,
 }
 
 impl<'a> ZlineRenderer<'a> {
-    /// Builds the renderer for `view` (about 20 MB on the stack first:
-    /// call on a thread with a large stack).
+    /// Builds the renderer for `view`, its tables sized for the mesh.
     pub fn new(scene: &'a Scene, view: &View) -> Result<Self, String> {
-        let host = HostScanline::<Depth16>::new(view.width, view.height)
+        let mesh = &scene.mesh;
+        let corners = mesh.corners.len();
+        // Room for every face's fan and for the corners clipping adds.
+        let caps = Capacities {
+            width: usize::from(view.width),
+            vertices: (mesh.positions.len() * 2 + 1024).min(1 << 16),
+            polygons: corners + 64,
+            corners: 3 * corners + 256,
+            active_polygons: corners + 64,
+            pooled_edges: 4096,
+        };
+        let renderer = host_renderer(&caps, view.width, view.height, Rgb565::new(0, 0, 0))
             .map_err(|e| format!("zline: {e}"))?;
-        let model = reference_model(&scene.mesh, view.yaw_deg, view.pitch_deg)
+        let model = reference_model(mesh, view.yaw_deg, view.pitch_deg)
             .map_err(|e| format!("zline: {e}"))?;
         Ok(Self {
             scene,
-            host,
+            renderer,
+            cache: Box::default(),
+            frame: Frame565::new(usize::from(view.width), usize::from(view.height)),
             model,
             camera: Camera::reference(view.width, view.height),
             cull: match view.cull {
                 Cull::None => ZCull::None,
                 Cull::Back => ZCull::Back,
             },
-            shading: Shading::lambert(),
+            colors: scene
+                .face_colors(view)
+                .into_iter()
+                .map(|raw| Rgb565::from(RawU16::new(raw)))
+                .collect(),
+            view: *view,
         })
     }
 }
@@ -58,29 +87,47 @@ impl Renderer for ZlineRenderer<'_> {
     }
 
     fn render(&mut self) -> Result<(), String> {
-        self.host
-            .render(
-                &self.scene.mesh,
-                &self.model,
-                &self.camera,
-                self.cull,
-                &self.shading,
-            )
+        self.renderer.clear();
+        let colors = &self.colors;
+        draw_mesh(
+            &mut self.renderer,
+            &mut *self.cache,
+            &self.scene.mesh,
+            &self.model,
+            &self.camera,
+            self.cull,
+            |f| colors[f.face as usize],
+        )
+        .map_err(|e| format!("zline: {e}"))?;
+        let width = self.frame.width;
+        let pixels = &mut self.frame.pixels;
+        self.renderer
+            .render(&mut FnSink(|y: u16, colors: &[Rgb565], _: &[u16]| {
+                let row = &mut pixels[usize::from(y) * width..][..width];
+                for (out, c) in row.iter_mut().zip(colors) {
+                    *out = c.into_storage();
+                }
+                Ok::<(), ()>(())
+            }))
             .map(|_| ())
-            .map_err(|e| format!("zline: {e}"))
+            .map_err(|e| format!("zline: {e:?}"))
     }
 
     fn face_ids(&mut self) -> Result<Option<Vec<u32>>, String> {
-        Ok(Some(self.host.frame().faces.clone()))
+        let mut host = HostScanline::<Depth16>::new(self.view.width, self.view.height)
+            .map_err(|e| format!("zline: {e}"))?;
+        host.render(
+            &self.scene.mesh,
+            &self.model,
+            &self.camera,
+            self.cull,
+            &Shading::FaceId,
+        )
+        .map_err(|e| format!("zline: {e}"))?;
+        Ok(Some(host.frame().faces.clone()))
     }
 
     fn rgb565(&self) -> Vec<u16> {
-        use embedded_graphics::pixelcolor::RgbColor;
-        self.host
-            .frame()
-            .colors
-            .iter()
-            .map(|c| rgb565(c.r(), c.g(), c.b()))
-            .collect()
+        self.frame.pixels.clone()
     }
 }

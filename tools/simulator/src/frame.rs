@@ -13,10 +13,12 @@ use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use embedded_graphics_simulator::SimulatorDisplay;
-use zline::geometry::{Mat4, Vec3};
-use zline::methods::{BACKGROUND, HostMesh, ReferenceFrame, ReferenceView};
-use zline::scene::{Camera, Cull, VertexCache, draw_mesh, reference_model};
-use zline::shade::Shading;
+use zline::front::geometry::{Mat4, Vec3};
+use zline::front::scene::{Camera, Cull, VertexCache, draw_mesh, reference_model};
+use zline::front::shade::Shading;
+use zline::host::HostMesh;
+use zline::host::{ScanVecs, TableVecs, host_renderer};
+use zline::methods::{BACKGROUND, ReferenceFrame, ReferenceView};
 use zline::{Depth16, Depth24, DepthFormat, DrawTargetSink, RenderError, Renderer};
 
 /// Most vertices a mesh may have (the vertex cache's capacity).
@@ -25,7 +27,7 @@ pub const MAX_MESH_VERTICES: usize = 65_536;
 /// The core with host-sized capacities: rows up to 4096 pixels, 65,536
 /// table vertices, 262,144 polygons, 786,432 corners, 32,768 active
 /// polygons, 65,536 pooled edges, 32 corners per polygon.
-type WindowRenderer<D> = Renderer<Rgb888, D, 4096, 65_536, 262_144, 786_432, 32_768, 65_536>;
+type WindowRenderer<D> = Renderer<TableVecs<Rgb888>, ScanVecs<Rgb888, D>>;
 
 /// Which renderer draws the frame.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -186,8 +188,9 @@ impl Renderers {
     /// a thread with a large stack.
     pub fn new(width: u16, height: u16) -> Result<Self, String> {
         let e = |e: zline::Error| format!("renderer: {e}");
-        let z16 = Box::new(WindowRenderer::with_size(width, height, Rgb888::BLACK).map_err(e)?);
-        let z24 = Box::new(WindowRenderer::with_size(width, height, Rgb888::BLACK).map_err(e)?);
+        let caps = &zline::methods::HOST_CAPACITIES;
+        let z16 = Box::new(host_renderer(caps, width, height, Rgb888::BLACK).map_err(e)?);
+        let z24 = Box::new(host_renderer(caps, width, height, Rgb888::BLACK).map_err(e)?);
         Ok(Self {
             width,
             height,
@@ -319,7 +322,7 @@ mod tests {
     #[test]
     fn every_mode_draws() {
         let run = || {
-            let mesh = zline::methods::shapes::by_name("torus-knot").unwrap();
+            let mesh = zline::host::shapes::by_name("torus-knot").unwrap();
             let (w, h) = (96u16, 72u16);
             let mut r = Renderers::new(w, h).unwrap();
             let size = Size::new(u32::from(w), u32::from(h));
@@ -363,11 +366,6 @@ mod tests {
             assert!(scan.iter().filter(|&&x| x).count() > 500);
             assert!(differ < 40, "{differ} pixels differ in coverage");
         };
-        std::thread::Builder::new()
-            .stack_size(512 << 20)
-            .spawn(run)
-            .unwrap()
-            .join()
-            .unwrap();
+        run();
     }
 }

@@ -47,7 +47,7 @@ use embedded_graphics_simulator::sdl2::Keycode;
 use embedded_graphics_simulator::{
     OutputSettingsBuilder, SimulatorDisplay, SimulatorEvent, Window,
 };
-use zline::scene::Cull;
+use zline::front::scene::Cull;
 
 use frame::{Method, Renderers, SHADINGS, View};
 use options::{KEYS, Options, USAGE};
@@ -91,26 +91,14 @@ fn run(args: &[String]) -> Result<(), Failure> {
     }
     let mesh = options::load_model(&o.model).map_err(Failure::Other)?;
     let (w, h) = (o.width, o.height);
-    // The renderers are built on the stack before they move to the heap.
-    // The window itself stays on the main thread (SDL wants that on some
-    // platforms).
-    let renderers = std::thread::Builder::new()
-        .stack_size(512 << 20)
-        .spawn(move || Renderers::new(w, h))
-        .map_err(|e| Failure::Other(format!("cannot start a thread: {e}")))?
-        .join()
-        .map_err(|_| Failure::Other("building the renderers failed".into()))?
-        .map_err(Failure::Other)?;
+    // The renderers' storage is in `Vec`s, sized once for any mesh.
+    let renderers = Renderers::new(w, h).map_err(Failure::Other)?;
     show(&o, &mesh, renderers).map_err(Failure::Other)
 }
 
 /// The window loop: draw a whole frame (and the overlay), show it, handle
 /// the keys.
-fn show(
-    o: &Options,
-    mesh: &zline::methods::HostMesh,
-    mut renderers: Renderers,
-) -> Result<(), String> {
+fn show(o: &Options, mesh: &zline::host::HostMesh, mut renderers: Renderers) -> Result<(), String> {
     let mut display =
         SimulatorDisplay::<Rgb888>::new(Size::new(u32::from(o.width), u32::from(o.height)));
     let settings = OutputSettingsBuilder::new().scale(o.scale).build();

@@ -2,7 +2,7 @@
 
 use std::path::PathBuf;
 
-use zline::methods::{HostMesh, parse_size};
+use zline::host::{HostMesh, parse_size};
 
 /// The usage line, printed with `--help` and after a bad argument.
 pub const USAGE: &str = "usage: simulator [MODEL.obj | shape:NAME] [--size WxH] [--scale N] [--yaw DEG] [--pitch DEG] [--no-overlay]";
@@ -66,8 +66,8 @@ pub fn parse_args(args: &[String]) -> Result<Options, String> {
                     .filter(|n| (1..=16).contains(n))
                     .ok_or("--scale: expected a whole number 1 to 16")?
             }
-            "--yaw" => o.yaw = parse_angle(arg, value()?)?,
-            "--pitch" => o.pitch = parse_angle(arg, value()?)?,
+            "--yaw" => o.yaw = zline::host::parse_angle(arg, value()?)?,
+            "--pitch" => o.pitch = zline::host::parse_angle(arg, value()?)?,
             "--no-overlay" => o.overlay = false,
             "-h" | "--help" => o.help = true,
             s if s.starts_with("--") => return Err(format!("unknown option {s}")),
@@ -81,17 +81,10 @@ pub fn parse_args(args: &[String]) -> Result<Options, String> {
     Ok(o)
 }
 
-fn parse_angle(name: &str, s: &str) -> Result<f32, String> {
-    s.parse::<f32>()
-        .ok()
-        .filter(|a| a.is_finite())
-        .ok_or_else(|| format!("{name}: expected degrees, got '{s}'"))
-}
-
 /// Loads an OBJ file, or a built-in mesh for `shape:NAME`, and checks that
 /// the window's renderer can take it.
 pub fn load_model(path: &std::path::Path) -> Result<HostMesh, String> {
-    let mesh = zline::methods::load_model(&path.to_string_lossy())?;
+    let mesh = zline::host::load_model(&path.to_string_lossy())?;
     if mesh.positions.len() > crate::frame::MAX_MESH_VERTICES {
         return Err(format!(
             "{}: {} vertices, the window takes at most {}",

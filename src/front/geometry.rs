@@ -264,6 +264,28 @@ impl Mat4 {
     }
 }
 
+/// Newell's normal of a polygon (not normalised): the sum of the cross
+/// products of the fan from its first corner, relative to that corner so
+/// no large coordinates multiply. Its length is twice the polygon's area;
+/// for a triangle it is the cross product of two edges. The one place the
+/// front end computes a face normal (planarity, shading).
+pub fn newell_normal(corners: impl IntoIterator<Item = [f32; 3]>) -> Vec3 {
+    let mut corners = corners.into_iter();
+    let Some(origin) = corners.next().map(Vec3::from_array) else {
+        return Vec3::default();
+    };
+    let Some(mut p) = corners.next().map(|q| Vec3::from_array(q) - origin) else {
+        return Vec3::default();
+    };
+    let mut n = Vec3::default();
+    for q in corners {
+        let q = Vec3::from_array(q) - origin;
+        n = n + p.cross(q);
+        p = q;
+    }
+    n
+}
+
 /// Degrees to radians.
 pub fn radians(degrees: f32) -> f32 {
     degrees * (core::f32::consts::PI / 180.0)

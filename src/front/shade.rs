@@ -1,8 +1,8 @@
 //! Face shading, chosen per draw: every face gets one colour from its
-//! [`FaceInfo`](crate::scene::FaceInfo).
+//! [`FaceInfo`](crate::front::scene::FaceInfo).
 
-use crate::geometry::Vec3;
-use crate::scene::FaceInfo;
+use crate::front::geometry::Vec3;
+use crate::front::scene::FaceInfo;
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 
 /// How faces are coloured.
@@ -54,15 +54,15 @@ impl Shading {
                 ambient,
             } => {
                 let n = if face.front {
-                    face.normal
+                    face.normal()
                 } else {
-                    -face.normal
+                    -face.normal()
                 };
                 let k = ambient + (1.0 - ambient) * n.dot(light).max(0.0);
                 scale(base, k)
             }
             Shading::Depth { near, far } => {
-                let t = ((far - face.view_depth) / (far - near)).clamp(0.0, 1.0);
+                let t = ((far - face.view_depth()) / (far - near)).clamp(0.0, 1.0);
                 scale(Rgb888::WHITE, t)
             }
             Shading::FaceId => face_id_color(face.face),
@@ -96,13 +96,8 @@ pub fn face_id_color(id: u32) -> Rgb888 {
 mod tests {
     use super::*;
 
-    fn face(normal: Vec3, front: bool, depth: f32) -> FaceInfo {
-        FaceInfo {
-            face: 7,
-            normal,
-            front,
-            view_depth: depth,
-        }
+    fn face(normal: Vec3, front: bool, depth: f32) -> FaceInfo<'static> {
+        FaceInfo::new(7, front, normal, depth)
     }
 
     #[test]

@@ -6,7 +6,7 @@ use std::f32::consts::TAU;
 use std::vec;
 use std::vec::Vec;
 
-use super::HostMesh;
+use crate::host::HostMesh;
 
 impl HostMesh {
     fn vertex(&mut self, p: [f32; 3]) -> u16 {

@@ -31,8 +31,8 @@
 //! The tests below step edges between the guard band's corners over every
 //! row they cover and compare each crossing with the exact `i128` value.
 
-use crate::fixed::{HALF_PIXEL, SUBPIXEL_STEPS, first_sample_at_or_after};
-use crate::vertex::ScreenVertex;
+use crate::raster::fixed::{HALF_PIXEL, SUBPIXEL_STEPS};
+use crate::raster::vertex::ScreenVertex;
 
 /// Edge-table entry, packed in 4 bytes: the row where edges of a polygon
 /// start below its first row (high 12 bits, the bucket), and the polygon's
@@ -40,7 +40,7 @@ use crate::vertex::ScreenVertex;
 /// as integers sorts them by bucket. One entry stands for every edge of the
 /// polygon that starts on that row.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
-pub(crate) struct EdgeEntry(u32);
+pub struct EdgeEntry(u32);
 
 /// Bits of [`EdgeEntry`] holding the polygon's position.
 const POSITION_BITS: u32 = 20;
@@ -48,38 +48,32 @@ const POSITION_BITS: u32 = 20;
 pub(crate) const MAX_POLYGONS: usize = 1 << POSITION_BITS;
 
 impl EdgeEntry {
+    /// An entry for unused slots.
+    pub const ZERO: Self = Self(0);
+    /// Lowest bit of the row.
+    pub(crate) const ROW_SHIFT: u32 = POSITION_BITS;
+
+    /// Six bits of the row from bit `shift` on: a radix-sort bucket.
+    #[inline]
+    pub(crate) fn bucket(self, shift: u32) -> u8 {
+        ((self.0 >> shift) & 63) as u8
+    }
+
     /// Edges of the polygon at `position` starting on `row` (below 4096).
-    pub fn new(row: u16, position: usize) -> Self {
+    pub(crate) fn new(row: u16, position: usize) -> Self {
         debug_assert!(position < MAX_POLYGONS && u32::from(row) < 1 << (32 - POSITION_BITS));
         Self((u32::from(row) << POSITION_BITS) | position as u32)
     }
 
     /// The row the edges start on.
-    pub fn row(self) -> u16 {
+    pub(crate) fn row(self) -> u16 {
         (self.0 >> POSITION_BITS) as u16
     }
 
     /// Position of the polygon in the polygon table.
-    pub fn position(self) -> usize {
+    pub(crate) fn position(self) -> usize {
         (self.0 & ((1 << POSITION_BITS) - 1)) as usize
     }
-
-    /// First visible row of an edge whose top vertex is at sub-pixel `top_y`.
-    pub fn first_row(top_y: i32) -> u16 {
-        first_sample_at_or_after(top_y).clamp(0, i32::from(u16::MAX)) as u16
-    }
-}
-
-/// Rows `[first, end)` that an edge from `a` to `b` covers, unclipped, with
-/// its ends ordered top first. `None` for horizontal edges.
-pub(crate) fn edge_rows(
-    a: ScreenVertex,
-    b: ScreenVertex,
-) -> Option<(ScreenVertex, ScreenVertex, i32, i32)> {
-    let (top, bottom) = if a.y < b.y { (a, b) } else { (b, a) };
-    let first = first_sample_at_or_after(top.y);
-    let end = first_sample_at_or_after(bottom.y);
-    (first < end).then_some((top, bottom, first, end))
 }
 
 /// `(q, r)` with `q = ceil(num / den)` and `r = q·den - num` in `[0, den)`,
@@ -98,16 +92,17 @@ fn ceil_div_rem(num: i64, den: i32) -> (i32, i32) {
     if r > 0 { (q + 1, den - r) } else { (q, -r) }
 }
 
-/// Active-edge-table entry: an edge crossing the current scanline.
+/// Active-edge-table entry (opaque): an edge crossing the current
+/// scanline.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct ActiveEdge {
+pub struct ActiveEdge {
     /// Next edge of the same polygon (or next free entry), an index into
     /// the active edge pool.
-    pub next: u32,
+    pub(crate) next: u32,
     /// First pixel at or right of the crossing on the current row.
-    pub x: i32,
+    pub(crate) x: i32,
     /// One past the last row the edge covers.
-    pub end_row: u16,
+    pub(crate) end_row: u16,
     /// `x·den - numerator`, always in `[0, den)`.
     remainder: i32,
     /// Whole pixels `x` moves per row (`floor(dx / dy)`).
@@ -130,7 +125,7 @@ impl ActiveEdge {
         den: 1,
     };
 
-    /// Starts stepping an edge at `row`, its first visible row, until
+    /// Starts stepping an edge at `row` (any row it covers) until
     /// `end_row`, one past its last; `next` links it into its polygon's
     /// list.
     ///
@@ -155,8 +150,13 @@ impl ActiveEdge {
         let numerator = i64::from(top.x - HALF_PIXEL) * i64::from(dy)
             + i64::from(sample_y - top.y) * i64::from(dx);
         let (x, remainder) = ceil_div_rem(numerator, den);
-        // floor(dx / dy) and its remainder, in one 32-bit division.
-        let (mut step, mut rest) = (dx / dy, dx % dy);
+        // floor(dx / dy) and its remainder, in one 32-bit division; an edge
+        // covering one row is never stepped and needs none.
+        let (mut step, mut rest) = if end_row > row + 1 {
+            (dx / dy, dx % dy)
+        } else {
+            (0, 0)
+        };
         if rest < 0 {
             step -= 1;
             rest += dy;
@@ -198,6 +198,7 @@ impl ActiveEdge {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::raster::fixed::first_sample_at_or_after;
 
     /// Exact crossing of the edge at `row`: the first pixel whose sample
     /// lies at or right of it.
@@ -229,7 +230,7 @@ mod tests {
         }
     }
 
-    const G: i32 = crate::fixed::GUARD_BAND - 1;
+    const G: i32 = crate::raster::fixed::GUARD_BAND - 1;
 
     #[test]
     fn extreme_edges_step_exactly() {

@@ -6,13 +6,13 @@
 //! - [`ObjReader`] streams [`Statement`]s, one per non-blank line, with no
 //!   storage beyond one face (at most `N` corners).
 //! - [`ObjMesh`] fills fixed-capacity arrays in the layout of
-//!   [`StaticMesh`] and implements [`Mesh`].
+//!   [`StaticMesh`] and implements [`Mesh`](crate::front::mesh::Mesh).
 //! - [`count`] only counts, to size an [`ObjMesh`] or check a file on the
 //!   host.
 //!
 //! ```
-//! use zline::mesh::Mesh;
-//! use zline::obj::ObjMesh;
+//! use zline::front::mesh::Mesh;
+//! use zline::front::obj::ObjMesh;
 //!
 //! let bytes = b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nf -4 -2 -1\n";
 //! // Up to 8 vertices, 16 corners, 4 faces, 4 corners per face.
@@ -26,7 +26,7 @@
 //! - `v x y z` is a vertex; numbers after `z` (`w`, vertex colours) are
 //!   ignored. Coordinates must be finite: `nan` and `inf` are errors.
 //! - `f` lists 3 or more corners (at most `N`, and at most
-//!   [`MAX_FACE_CORNERS`](crate::scene::MAX_FACE_CORNERS)), each `v`,
+//!   [`MAX_FACE_CORNERS`](crate::front::scene::MAX_FACE_CORNERS)), each `v`,
 //!   `v/vt`, `v//vn` or `v/vt/vn`. Only `v` is used, but `vt` and `vn` are
 //!   checked like `v` against the `vt` and `vn` lines.
 //!   Positive indices count from 1 and may name any line of their kind in
@@ -51,8 +51,8 @@ use core::fmt;
 
 use heapless::Vec;
 
-use crate::mesh::{Mesh, StaticMesh, face_of};
-use crate::scene::MAX_FACE_CORNERS;
+use crate::front::mesh::{MeshArrays, StaticMesh};
+use crate::front::scene::MAX_FACE_CORNERS;
 
 /// Most vertices a file may define: corners are `u16`.
 pub const MAX_VERTICES: usize = 1 << 16;
@@ -487,7 +487,7 @@ pub enum Statement<'a, const N: usize> {
 /// file. After an error the iterator ends.
 ///
 /// ```
-/// use zline::obj::{ObjReader, Statement};
+/// use zline::front::obj::{ObjReader, Statement};
 ///
 /// let bytes = b"v 0 0 0\nvt 0 0\nv 1 0 0\nv 0 1 0\nf 1/1 2/1 3/1\n";
 /// let mut reader = ObjReader::<4>::new(bytes);
@@ -589,7 +589,7 @@ impl ObjCounts {
 /// [`MAX_FACE_CORNERS`] corners).
 ///
 /// ```
-/// let counts = zline::obj::count(b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n").unwrap();
+/// let counts = zline::front::obj::count(b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n").unwrap();
 /// assert_eq!((counts.vertices, counts.faces, counts.triangles), (4, 1, 2));
 /// ```
 pub fn count(bytes: &[u8]) -> Result<ObjCounts, ObjError> {
@@ -750,21 +750,19 @@ impl<const V: usize, const C: usize, const F: usize, const N: usize> ObjMesh<V, 
     }
 }
 
-impl<const V: usize, const C: usize, const F: usize, const N: usize> Mesh for ObjMesh<V, C, F, N> {
-    fn vertex_count(&self) -> usize {
-        self.positions.len()
+impl<const V: usize, const C: usize, const F: usize, const N: usize> MeshArrays
+    for ObjMesh<V, C, F, N>
+{
+    fn positions(&self) -> &[[f32; 3]] {
+        &self.positions
     }
 
-    fn position(&self, index: usize) -> [f32; 3] {
-        self.positions[index]
+    fn corners(&self) -> &[u16] {
+        &self.corners
     }
 
-    fn face_count(&self) -> usize {
-        self.face_starts.len()
-    }
-
-    fn face(&self, index: usize) -> &[u16] {
-        face_of(&self.corners, &self.face_starts, index)
+    fn face_starts(&self) -> &[u32] {
+        &self.face_starts
     }
 }
 

@@ -8,7 +8,7 @@
 //!   errors carry a real line, and what it accepts is a valid mesh.
 //! * [`core_scene`]: the scanline core on arbitrary screen-space polygons
 //!   (coordinates anywhere in the guard band, depths anywhere in range)
-//!   against the exact oracle ([`super::exact::check_frame`]): coverage
+//!   against the exact oracle ([`crate::methods::exact::check_frame`]): coverage
 //!   exact, depth within 1 LSB, or a documented `Err`.
 //! * [`pipeline`]: OBJ bytes and a camera through [`draw_mesh`] to rows:
 //!   every face accounted for exactly once, only capacity errors, every
@@ -20,18 +20,19 @@ use std::string::ToString;
 use std::vec;
 use std::vec::Vec;
 
-use super::HostMesh;
-use super::exact::check_frame;
-use crate::depth::{Depth16, Depth24, DepthFormat};
 use crate::error::{Error, RenderError};
-use crate::fixed::{DEPTH_MAX, GUARD_BAND, SUBPIXEL_STEPS};
-use crate::geometry::{Mat4, Vec3};
-use crate::mesh::{Mesh, StaticMesh};
-use crate::obj::{ObjMesh, ObjReader, Statement, count};
-use crate::scanline::{Admission, Renderer};
-use crate::scene::{Camera, Cull, DrawError, VertexCache, draw_mesh, reference_model};
+use crate::front::geometry::{Mat4, Vec3};
+use crate::front::mesh::{Mesh, StaticMesh};
+use crate::front::obj::{ObjMesh, ObjReader, Statement, count};
+use crate::front::scene::{Camera, Cull, DrawError, VertexCache, draw_mesh, reference_model};
+use crate::host::HostMesh;
+use crate::host::host_renderer;
+use crate::methods::exact::check_frame;
+use crate::raster::depth::{Depth16, Depth24, DepthFormat};
+use crate::raster::fixed::{DEPTH_MAX, GUARD_BAND, SUBPIXEL_STEPS};
+use crate::raster::vertex::ScreenVertex;
+use crate::raster::{Admission, Capacities};
 use crate::sink::FnSink;
-use crate::vertex::ScreenVertex;
 
 /// Reads fixed-size values from the front of the input; zeros once it
 /// runs out, so every input decodes to something.
@@ -195,8 +196,15 @@ where
     D::Value: Into<u64>,
 {
     // Room for every polygon: no capacity error is possible.
-    let mut renderer: Box<Renderer<u32, D, CORE_WIDTH, 96, 12, 96, 12, 96>> =
-        Box::new(Renderer::with_size(width, height, 0).expect("frame size"));
+    let caps = Capacities {
+        width: CORE_WIDTH,
+        vertices: 96,
+        polygons: 12,
+        corners: 96,
+        active_polygons: 12,
+        pooled_edges: 96,
+    };
+    let mut renderer = host_renderer::<u32, D>(&caps, width, height, 0).expect("frame size");
     let offered: Vec<(Vec<ScreenVertex>, bool)> = polygons
         .iter()
         .enumerate()
@@ -290,24 +298,27 @@ pub fn pipeline(data: &[u8]) {
     }
 }
 
-type PipelineRenderer<D> = Renderer<u32, D, PIPELINE_WIDTH, 4096, 1024, 4096, 256, 256>;
+/// Capacities of [`pipeline`]'s renderer.
+const PIPELINE_CAPACITIES: Capacities = Capacities {
+    width: PIPELINE_WIDTH,
+    vertices: 4096,
+    polygons: 1024,
+    corners: 4096,
+    active_polygons: 256,
+    pooled_edges: 256,
+};
 
 fn pipeline_check<D: DepthFormat>(mesh: &HostMesh, model: &Mat4, camera: &Camera, cull: Cull) {
-    let mut renderer: Box<PipelineRenderer<D>> =
-        Box::new(Renderer::with_size(camera.width, camera.height, 0).expect("frame size"));
+    let mut renderer =
+        host_renderer::<u32, D>(&PIPELINE_CAPACITIES, camera.width, camera.height, 0)
+            .expect("frame size");
     let mut cache: Box<VertexCache<4096>> = Box::default();
     if mesh.vertex_count() > 4096 {
         return;
     }
-    let stats = match draw_mesh(
-        &mut *renderer,
-        &mut *cache,
-        mesh,
-        model,
-        camera,
-        cull,
-        |f| f.face + 1,
-    ) {
+    let stats = match draw_mesh(&mut renderer, &mut *cache, mesh, model, camera, cull, |f| {
+        f.face + 1
+    }) {
         Ok(stats) => stats,
         Err(DrawError { error, face }) => {
             assert!(

@@ -1,17 +1,19 @@
 //! Screen-space vertices, the renderer's input, and their bounding
 //! rectangle.
 
+use core::ops::Range;
+
 use crate::error::Error;
-use crate::fixed::{
+use crate::raster::fixed::{
     DEPTH_MAX, GUARD_BAND, depth_from_f32, depth_from_f64, first_sample_at_or_after,
     subpixel_from_f32, subpixel_from_f64,
 };
 
 /// A vertex after projection: position on the sub-pixel grid and depth.
 ///
-/// `x` and `y` are in 1/256 pixel ([`SUBPIXEL_STEPS`](crate::fixed::SUBPIXEL_STEPS)),
+/// `x` and `y` are in 1/256 pixel ([`SUBPIXEL_STEPS`](crate::raster::fixed::SUBPIXEL_STEPS)),
 /// `z` is Q0.24 with 0 at the near plane and
-/// [`DEPTH_MAX`](crate::fixed::DEPTH_MAX) at the far plane (smaller is
+/// [`DEPTH_MAX`](crate::raster::fixed::DEPTH_MAX) at the far plane (smaller is
 /// nearer). `z` must be affine in screen space (e.g. `z_ndc`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct ScreenVertex {
@@ -113,12 +115,54 @@ impl ScreenRect {
     /// rectangle may hold, or `None` when it holds no pixel sample of the
     /// frame (so no polygon inside it can cover one).
     pub fn sample_rows(&self, width: u16, height: u16) -> Option<(u16, u16)> {
-        let columns = first_sample_at_or_after(self.x0).max(0)
-            ..first_sample_at_or_after(self.x1).min(i32::from(width));
-        let rows = first_sample_at_or_after(self.y0).max(0)
-            ..first_sample_at_or_after(self.y1).min(i32::from(height));
-        (!columns.is_empty() && !rows.is_empty()).then_some((rows.start as u16, rows.end as u16))
+        self.samples(width, height)
+            .map(|(_, rows)| (rows.start, rows.end))
     }
+
+    /// The columns and rows of a `width` x `height` frame whose samples
+    /// (pixel centres) lie in the rectangle, or `None` when it holds none.
+    /// As the fill rule: a sample on its left or top side is inside, on its
+    /// right or bottom side outside (no polygon inside covers it).
+    #[inline]
+    pub fn samples(&self, width: u16, height: u16) -> Option<(Range<u16>, Range<u16>)> {
+        let first_column = first_sample_at_or_after(self.x0).max(0);
+        let end_column = first_sample_at_or_after(self.x1).min(i32::from(width));
+        let first_row = first_sample_at_or_after(self.y0).max(0);
+        let end_row = first_sample_at_or_after(self.y1).min(i32::from(height));
+        (first_column < end_column && first_row < end_row).then_some((
+            first_column as u16..end_column as u16,
+            first_row as u16..end_row as u16,
+        ))
+    }
+}
+
+/// Whether the triangle `a b c` covers the sample point `(xs, ys)` (sub-pixel
+/// steps), by the core's fill rule: an edge counts when it spans the
+/// sample's row (top inclusive, bottom exclusive) and crosses it at or left
+/// of the sample; the sample is inside when an odd number count. This is
+/// exactly the rule the edge DDA applies, with no division: the core uses
+/// it to drop tiny triangles that cover none of the few samples in their
+/// bounding box before they take any table space.
+#[inline]
+pub fn triangle_covers(
+    a: ScreenVertex,
+    b: ScreenVertex,
+    c: ScreenVertex,
+    xs: i32,
+    ys: i32,
+) -> bool {
+    let crosses = |p: ScreenVertex, q: ScreenVertex| {
+        let (top, bottom) = if p.y < q.y { (p, q) } else { (q, p) };
+        if top.y == bottom.y || ys < top.y || ys >= bottom.y {
+            return false;
+        }
+        // crossing x = top.x + (ys - top.y)·dx/dy <= xs, with dy > 0; every
+        // product is below 2^44 inside the guard band.
+        let dx = i64::from(bottom.x) - i64::from(top.x);
+        let dy = i64::from(bottom.y) - i64::from(top.y);
+        (i64::from(top.x) - i64::from(xs)) * dy + (i64::from(ys) - i64::from(top.y)) * dx <= 0
+    };
+    crosses(a, b) ^ crosses(b, c) ^ crosses(c, a)
 }
 
 /// A polygon's outline as the core judges it: its number of corners, twice
@@ -139,7 +183,7 @@ pub struct Outline {
 /// Gathers an [`Outline`] corner by corner, with no buffer: the area is the
 /// fan of cross products from the first corner (exactly Newell's `c`).
 ///
-/// Feed it at most [`MAX_POLYGON_CORNERS`](crate::fixed::MAX_POLYGON_CORNERS)
+/// Feed it at most [`MAX_POLYGON_CORNERS`](crate::raster::fixed::MAX_POLYGON_CORNERS)
 /// corners: then every term is below `2^45` and the sum below `2^55`.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct OutlineBuilder {

@@ -23,10 +23,10 @@
 //! | one fan triangle's `a`, `b` term (`py·qz - pz·qy`) | `< 2^47` | `i64` |
 //! | one fan triangle's `c` term (`px·qy - py·qx`) | `< 2^45` | `i64` |
 //! | Newell `a`, `b` | [`NEWELL_AB_BOUND`] `= 2^57` | `i64` |
-//! | Newell `c` (twice the area, also [`OutlineBuilder`](crate::vertex::OutlineBuilder)'s sum) | [`NEWELL_C_BOUND`] `= 2^55` | `i64` |
+//! | Newell `c` (twice the area, also [`OutlineBuilder`](crate::raster::vertex::OutlineBuilder)'s sum) | [`NEWELL_C_BOUND`] `= 2^55` | `i64` |
 //! | gradient numerator `-a · 2^8` | `< 2^65` | `i128` |
 //! | `a·dx + b·dy` in [`Plane::value_at`] | `< 2^80` (`< 2^62` on its `i64` path, taken when `|a|, |b| < 2^39`) | `i128` / `i64` |
-//! | quotient of [`div_round_q16`] | `< 2^97` | `i128` |
+//! | quotient of `div_round_q16` (by [`Reciprocal`] when both operands are below `2^45`: `|N| < 2^63`, `D < 2^46`) | `< 2^97` | `i128` |
 //! | plane value returned by [`Plane::value_at`] | clamped to `±`[`PLANE_VALUE_LIMIT`] `= 2^60` | `i64` |
 //! | stepped gradient (else the polygon is `Exact`) | `< 2^40` per pixel | `i64` |
 //! | plane value of a stepped polygon anywhere in the guard band | `< 2^56 + 2^40` (so never clamped) | `i64` |
@@ -36,15 +36,15 @@
 //! they can) and check each bound and each result against `i128`
 //! arithmetic, with overflow checks on.
 
-use crate::fixed::{
-    HALF_PIXEL, MAX_POLYGON_CORNERS, PLANE_FRAC_BITS, SUBPIXEL_BITS, SUBPIXEL_STEPS, div_round_q16,
+use crate::raster::fixed::{
+    HALF_PIXEL, MAX_POLYGON_CORNERS, PLANE_FRAC_BITS, Reciprocal, SUBPIXEL_BITS, SUBPIXEL_STEPS,
 };
-use crate::vertex::ScreenVertex;
+use crate::raster::vertex::ScreenVertex;
 
 /// A gradient of this magnitude (plane units per pixel) or more changes
 /// depth by the whole depth range within one pixel: such a polygon is
 /// (nearly) edge-on and its depth is evaluated exactly per pixel instead.
-pub(crate) const STEEP_GRADIENT: i64 = 1 << (crate::fixed::DEPTH_BITS + PLANE_FRAC_BITS);
+pub(crate) const STEEP_GRADIENT: i64 = 1 << (crate::raster::fixed::DEPTH_BITS + PLANE_FRAC_BITS);
 
 /// Bound on `|a|` and `|b|` of Newell's normal.
 pub(crate) const NEWELL_AB_BOUND: u64 = 1 << 57;
@@ -62,7 +62,10 @@ const _: () = assert!(MAX_POLYGON_CORNERS <= 1 << 10);
 pub(crate) struct Plane {
     a: i64,
     b: i64,
+    #[cfg_attr(not(test), allow(dead_code))]
     c: i64,
+    /// Dividing by `c`, three times or more: by multiplication.
+    recip: Reciprocal,
     origin: ScreenVertex,
 }
 
@@ -102,7 +105,35 @@ impl Plane {
     /// The plane of a polygon; `None` when its projected area is zero.
     pub fn new(corners: impl IntoIterator<Item = ScreenVertex>) -> Option<Self> {
         let (a, b, c, origin) = newell(corners);
-        (c != 0).then_some(Self { a, b, c, origin })
+        (c != 0).then(|| Self {
+            a,
+            b,
+            c,
+            recip: Reciprocal::new(c),
+            origin,
+        })
+    }
+
+    /// The plane of a triangle through corner `o` (the same arithmetic as
+    /// [`Self::new`] over `[o, p, q]`); `None` when its area is zero.
+    #[inline]
+    pub fn triangle(o: ScreenVertex, p: ScreenVertex, q: ScreenVertex) -> Option<Self> {
+        let rel = |v: ScreenVertex| {
+            (
+                i64::from(v.x) - i64::from(o.x),
+                i64::from(v.y) - i64::from(o.y),
+                i64::from(v.z) - i64::from(o.z),
+            )
+        };
+        let ((px, py, pz), (qx, qy, qz)) = (rel(p), rel(q));
+        let c = px * qy - py * qx;
+        (c != 0).then(|| Self {
+            a: py * qz - pz * qy,
+            b: pz * qx - px * qz,
+            c,
+            recip: Reciprocal::new(c),
+            origin: o,
+        })
     }
 
     /// Exact plane value at sub-pixel point `(x, y)` (inside the guard
@@ -116,12 +147,16 @@ impl Plane {
         // 2^39 (then each product is below 2^61), which is every polygon of
         // ordinary size.
         const SMALL: u64 = 1 << 39;
-        let num = if self.a.unsigned_abs() < SMALL && self.b.unsigned_abs() < SMALL {
-            i128::from(-(self.a * dx + self.b * dy))
+        let offset = if self.a.unsigned_abs() < SMALL && self.b.unsigned_abs() < SMALL {
+            let num = -(self.a * dx + self.b * dy);
+            match self.recip.div_round_q16_small(num) {
+                Some(q) => i128::from(q),
+                None => self.recip.div_round_q16(i128::from(num)),
+            }
         } else {
-            -(i128::from(self.a) * i128::from(dx) + i128::from(self.b) * i128::from(dy))
+            let num = -(i128::from(self.a) * i128::from(dx) + i128::from(self.b) * i128::from(dy));
+            self.recip.div_round_q16(num)
         };
-        let offset = div_round_q16(num, self.c);
         let value = (i128::from(self.origin.z) << PLANE_FRAC_BITS) + offset;
         let limit = i128::from(PLANE_VALUE_LIMIT);
         value.clamp(-limit, limit) as i64
@@ -136,8 +171,17 @@ impl Plane {
     }
 
     /// `-coef / c` per pixel in plane units, rounded; `None` when steep.
+    #[inline]
     fn gradient(&self, coef: i64) -> Option<i64> {
-        let g = div_round_q16(-i128::from(coef) << SUBPIXEL_BITS, self.c);
+        // |coef| < 2^57, so coef · 2^8 fits i64 only when small: try the
+        // reciprocal on i64 first.
+        let g = match coef.checked_mul(-(1 << SUBPIXEL_BITS)) {
+            Some(n) => match self.recip.div_round_q16_small(n) {
+                Some(g) => i128::from(g),
+                None => self.recip.div_round_q16(i128::from(n)),
+            },
+            None => self.recip.div_round_q16(-i128::from(coef) << SUBPIXEL_BITS),
+        };
         (g.abs() < i128::from(STEEP_GRADIENT)).then_some(g as i64)
     }
 
@@ -151,7 +195,7 @@ impl Plane {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fixed::{DEPTH_MAX, GUARD_BAND, div_round_i128};
+    use crate::raster::fixed::{DEPTH_MAX, GUARD_BAND, div_round_i128};
     use proptest::prelude::*;
     use std::vec::Vec;
 
@@ -185,7 +229,7 @@ mod tests {
         assert!(a.unsigned_abs() < u128::from(NEWELL_AB_BOUND), "a = {a}");
         assert!(b.unsigned_abs() < u128::from(NEWELL_AB_BOUND), "b = {b}");
         assert!(c.unsigned_abs() < u128::from(NEWELL_C_BOUND), "c = {c}");
-        let mut outline = crate::vertex::OutlineBuilder::default();
+        let mut outline = crate::raster::vertex::OutlineBuilder::default();
         poly.iter().for_each(|&v| outline.add(v));
         assert_eq!(i128::from(outline.finish().twice_area), c);
         let Some(plane) = Plane::new(poly.iter().copied()) else {

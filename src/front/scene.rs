@@ -13,9 +13,9 @@
 //! 3. **Frustum**: a face whose corners all lie outside one frustum plane is
 //!    culled ([`DrawStats::outside`]).
 //! 4. **Clipping**: a face with a corner behind the near plane, beyond the
-//!    far plane, or outside the guard band ([`GUARD_BAND_PX`] pixels
+//!    far plane, or outside the clipping band ([`CLIP_BAND_PX`] pixels
 //!    around the frame's centre) is clipped in homogeneous space, in `f64`
-//!    ([`crate::clip`]): cut, never dropped or turned inside out, with the
+//!    ([`crate::front::clip`]): cut, never dropped or turned inside out, with the
 //!    cut edges within the sub-pixel grid of the exact ones. Corners that
 //!    needed no clipping keep their shared vertex, so clipped and unclipped
 //!    neighbours stay watertight.
@@ -25,9 +25,9 @@
 //!    run clockwise as seen by the viewer are culled. The test is exact, on
 //!    the sub-pixel grid the core uses.
 //! 7. **Shading**: the face's colour comes from a closure over [`FaceInfo`],
-//!    for example [`Shading::color`](crate::shade::Shading::color).
+//!    for example [`Shading::color`](crate::front::shade::Shading::color).
 //!
-//! A face that is not planar ([`crate::mesh::is_planar`]) has no single plane. It goes
+//! A face that is not planar ([`crate::front::mesh::is_planar`]) has no single plane. It goes
 //! through these steps as the fan of triangles from its first corner, each
 //! with the face's id.
 //!
@@ -39,23 +39,24 @@
 
 use core::fmt;
 
-use crate::clip::{self, ClipPoint, ClipVertex, Clipper};
 use crate::error::Error;
-use crate::fixed::MAX_POLYGON_CORNERS;
-use crate::geometry::{Mat4, Vec3, Vec4, radians};
-use crate::mesh::Mesh;
-use crate::scanline::{Admission, PolygonTables};
-use crate::vertex::{Outline, OutlineBuilder, ScreenVertex};
+use crate::front::clip::{self, ClipPoint, ClipVertex, Clipper};
+use crate::front::geometry::{Mat4, Vec3, Vec4, newell_normal, radians};
+use crate::front::mesh::Mesh;
+use crate::raster::fixed::MAX_POLYGON_CORNERS;
+use crate::raster::vertex::{Outline, OutlineBuilder, ScreenVertex};
+use crate::raster::{Admission, PolygonTables};
 
 /// Most corners a mesh face may have: clipping adds at most one corner per
 /// plane (six), and a polygon has at most
-/// [`MAX_POLYGON_CORNERS`](crate::fixed::MAX_POLYGON_CORNERS).
+/// [`MAX_POLYGON_CORNERS`](crate::raster::fixed::MAX_POLYGON_CORNERS).
 pub const MAX_FACE_CORNERS: usize = MAX_POLYGON_CORNERS - 6;
 /// Half-width of the band around the frame's centre, in pixels, inside
 /// which vertices are projected as they are. Faces reaching beyond it are
-/// clipped to it. It is half the core's guard band, so rounding can never
-/// push a vertex out of the core's range.
-pub const GUARD_BAND_PX: f32 = 4096.0;
+/// clipped to it. It is half the core's guard band
+/// ([`GUARD_BAND_PX`](crate::raster::fixed::GUARD_BAND_PX)), so rounding
+/// can never push a vertex out of the core's range.
+pub const CLIP_BAND_PX: f32 = (crate::raster::fixed::GUARD_BAND_PX / 2) as f32;
 
 /// A camera: view and projection matrices and the frame they map to.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -184,17 +185,90 @@ pub enum Cull {
     Back,
 }
 
-/// What a shading closure knows about a face.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct FaceInfo {
+/// What a shading closure knows about a face. The face's index and side
+/// are at hand; its normal and depth are computed only when asked for
+/// ([`Self::normal`], [`Self::view_depth`]), so a shader that colours by
+/// face id pays nothing for them.
+#[derive(Clone, Copy)]
+pub struct FaceInfo<'a> {
     /// Index of the face in the mesh.
     pub face: u32,
-    /// Unit normal from the face's winding (Newell), in view space.
-    pub normal: Vec3,
     /// Whether the face's front (counter-clockwise side) faces the viewer.
     pub front: bool,
+    geometry: FaceGeometry<'a>,
+}
+
+/// Where a [`FaceInfo`]'s normal and depth come from.
+#[derive(Clone, Copy)]
+enum FaceGeometry<'a> {
+    /// From the mesh, on demand.
+    Mesh {
+        mesh: &'a dyn Mesh,
+        corners: &'a [u16],
+        model_view: &'a Mat4,
+    },
+    /// Given.
+    Known { normal: Vec3, view_depth: f32 },
+}
+
+impl core::fmt::Debug for FaceInfo<'_> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("FaceInfo")
+            .field("face", &self.face)
+            .field("front", &self.front)
+            .field("normal", &self.normal())
+            .field("view_depth", &self.view_depth())
+            .finish()
+    }
+}
+
+impl FaceInfo<'static> {
+    /// A face whose normal (unit, view space) and view depth are known.
+    pub const fn new(face: u32, front: bool, normal: Vec3, view_depth: f32) -> Self {
+        Self {
+            face,
+            front,
+            geometry: FaceGeometry::Known { normal, view_depth },
+        }
+    }
+}
+
+impl FaceInfo<'_> {
+    /// Unit normal from the face's winding (Newell's, from its corners), in
+    /// view space.
+    pub fn normal(&self) -> Vec3 {
+        match self.geometry {
+            FaceGeometry::Mesh {
+                mesh,
+                corners,
+                model_view,
+            } => {
+                let n = newell_normal(corners.iter().map(|&i| mesh.position(usize::from(i))));
+                model_view.transform_vector(n).normalized()
+            }
+            FaceGeometry::Known { normal, .. } => normal,
+        }
+    }
+
     /// View-space distance of the face's centroid along the view axis.
-    pub view_depth: f32,
+    pub fn view_depth(&self) -> f32 {
+        match self.geometry {
+            FaceGeometry::Mesh {
+                mesh,
+                corners,
+                model_view,
+            } => {
+                let mut sum = Vec3::default();
+                for &i in corners {
+                    sum = sum + Vec3::from_array(mesh.position(usize::from(i)));
+                }
+                let centroid = sum * (1.0 / corners.len().max(1) as f32);
+                let row = model_view.m[2];
+                -(row[0] * centroid.x + row[1] * centroid.y + row[2] * centroid.z + row[3])
+            }
+            FaceGeometry::Known { view_depth, .. } => view_depth,
+        }
+    }
 }
 
 /// Counts of what happened to a mesh's faces in one draw.
@@ -217,7 +291,7 @@ pub struct DrawStats {
     /// Faces skipped for a non-finite corner.
     pub non_finite: u32,
     /// Non-planar faces drawn as fans of triangles
-    /// ([`is_planar`](crate::mesh::is_planar)).
+    /// ([`is_planar`](crate::front::mesh::is_planar)).
     pub split: u32,
 }
 
@@ -344,8 +418,8 @@ impl Frame {
             width,
             height,
             guard: (
-                2.0 * GUARD_BAND_PX / width - 1.0,
-                2.0 * GUARD_BAND_PX / height - 1.0,
+                2.0 * CLIP_BAND_PX / width - 1.0,
+                2.0 * CLIP_BAND_PX / height - 1.0,
             ),
             cull,
         }
@@ -396,37 +470,22 @@ impl Frame {
         clip::guard_planes(f64::from(self.guard.0), f64::from(self.guard.1))
     }
 
-    /// Normal (model space, turned into view space) and the view distance
-    /// of the face's centroid. A triangle's normal is one cross product;
-    /// larger faces use Newell's sum.
-    fn face_info<M: Mesh + ?Sized>(
-        &self,
-        mesh: &M,
+    /// What the shader may ask about a face.
+    fn face_info<'a, M: Mesh>(
+        &'a self,
+        mesh: &'a M,
         face: usize,
-        corners: &[u16],
+        corners: &'a [u16],
         front: bool,
-    ) -> FaceInfo {
-        let position =
-            |k: usize| Vec3::from_array(mesh.position(usize::from(corners[k % corners.len()])));
-        let origin = position(0);
-        let (mut n, mut sum) = (Vec3::default(), origin);
-        for k in 1..corners.len().saturating_sub(1) {
-            let (p, q) = (position(k) - origin, position(k + 1) - origin);
-            n = n + p.cross(q);
-            sum = sum + position(k);
-        }
-        if corners.len() > 1 {
-            sum = sum + position(corners.len() - 1);
-        }
-        let centroid = sum * (1.0 / corners.len().max(1) as f32);
-        // Only the view-space z of the centroid is needed.
-        let row = self.model_view.m[2];
-        let view_z = row[0] * centroid.x + row[1] * centroid.y + row[2] * centroid.z + row[3];
+    ) -> FaceInfo<'a> {
         FaceInfo {
             face: face as u32,
-            normal: self.model_view.transform_vector(n).normalized(),
             front,
-            view_depth: -view_z,
+            geometry: FaceGeometry::Mesh {
+                mesh,
+                corners,
+                model_view: &self.model_view,
+            },
         }
     }
 }
@@ -451,7 +510,7 @@ pub fn draw_mesh<C, T, M, const VM: usize>(
 where
     C: Copy,
     T: PolygonTables<C> + ?Sized,
-    M: Mesh + ?Sized,
+    M: Mesh,
 {
     let vertex_count = mesh.vertex_count();
     let Some(slots) = cache.slots.get_mut(..vertex_count) else {
@@ -497,7 +556,7 @@ impl<C, T, M, S, const VM: usize> Draw<'_, T, M, S, VM>
 where
     C: Copy,
     T: PolygonTables<C> + ?Sized,
-    M: Mesh + ?Sized,
+    M: Mesh,
     S: FnMut(&FaceInfo) -> C,
 {
     fn face(&mut self, face: usize) -> Result<(), Error> {
@@ -523,6 +582,19 @@ where
     /// Draws one polygon of a face: the face itself, or one triangle of
     /// its fan.
     fn part(&mut self, face: usize, corners: &[u16]) -> Result<(), Error> {
+        if let &[i0, i1, i2] = corners {
+            // The common case: a triangle whose corners are all projected.
+            let ids = [self.slot(i0)?, self.slot(i1)?, self.slot(i2)?];
+            if ids.iter().all(|&id| id < NON_FINITE) {
+                let (frame, mesh, stats) = (self.frame, self.mesh, &mut *self.stats);
+                let shade = &mut *self.shade;
+                let admission = self.tables.offer_triangle(ids, |outline| {
+                    shade_front_face(frame, mesh, face, corners, outline, stats, shade)
+                })?;
+                self.count(admission);
+                return Ok(());
+            }
+        }
         let (mut clip, mut non_finite) = (false, false);
         for &index in corners {
             match self.classify(usize::from(index))? {
@@ -563,38 +635,54 @@ where
     /// table at once, so it is transformed only once per draw even when the
     /// first face that uses it is culled.
     fn classify(&mut self, index: usize) -> Result<Corner, Error> {
-        if index >= self.mesh.vertex_count() {
-            return Err(Error::MeshIndexOutOfRange);
-        }
-        let slot = match self.cache.slots[index] {
-            EMPTY => {
-                let p = self.frame.clip_position(self.mesh, index);
-                let stored = if !p.is_finite() {
-                    None
-                } else if self.frame.inside_guard(p) {
-                    self.frame.project(p)
-                } else {
-                    None
-                };
-                match stored {
-                    Some(v) => {
-                        let id = self.tables.add_vertex(v)?;
-                        if id >= NON_FINITE {
-                            return Err(Error::VertexTableFull);
-                        }
-                        id
-                    }
-                    None if self.frame.clip_position64(self.mesh, index).is_finite() => NEEDS_CLIP,
-                    None => NON_FINITE,
-                }
-            }
-            slot => slot,
-        };
-        self.cache.slots[index] = slot;
-        Ok(match slot {
+        let index = u16::try_from(index).map_err(|_| Error::MeshIndexOutOfRange)?;
+        Ok(match self.slot(index)? {
             NEEDS_CLIP => Corner::Clip,
             NON_FINITE => Corner::NonFinite,
             _ => Corner::Stored,
+        })
+    }
+
+    /// The cache slot of mesh vertex `index`, transforming and classifying
+    /// the vertex on its first use: its vertex-table index, `NEEDS_CLIP` or
+    /// `NON_FINITE`.
+    #[inline]
+    fn slot(&mut self, index: u16) -> Result<u16, Error> {
+        let index = usize::from(index);
+        match self.cache.slots.get(index) {
+            Some(&slot) if slot != EMPTY => return Ok(slot),
+            _ if index >= self.mesh.vertex_count() => return Err(Error::MeshIndexOutOfRange),
+            _ => {}
+        }
+        let slot = self.transform_vertex(index)?;
+        self.cache.slots[index] = slot;
+        Ok(slot)
+    }
+
+    /// Transforms mesh vertex `index` to clip space and classifies it: a
+    /// vertex that can be projected as it is goes into the vertex table at
+    /// once (its index is the slot); others need clipping or are not
+    /// finite. Once per vertex per draw (the profile's "transform" stage).
+    #[inline(never)]
+    fn transform_vertex(&mut self, index: usize) -> Result<u16, Error> {
+        let p = self.frame.clip_position(self.mesh, index);
+        let stored = if !p.is_finite() {
+            None
+        } else if self.frame.inside_guard(p) {
+            self.frame.project(p)
+        } else {
+            None
+        };
+        Ok(match stored {
+            Some(v) => {
+                let id = self.tables.add_vertex(v)?;
+                if id >= NON_FINITE {
+                    return Err(Error::VertexTableFull);
+                }
+                id
+            }
+            None if self.frame.clip_position64(self.mesh, index).is_finite() => NEEDS_CLIP,
+            None => NON_FINITE,
         })
     }
 
@@ -725,8 +813,9 @@ fn clip_face<M: Mesh + ?Sized>(
 /// The back-face test and the shading of a face the core accepted: its
 /// colour, or `None` (counted) for a culled back face. Screen y points
 /// down, so a face counter-clockwise as the viewer sees it has negative
-/// area.
-fn shade_front_face<C, M: Mesh + ?Sized>(
+/// area. (Not inlined: the profile's "shade" stage.)
+#[inline(never)]
+fn shade_front_face<C, M: Mesh>(
     frame: &Frame,
     mesh: &M,
     face: usize,

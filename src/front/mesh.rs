@@ -2,12 +2,14 @@
 //!
 //! [`StaticMesh`] borrows plain slices, so a mesh written as Rust statics
 //! (see `examples/obj2rust.rs`) stays in flash with no RAM copy. The OBJ
-//! reader's [`ObjMesh`](crate::obj::ObjMesh) holds the same layout in
+//! reader's [`ObjMesh`](crate::front::obj::ObjMesh) holds the same layout in
 //! fixed-capacity storage.
 //!
 //! Layout: `positions[i]` is vertex `i`; face `f` is the run of `corners`
 //! from `face_starts[f]` up to `face_starts[f + 1]` (or the end of
 //! `corners` for the last face), each corner a 0-based vertex index.
+
+use crate::front::geometry::{Vec3, newell_normal};
 
 /// A polygon mesh: positions and faces of 3 or more corners.
 pub trait Mesh {
@@ -48,7 +50,7 @@ pub enum MeshError {
     /// Fewer planarity bits than faces.
     BadPlanarity,
     /// A face has more corners than the pipeline draws
-    /// ([`MAX_FACE_CORNERS`](crate::scene::MAX_FACE_CORNERS)).
+    /// ([`MAX_FACE_CORNERS`](crate::front::scene::MAX_FACE_CORNERS)).
     FaceTooLarge {
         /// The offending face.
         face: usize,
@@ -70,7 +72,7 @@ impl<'a> StaticMesh<'a> {
     /// checked at compile time:
     ///
     /// ```
-    /// use zline::mesh::{Mesh, StaticMesh};
+    /// use zline::front::mesh::{Mesh, StaticMesh};
     /// static QUAD: StaticMesh<'static> = match StaticMesh::new(
     ///     &[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
     ///     &[0, 1, 2, 3],
@@ -107,7 +109,7 @@ impl<'a> StaticMesh<'a> {
             if end > corners.len() || start + 3 > end {
                 return Err(MeshError::BadFaceStarts { face: f });
             }
-            if end - start > crate::scene::MAX_FACE_CORNERS {
+            if end - start > crate::front::scene::MAX_FACE_CORNERS {
                 return Err(MeshError::FaceTooLarge { face: f });
             }
             f += 1;
@@ -158,28 +160,66 @@ pub(crate) fn face_of<'c>(corners: &'c [u16], face_starts: &[u32], index: usize)
     &corners[start..end]
 }
 
-impl Mesh for StaticMesh<'_> {
+/// A mesh in the one array layout every zline mesh keeps: positions,
+/// the corners of all faces face after face, where each face starts, and
+/// optional planarity bits. Whatever owns the arrays ([`StaticMesh`] in
+/// flash, [`ObjMesh`](crate::front::obj::ObjMesh) in fixed capacity, the
+/// host's `HostMesh` in `Vec`s) lends them here and gets [`Mesh`] for
+/// free, written once.
+pub trait MeshArrays {
+    /// Vertex positions.
+    fn positions(&self) -> &[[f32; 3]];
+    /// Corners (vertex indices) of all faces, face after face.
+    fn corners(&self) -> &[u16];
+    /// Where each face starts in [`Self::corners`].
+    fn face_starts(&self) -> &[u32];
+    /// Bit `f % 32` of word `f / 32` set when face `f` is planar; empty
+    /// when not known in advance.
+    fn planar_bits(&self) -> &[u32] {
+        &[]
+    }
+}
+
+impl<T: MeshArrays + ?Sized> Mesh for T {
     fn vertex_count(&self) -> usize {
-        self.positions.len()
+        self.positions().len()
     }
 
     fn position(&self, index: usize) -> [f32; 3] {
-        self.positions[index]
+        self.positions()[index]
     }
 
     fn face_count(&self) -> usize {
-        self.face_starts.len()
+        self.face_starts().len()
     }
 
     fn face(&self, index: usize) -> &[u16] {
-        face_of(self.corners, self.face_starts, index)
+        face_of(self.corners(), self.face_starts(), index)
     }
 
     fn face_is_planar(&self, index: usize) -> bool {
-        match self.planar.get(index / 32) {
+        match self.planar_bits().get(index / 32) {
             Some(word) => word & (1 << (index % 32)) != 0,
             None => is_planar(self, index),
         }
+    }
+}
+
+impl MeshArrays for StaticMesh<'_> {
+    fn positions(&self) -> &[[f32; 3]] {
+        self.positions
+    }
+
+    fn corners(&self) -> &[u16] {
+        self.corners
+    }
+
+    fn face_starts(&self) -> &[u32] {
+        self.face_starts
+    }
+
+    fn planar_bits(&self) -> &[u32] {
+        self.planar
     }
 }
 
@@ -210,36 +250,22 @@ pub fn is_planar<M: Mesh + ?Sized>(mesh: &M, index: usize) -> bool {
     if count <= 3 {
         return true;
     }
+    let position = |k: usize| Vec3::from_array(mesh.position(usize::from(corners[k])));
+    let normal = newell_normal(corners.iter().map(|&i| mesh.position(usize::from(i))));
     // Relative to corner 0, everything scaled by `count` so the centroid
     // needs no division; compared squared, so no square root either.
-    let p = |k: usize| {
-        let (a, o) = (
-            mesh.position(usize::from(corners[k])),
-            mesh.position(usize::from(corners[0])),
-        );
-        [a[0] - o[0], a[1] - o[1], a[2] - o[2]]
-    };
-    let (mut normal, mut sum) = ([0.0f32; 3], [0.0f32; 3]);
-    for k in 1..count {
-        let (a, b) = (p(k), p((k + 1) % count));
-        normal[0] += a[1] * b[2] - a[2] * b[1];
-        normal[1] += a[2] * b[0] - a[0] * b[2];
-        normal[2] += a[0] * b[1] - a[1] * b[0];
-        for axis in 0..3 {
-            sum[axis] += a[axis];
-        }
-    }
+    let origin = position(0);
+    let sum = (1..count).fold(Vec3::default(), |sum, k| sum + (position(k) - origin));
     let n = count as f32;
     let (mut radius2, mut deviation2) = (0.0f32, 0.0f32);
     for k in 0..count {
-        let q = p(k);
         // count · (corner - centroid)
-        let d = [q[0] * n - sum[0], q[1] * n - sum[1], q[2] * n - sum[2]];
-        radius2 = radius2.max(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-        let along = d[0] * normal[0] + d[1] * normal[1] + d[2] * normal[2];
+        let d = (position(k) - origin) * n - sum;
+        radius2 = radius2.max(d.dot(d));
+        let along = d.dot(normal);
         deviation2 = deviation2.max(along * along);
     }
-    let length2 = normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2];
+    let length2 = normal.dot(normal);
     // distance = along / |normal| <= tolerance · radius, squared.
     length2 > 0.0 && deviation2 <= PLANARITY_TOLERANCE * PLANARITY_TOLERANCE * radius2 * length2
 }

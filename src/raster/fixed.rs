@@ -145,6 +145,82 @@ pub(crate) fn div_round_q16(num: i128, den: i64) -> i128 {
 /// [`div_round_q16`]: `2·|num|·2^16 + |den| < 2^62 + 2^45`.
 const FAST_BOUND: u64 = 1 << 45;
 
+/// Division by one divisor many times, exactly: [`div_round_q16`] by a
+/// multiplication with a precomputed reciprocal instead of a division
+/// (a polygon's plane divides three quotients by its `c`).
+///
+/// For `0 < |den| < 2^45` and `|num| < 2^45` the quotient is
+/// `floor(N / D)` with `N = 2·num·2^16 + |den|` (`|N| < 2^63`) and
+/// `D = 2·|den|` (`< 2^46`): the estimate `(|N|·m) >> 64` with
+/// `m = floor((2^64 - 1) / D)` is low by less than one (the error is
+/// `|N|·(2^64/D - m)/2^64 < 2^63·2/2^64`), so one check of the remainder
+/// makes it exact. Other operands take [`div_round_q16`].
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Reciprocal {
+    den: i64,
+    /// `2·|den|`.
+    d: u64,
+    /// `floor((2^64 - 1) / d)`; 0 when the reciprocal path is off.
+    m: u64,
+}
+
+impl Reciprocal {
+    /// The reciprocal of `den` (non-zero).
+    #[inline]
+    pub fn new(den: i64) -> Self {
+        debug_assert!(den != 0);
+        let d = 2 * den.unsigned_abs();
+        let m = if den.unsigned_abs() < FAST_BOUND && den != 0 {
+            u64::MAX / d
+        } else {
+            0
+        };
+        Self { den, d, m }
+    }
+
+    /// `floor(u / d)` for `u < 2^63`, by the reciprocal.
+    #[inline]
+    fn floor_div(&self, u: u64) -> u64 {
+        let mut q = ((u128::from(u) * u128::from(self.m)) >> 64) as u64;
+        // The estimate is low by at most one.
+        if u - q * self.d >= self.d {
+            q += 1;
+        }
+        q
+    }
+
+    /// [`div_round_q16`]`(num, den)`, exactly.
+    #[inline]
+    pub fn div_round_q16(&self, num: i128) -> i128 {
+        match i64::try_from(num)
+            .ok()
+            .and_then(|n| self.div_round_q16_small(n))
+        {
+            Some(q) => i128::from(q),
+            None => div_round_q16(num, self.den),
+        }
+    }
+
+    /// [`div_round_q16`]`(num, den)` by the reciprocal alone: `None` unless
+    /// `|num| < 2^45` and `|den| < 2^45` (the reciprocal path).
+    #[inline]
+    pub fn div_round_q16_small(&self, num: i64) -> Option<i64> {
+        if self.m == 0 || num.unsigned_abs() >= FAST_BOUND {
+            return None;
+        }
+        let n = if self.den < 0 { -num } else { num };
+        // N = 2·n·2^16 + |den|, |N| < 2^63.
+        let big_n = (n << 17) + (self.d / 2) as i64;
+        Some(if big_n >= 0 {
+            self.floor_div(big_n as u64) as i64
+        } else {
+            // floor(-u / d) = -ceil(u / d) = -(floor((u - 1) / d) + 1).
+            let u = big_n.unsigned_abs();
+            -(self.floor_div(u - 1) as i64) - 1
+        })
+    }
+}
+
 /// First pixel whose sample point lies at or to the right of sub-pixel
 /// coordinate `x` (`ceil((x - HALF_PIXEL) / SUBPIXEL_STEPS)`). The same
 /// function gives the first row at or below a sub-pixel y.
@@ -215,6 +291,24 @@ mod tests {
     }
 
     proptest::proptest! {
+        /// The reciprocal gives the same quotient as the division, on both
+        /// of its paths.
+        #[test]
+        fn reciprocal_division_is_exact(
+            num in proptest::prop_oneof![
+                -(1i128 << 45) + 1..(1i128 << 45),
+                -1000i128..1000,
+                -(1i128 << 70)..(1i128 << 70),
+            ],
+            den in proptest::prop_oneof![
+                -(1i64 << 45) + 1..(1i64 << 45),
+                -1000i64..1000,
+                proptest::num::i64::ANY,
+            ].prop_filter("non-zero", |d| *d != 0),
+        ) {
+            proptest::prop_assert_eq!(Reciprocal::new(den).div_round_q16(num), div_round_i128(num << 16, i128::from(den)));
+        }
+
         /// Every path of `div_round_q16` is exact over its whole domain:
         /// operands drawn near each path's limits and anywhere else.
         #[test]
@@ -231,6 +325,33 @@ mod tests {
             ].prop_filter("non-zero", |d| *d != 0),
         ) {
             proptest::prop_assert_eq!(div_round_q16(num, den), div_round_i128(num << 16, i128::from(den)));
+        }
+    }
+
+    #[test]
+    fn reciprocal_division_at_the_limits() {
+        let limit = (1i64 << 45) - 1;
+        for den in [1, -1, 2, 3, 7, limit, -limit, 1 << 44, limit - 1, 12345] {
+            for num in [
+                0i128,
+                1,
+                -1,
+                2,
+                -2,
+                65535,
+                -65536,
+                limit.into(),
+                (-limit).into(),
+                (limit - 1).into(),
+                1 << 45,
+                -(1 << 45),
+            ] {
+                assert_eq!(
+                    Reciprocal::new(den).div_round_q16(num),
+                    div_round_i128(num << 16, i128::from(den)),
+                    "{num} / {den}"
+                );
+            }
         }
     }
 

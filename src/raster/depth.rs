@@ -10,19 +10,21 @@
 //! Convention for every format: **smaller is nearer**, the depth test is
 //! strict (`new < stored`), and the row is cleared to [`DepthFormat::CLEAR`]
 //! (the far plane), so a surface whose quantised depth is the far plane is
-//! not drawn. On exactly equal depth the polygon drawn first keeps the pixel.
+//! not drawn. On exactly equal depth the polygon added to the tables first
+//! keeps the pixel, whatever the order polygons are scanned in (the
+//! scanner keeps a row of tie-break keys beside the depth row).
 //!
 //! Every format stores the plane value rounded to the nearest step of its
 //! resolution, within one step (1 LSB) of the exactly rounded value of the
 //! exact plane; `tests/depth_bound.rs` checks this over full-width spans.
 
-use crate::fixed::PLANE_FRAC_BITS;
+use crate::raster::fixed::PLANE_FRAC_BITS;
 
 /// A depth-row format: the stored value type, its span accumulator and the
 /// conversions from plane units.
 pub trait DepthFormat {
     /// What one depth-row entry stores.
-    type Value: Copy + PartialOrd + core::fmt::Debug;
+    type Value: Copy + Ord + core::fmt::Debug;
     /// The per-pixel accumulator stepped along a span.
     type Accum: Copy;
     /// Value the row is cleared to: the far plane.
@@ -116,7 +118,7 @@ impl DepthFormat for Depth16 {
 impl DepthFormat for Depth24 {
     type Value = u32;
     type Accum = i64;
-    const CLEAR: u32 = crate::fixed::DEPTH_MAX;
+    const CLEAR: u32 = crate::raster::fixed::DEPTH_MAX;
     const NAME: &'static str = "z24";
     const BITS: u32 = 24;
 
@@ -127,7 +129,7 @@ impl DepthFormat for Depth24 {
             .checked_add(1 << (Z24_ACC_FRAC - 1))?;
         let step = step.checked_mul(1 << widen)?;
         let last = first.checked_add(step.checked_mul(i64::from(len) - 1)?)?;
-        let limit = i64::from(crate::fixed::DEPTH_MAX) << Z24_ACC_FRAC;
+        let limit = i64::from(crate::raster::fixed::DEPTH_MAX) << Z24_ACC_FRAC;
         let in_range = |v: i64| (0..limit).contains(&v);
         (in_range(first) && in_range(last)).then_some((first, step))
     }
@@ -143,8 +145,8 @@ impl DepthFormat for Depth24 {
     }
 
     fn quantize(plane_value: i64) -> u32 {
-        shift_round(plane_value, PLANE_FRAC_BITS).clamp(0, i64::from(crate::fixed::DEPTH_MAX))
-            as u32
+        shift_round(plane_value, PLANE_FRAC_BITS)
+            .clamp(0, i64::from(crate::raster::fixed::DEPTH_MAX)) as u32
     }
 }
 
@@ -161,7 +163,10 @@ mod tests {
         assert_eq!(Depth24::quantize(plane(10.49)), 10);
         assert_eq!(Depth24::quantize(plane(10.5)), 11);
         assert_eq!(Depth24::quantize(plane(-3.0)), 0);
-        assert_eq!(Depth24::quantize(plane(1e9)), crate::fixed::DEPTH_MAX);
+        assert_eq!(
+            Depth24::quantize(plane(1e9)),
+            crate::raster::fixed::DEPTH_MAX
+        );
         assert_eq!(Depth16::quantize(plane(256.0 * 7.49)), 7);
         assert_eq!(Depth16::quantize(plane(256.0 * 7.5)), 8);
         assert_eq!(Depth16::quantize(plane(-1.0)), 0);

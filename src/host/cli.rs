@@ -29,6 +29,14 @@ pub fn load_model(spec: &str) -> Result<HostMesh, String> {
     Ok(mesh)
 }
 
+/// An angle in degrees for option `name`: any finite number.
+pub fn parse_angle(name: &str, s: &str) -> Result<f32, String> {
+    s.parse::<f32>()
+        .ok()
+        .filter(|a| a.is_finite())
+        .ok_or_else(|| format!("{name}: expected degrees, got '{s}'"))
+}
+
 /// A frame size `WxH`, each side 1 to 4096.
 pub fn parse_size(s: &str) -> Result<(u16, u16), String> {
     let bad = || format!("--size: expected WxH with each side 1 to 4096, got '{s}'");
@@ -37,18 +45,16 @@ pub fn parse_size(s: &str) -> Result<(u16, u16), String> {
     Ok((side(w).ok_or_else(bad)?, side(h).ok_or_else(bad)?))
 }
 
-/// Runs a tool's `body` on a thread with a 512 MiB stack (a host-sized
-/// renderer is built on the stack before it moves to the heap). An `Err`
-/// is printed as `NAME: message` (then `usage`, if not empty) and exits
-/// with 2; a panic exits with 1.
+/// Runs a tool's `body` and reports how it ended: an `Err` is printed as
+/// `NAME: message` (then `usage`, if not empty) and exits with 2; a panic
+/// exits with 1. (It runs on a thread of its own so that a panic is caught
+/// and reported as a failure of the tool.)
 pub fn run_tool(
     name: &str,
     usage: &str,
     body: impl FnOnce() -> Result<(), String> + Send + 'static,
 ) -> ExitCode {
-    let worker = std::thread::Builder::new()
-        .stack_size(512 << 20)
-        .spawn(body);
+    let worker = std::thread::Builder::new().spawn(body);
     match worker.map(|w| w.join()) {
         Ok(Ok(Ok(()))) => ExitCode::SUCCESS,
         Ok(Ok(Err(message))) => {

@@ -6,10 +6,10 @@ use std::format;
 use std::string::{String, ToString};
 use std::vec::Vec;
 
-use super::HostMesh;
-use crate::mesh::planar_face_bits;
+use crate::front::mesh::planar_face_bits;
+use crate::host::HostMesh;
 
-/// Rust source defining `pub static NAME: zline::mesh::StaticMesh<'static>`
+/// Rust source defining `pub static NAME: zline::front::mesh::StaticMesh<'static>`
 /// and its three arrays (`NAME_POSITIONS`, `NAME_CORNERS`,
 /// `NAME_FACE_STARTS`). The mesh goes through the `const`
 /// `StaticMesh::new`, so a broken one fails at compile time. Floats are
@@ -63,7 +63,7 @@ pub fn static_mesh_source(mesh: &HostMesh, name: &str, origin: &str) -> Result<S
     let _ = writeln!(
         out,
         "/// Mesh from {origin}, checked at compile time.\n\
-         pub static {name}: zline::mesh::StaticMesh<'static> = match zline::mesh::StaticMesh::new(\n    \
+         pub static {name}: zline::front::mesh::StaticMesh<'static> = match zline::front::mesh::StaticMesh::new(\n    \
          &{name}_POSITIONS,\n    &{name}_CORNERS,\n    &{name}_FACE_STARTS,\n) {{\n    \
          Ok(mesh) => match mesh.with_planar_faces(&{name}_PLANAR) {{\n        \
          Ok(mesh) => mesh,\n        Err(_) => panic!(\"{name}: invalid planarity bits\"),\n    }},\n    \

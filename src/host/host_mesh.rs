@@ -2,12 +2,12 @@
 
 use std::vec::Vec;
 
-use crate::mesh::{Mesh, face_of};
-use crate::obj::{ObjError, ObjReader, Statement};
-use crate::scene::MAX_FACE_CORNERS;
+use crate::front::mesh::MeshArrays;
+use crate::front::obj::{ObjError, ObjReader, Statement};
+use crate::front::scene::MAX_FACE_CORNERS;
 
 /// Positions and faces in growable storage, in the layout of
-/// [`StaticMesh`](crate::mesh::StaticMesh).
+/// [`StaticMesh`](crate::front::mesh::StaticMesh).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct HostMesh {
     /// Vertex positions.
@@ -37,20 +37,16 @@ impl HostMesh {
     }
 }
 
-impl Mesh for HostMesh {
-    fn vertex_count(&self) -> usize {
-        self.positions.len()
+impl MeshArrays for HostMesh {
+    fn positions(&self) -> &[[f32; 3]] {
+        &self.positions
     }
 
-    fn position(&self, index: usize) -> [f32; 3] {
-        self.positions[index]
+    fn corners(&self) -> &[u16] {
+        &self.corners
     }
 
-    fn face_count(&self) -> usize {
-        self.face_starts.len()
-    }
-
-    fn face(&self, index: usize) -> &[u16] {
-        face_of(&self.corners, &self.face_starts, index)
+    fn face_starts(&self) -> &[u32] {
+        &self.face_starts
     }
 }

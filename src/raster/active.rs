@@ -6,9 +6,8 @@
 //! spans come out of a merge of the inline pair and the list: no buffer
 //! per polygon, whatever its number of corners.
 
-use heapless::Vec;
-
 use super::edge::ActiveEdge;
+use super::slots::Slots;
 
 /// End of an edge list in the pool.
 pub(crate) const NO_EDGE: u32 = u32::MAX;
@@ -28,43 +27,133 @@ pub(crate) enum SpanDepth {
     Exact,
 }
 
-/// Active-polygon-table entry.
+/// Active-polygon-table entry (opaque).
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct ActivePolygon<C> {
-    /// Position in the sorted polygon table: the APT stays sorted by it.
-    pub position: u32,
-    /// One past the polygon's last row; on and after it the entry is dead
-    /// and waits for the next compaction.
-    pub end_row: u16,
-    pub color: C,
-    pub depth: SpanDepth,
-    /// The edge pair: up to two active edges held inline.
+pub struct ActivePolygon<C> {
+    /// Position in the sorted polygon table (edge-table entries name it).
+    pub(crate) position: u32,
+    /// The tie-break key: the polygon's id + 1 (background is 0): on equal
+    /// depth the smaller key wins, so the polygon added first.
+    pub(crate) key: u32,
+    /// One past the polygon's last row: there the entry leaves.
+    pub(crate) end_row: u16,
+    /// For a triangle, the row where its lower short edge starts (it then
+    /// joins the pair by itself, with no edge-table entry); `NO_ROW` when
+    /// no edge is left to start.
+    pub(crate) switch_row: u16,
+    pub(crate) color: C,
+    pub(crate) depth: SpanDepth,
+    /// The edge pair: up to two active edges held inline. For a triangle,
+    /// always two: the left edge, then the right one.
     pair: [ActiveEdge; 2],
     pair_len: u8,
+    /// A triangle: its pair is ordered and it has no pooled edges.
+    triangle: bool,
+    /// For a triangle, which of the pair is the short edge (the other is
+    /// the long one, from the top corner to the bottom one).
+    short_side: u8,
     /// Further active edges: a list in the [`EdgePool`], sorted by `x`.
     extra: u32,
 }
 
+/// No row: a triangle with no edge left to start.
+pub(crate) const NO_ROW: u16 = u16::MAX;
+
 impl<C: Copy> ActivePolygon<C> {
+    /// A filler for unused slots.
+    pub const fn filler(color: C) -> Self {
+        Self::new(0, 0, 0, color, SpanDepth::Exact)
+    }
+
     /// A polygon entering the APT, with no active edges yet.
-    pub fn new(position: u32, end_row: u16, color: C, depth: SpanDepth) -> Self {
+    pub(crate) const fn new(
+        position: u32,
+        key: u32,
+        end_row: u16,
+        color: C,
+        depth: SpanDepth,
+    ) -> Self {
         Self {
             position,
+            key,
             end_row,
+            switch_row: NO_ROW,
             color,
             depth,
             pair: [ActiveEdge::EMPTY; 2],
             pair_len: 0,
+            triangle: false,
+            short_side: 0,
             extra: NO_EDGE,
         }
     }
 
+    /// A triangle entering the APT: as [`Self::new`] with its two edges
+    /// set (see [`Self::set_triangle_edges`]).
+    #[inline]
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) const fn new_triangle(
+        position: u32,
+        key: u32,
+        end_row: u16,
+        switch_row: u16,
+        color: C,
+        depth: SpanDepth,
+        long: ActiveEdge,
+        short: ActiveEdge,
+        short_left: bool,
+    ) -> Self {
+        Self {
+            position,
+            key,
+            end_row,
+            switch_row,
+            color,
+            depth,
+            pair: if short_left {
+                [short, long]
+            } else {
+                [long, short]
+            },
+            pair_len: 2,
+            triangle: true,
+            short_side: if short_left { 0 } else { 1 },
+            extra: NO_EDGE,
+        }
+    }
+
+    /// A triangle's lower short edge taking the place of the upper one.
+    #[inline]
+    pub(crate) fn switch_short_edge(&mut self, lower: ActiveEdge) {
+        self.pair[usize::from(self.short_side)] = lower;
+    }
+
+    /// Whether this is a triangle (two ordered edges, no pool).
+    #[inline]
+    pub(crate) fn is_triangle(&self) -> bool {
+        self.triangle
+    }
+
+    /// A triangle's span on this row: from its left edge's crossing to its
+    /// right edge's.
+    #[inline]
+    pub(crate) fn triangle_span(&self) -> (i32, i32) {
+        (self.pair[0].x, self.pair[1].x)
+    }
+
+    /// Steps a triangle's two edges to `next_row` (an edge that ends there
+    /// stays until its polygon ends or its switch replaces it).
+    #[inline]
+    pub(crate) fn advance_triangle(&mut self, next_row: u16) {
+        for edge in &mut self.pair {
+            if edge.end_row > next_row {
+                edge.advance();
+            }
+        }
+    }
+
     /// Adds an active edge: into the pair if it has room, else the pool.
-    pub fn add_edge<const AE: usize>(
-        &mut self,
-        edge: ActiveEdge,
-        pool: &mut EdgePool<AE>,
-    ) -> Result<(), ()> {
+    pub(crate) fn add_edge(&mut self, edge: ActiveEdge, pool: &mut EdgePool<'_>) -> Result<(), ()> {
         if usize::from(self.pair_len) < self.pair.len() {
             self.pair[usize::from(self.pair_len)] = edge;
             self.pair_len += 1;
@@ -79,11 +168,7 @@ impl<C: Copy> ActivePolygon<C> {
     /// in increasing order, paired even-odd. `left` and `right` are the
     /// first pixel inside and the first pixel after the span.
     #[inline]
-    pub fn for_each_span<const AE: usize>(
-        &self,
-        pool: &EdgePool<AE>,
-        mut fill: impl FnMut(i32, i32),
-    ) {
+    pub(crate) fn for_each_span(&self, pool: &EdgePool<'_>, mut fill: impl FnMut(i32, i32)) {
         let (a, b) = (self.pair[0].x, self.pair[1].x);
         if self.pair_len == 2 && self.extra == NO_EDGE {
             fill(a.min(b), a.max(b));
@@ -97,16 +182,17 @@ impl<C: Copy> ActivePolygon<C> {
         let mut inline_left = usize::from(self.pair_len);
         let mut pending: Option<i32> = None;
         let mut index = self.extra;
+        let edges = pool.edges.as_slice();
         loop {
-            let pooled = pool.edges.get(index as usize).map(|e| e.x);
+            let pooled = edges.get(index as usize).map(|e| e.x);
             let x = match (inline_left, pooled) {
                 (0, None) => break,
                 (0, Some(x)) => {
-                    index = pool.edges[index as usize].next;
+                    index = edges[index as usize].next;
                     x
                 }
                 (_, Some(x)) if x < inline[0] => {
-                    index = pool.edges[index as usize].next;
+                    index = edges[index as usize].next;
                     x
                 }
                 _ => {
@@ -124,7 +210,8 @@ impl<C: Copy> ActivePolygon<C> {
     }
 
     /// Steps every edge to `next_row`, dropping those that ended there.
-    pub fn advance_edges<const AE: usize>(&mut self, next_row: u16, pool: &mut EdgePool<AE>) {
+    #[inline]
+    pub(crate) fn advance_edges(&mut self, next_row: u16, pool: &mut EdgePool<'_>) {
         let mut k = 0;
         while k < usize::from(self.pair_len) {
             if self.pair[k].end_row > next_row {
@@ -145,8 +232,8 @@ impl<C: Copy> ActivePolygon<C> {
 
 /// Active edges beyond each polygon's pair: a fixed pool with a free list.
 #[derive(Debug)]
-pub(crate) struct EdgePool<const AE: usize> {
-    edges: Vec<ActiveEdge, AE>,
+pub(crate) struct EdgePool<'a> {
+    edges: Slots<'a, ActiveEdge>,
     free: u32,
     /// Active edges in all polygons, pairs included.
     pub live: u32,
@@ -154,36 +241,31 @@ pub(crate) struct EdgePool<const AE: usize> {
     pub pooled: u32,
 }
 
-impl<const AE: usize> EdgePool<AE> {
-    /// An empty pool.
-    pub const fn new() -> Self {
+impl<'a> EdgePool<'a> {
+    /// An empty pool over `edges`.
+    pub fn new(edges: Slots<'a, ActiveEdge>) -> Self {
+        let mut edges = edges;
+        edges.truncate(0);
         Self {
-            edges: Vec::new(),
+            edges,
             free: NO_EDGE,
             live: 0,
             pooled: 0,
         }
     }
 
-    /// Forgets every edge.
-    pub fn clear(&mut self) {
-        self.edges.clear();
-        self.free = NO_EDGE;
-        self.live = 0;
-        self.pooled = 0;
-    }
-
     /// Stores `edge` in the list starting at `head`, keeping it sorted by
     /// `x`; returns the new head. `Err` when more edges are active than the
     /// capacity.
     fn insert_sorted(&mut self, edge: ActiveEdge, head: u32) -> Result<u32, ()> {
-        if self.pooled as usize >= AE {
+        if self.pooled as usize >= self.edges.capacity() {
             return Err(());
         }
         let index = if self.free != NO_EDGE {
             let index = self.free;
-            self.free = self.edges[index as usize].next;
-            self.edges[index as usize] = edge;
+            let edges = self.edges.as_mut_slice();
+            self.free = edges[index as usize].next;
+            edges[index as usize] = edge;
             index
         } else {
             let index = self.edges.len() as u32;
@@ -198,44 +280,27 @@ impl<const AE: usize> EdgePool<AE> {
     /// Links entry `index` into the sorted list starting at `head`; returns
     /// the new head.
     fn link_sorted(&mut self, index: u32, head: u32) -> u32 {
-        let x = self.edges[index as usize].x;
-        match self.edges.get(head as usize) {
-            Some(first) if first.x < x => {}
-            _ => {
-                self.edges[index as usize].next = head;
-                return index;
-            }
-        }
-        let mut at = head;
-        loop {
-            let next = self.edges[at as usize].next;
-            match self.edges.get(next as usize) {
-                Some(e) if e.x < x => at = next,
-                _ => break,
-            }
-        }
-        self.edges[index as usize].next = self.edges[at as usize].next;
-        self.edges[at as usize].next = index;
-        head
+        link_sorted(self.edges.as_mut_slice(), index, head)
     }
 
     /// Re-sorts the list starting at `head` by `x` after a step (insertion
     /// sort: linear when the order did not change, as is usual); returns
     /// the new head.
     fn sort_list(&mut self, head: u32) -> u32 {
+        let edges = self.edges.as_mut_slice();
         let (mut sorted, mut tail, mut index) = (NO_EDGE, NO_EDGE, head);
-        while let Some(edge) = self.edges.get(index as usize) {
+        while let Some(edge) = edges.get(index as usize) {
             let next = edge.next;
             let x = edge.x;
-            match self.edges.get(tail as usize) {
-                Some(last) if last.x > x => sorted = self.link_sorted(index, sorted),
+            match edges.get(tail as usize) {
+                Some(last) if last.x > x => sorted = link_sorted(edges, index, sorted),
                 Some(_) => {
-                    self.edges[tail as usize].next = index;
-                    self.edges[index as usize].next = NO_EDGE;
+                    edges[tail as usize].next = index;
+                    edges[index as usize].next = NO_EDGE;
                     tail = index;
                 }
                 None => {
-                    self.edges[index as usize].next = NO_EDGE;
+                    edges[index as usize].next = NO_EDGE;
                     (sorted, tail) = (index, index);
                 }
             }
@@ -247,8 +312,9 @@ impl<const AE: usize> EdgePool<AE> {
     /// Steps the list starting at `head` to `next_row`, freeing edges that
     /// ended; returns the new head.
     fn advance_list(&mut self, head: u32, next_row: u16) -> u32 {
+        let edges = self.edges.as_mut_slice();
         let (mut new_head, mut previous, mut index) = (head, NO_EDGE, head);
-        while let Some(edge) = self.edges.get_mut(index as usize) {
+        while let Some(edge) = edges.get_mut(index as usize) {
             let next = edge.next;
             if edge.end_row > next_row {
                 edge.advance();
@@ -258,7 +324,7 @@ impl<const AE: usize> EdgePool<AE> {
                 self.free = index;
                 self.live -= 1;
                 self.pooled -= 1;
-                match self.edges.get_mut(previous as usize) {
+                match edges.get_mut(previous as usize) {
                     Some(p) => p.next = next,
                     None => new_head = next,
                 }
@@ -269,9 +335,34 @@ impl<const AE: usize> EdgePool<AE> {
     }
 }
 
+/// Links entry `index` into the sorted list starting at `head`; returns the
+/// new head.
+fn link_sorted(edges: &mut [ActiveEdge], index: u32, head: u32) -> u32 {
+    let x = edges[index as usize].x;
+    match edges.get(head as usize) {
+        Some(first) if first.x < x => {}
+        _ => {
+            edges[index as usize].next = head;
+            return index;
+        }
+    }
+    let mut at = head;
+    loop {
+        let next = edges[at as usize].next;
+        match edges.get(next as usize) {
+            Some(e) if e.x < x => at = next,
+            _ => break,
+        }
+    }
+    edges[index as usize].next = edges[at as usize].next;
+    edges[at as usize].next = index;
+    head
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+    use heapless::Vec;
 
     fn edge(x: i32) -> ActiveEdge {
         let mut e = ActiveEdge::EMPTY;
@@ -281,7 +372,7 @@ mod tests {
         e
     }
 
-    fn spans(p: &ActivePolygon<u8>, pool: &EdgePool<16>) -> Vec<(i32, i32), 8> {
+    fn spans(p: &ActivePolygon<u8>, pool: &EdgePool<'_>) -> Vec<(i32, i32), 8> {
         let mut out = Vec::new();
         p.for_each_span(pool, |l, r| out.push((l, r)).unwrap());
         out
@@ -289,15 +380,17 @@ mod tests {
 
     #[test]
     fn spans_merge_the_pair_with_the_sorted_pool() {
-        let mut pool = EdgePool::<16>::new();
-        let mut p = ActivePolygon::new(0, 10, 0u8, SpanDepth::Exact);
+        let (mut buf, mut len) = ([ActiveEdge::EMPTY; 16], 0);
+        let mut pool = EdgePool::new(Slots::new(&mut buf, &mut len));
+        let mut p = ActivePolygon::new(0, 1, 10, 0u8, SpanDepth::Exact);
         for x in [9, 2, 7, 4, 12, 0] {
             p.add_edge(edge(x), &mut pool).unwrap();
         }
         assert_eq!(spans(&p, &pool), [(0, 2), (4, 7), (9, 12)]);
         // Stepping reorders the crossings; the list is sorted again.
-        let mut q = ActivePolygon::new(0, 10, 0u8, SpanDepth::Exact);
-        let mut pool = EdgePool::<16>::new();
+        let mut q = ActivePolygon::new(0, 1, 10, 0u8, SpanDepth::Exact);
+        let (mut buf, mut len) = ([ActiveEdge::EMPTY; 16], 0);
+        let mut pool = EdgePool::new(Slots::new(&mut buf, &mut len));
         q.add_edge(edge(5), &mut pool).unwrap();
         q.add_edge(edge(6), &mut pool).unwrap();
         for (x, step) in [(1, 10), (3, 0), (8, -10)] {

@@ -1,0 +1,222 @@
+//! Where a frame's time goes, stage by stage, counted by valgrind's
+//! callgrind (instructions, not seconds: the same on every run).
+//!
+//! ```sh
+//! cargo build --release --example profile
+//! valgrind --tool=callgrind --callgrind-out-file=cg.out \
+//!     target/release/examples/profile ../shared/meshes/stanford-bunny.obj --size 800x600 --frames 4
+//! cargo run --release --example profile -- --report cg.out
+//! ```
+//!
+//! The frame is the peers bench's: the reference view, each face's Lambert
+//! colour from a table made once (`--lambert`: computed per face per
+//! frame), no culling (or `--cull back`), 16-bit depth, every row copied
+//! into an Rgb565 frame buffer. The stages are functions the core and the
+//! front end keep out of line for this purpose; `--report` reads a
+//! callgrind file and prints each stage's share of the instructions spent
+//! in the frames (loading the mesh excluded), as a Markdown table:
+//!
+//! | stage | functions (inclusive) |
+//! |---|---|
+//! | transform | `Draw::transform_vertex` |
+//! | cull/clip | `Draw::clipped_part` |
+//! | shade | `shade_front_face` |
+//! | table building | `draw_mesh`, less the three above |
+//! | sorting | `Tables::prepare` |
+//! | polygon/edge activation | `ScanState::activate_*` |
+//! | spans | `fill_span` |
+//! | sink | `profile::copy_row` |
+//! | row upkeep | `scan_rows`, less activation, spans and sink |
+
+use std::process::ExitCode;
+
+use embedded_graphics::pixelcolor::Rgb565;
+use embedded_graphics::prelude::IntoStorage;
+use zline::front::mesh::Mesh;
+use zline::front::scene::{Camera, Cull, VertexCache, draw_mesh, reference_model};
+use zline::front::shade::Shading;
+use zline::host::{HostMesh, host_renderer, load_model, parse_size, run_tool};
+use zline::{Capacities, Depth16, FnSink};
+
+/// Copies one finished row into the frame buffer (the sink stage).
+#[inline(never)]
+fn copy_row(frame: &mut [u16], width: usize, y: u16, colors: &[Rgb565]) {
+    let row = &mut frame[usize::from(y) * width..][..width];
+    for (out, c) in row.iter_mut().zip(colors) {
+        *out = c.into_storage();
+    }
+}
+
+fn frames(
+    mesh: &HostMesh,
+    size: (u16, u16),
+    cull: Cull,
+    count: usize,
+    live_shading: bool,
+) -> Result<(), String> {
+    let corners = mesh.corners.len();
+    let caps = Capacities {
+        width: usize::from(size.0),
+        vertices: (mesh.positions.len() * 2 + 1024).min(1 << 16),
+        polygons: corners + 64,
+        corners: 3 * corners + 256,
+        active_polygons: corners + 64,
+        pooled_edges: 4096,
+    };
+    let black = Rgb565::new(0, 0, 0);
+    let mut renderer = host_renderer::<Rgb565, Depth16>(&caps, size.0, size.1, black)
+        .map_err(|e| e.to_string())?;
+    let mut cache: Box<VertexCache<65536>> = Box::default();
+    let model = reference_model(mesh, 30.0, 20.0).map_err(|e| e.to_string())?;
+    let camera = Camera::reference(size.0, size.1);
+    let shading = Shading::lambert();
+    // The bench's shading: each face's Lambert colour, computed once.
+    let table: Vec<Rgb565> = (0..mesh.face_count())
+        .map(|f| {
+            Rgb565::from(shading.color(&zline::front::scene::FaceInfo::new(
+                f as u32,
+                true,
+                Default::default(),
+                0.0,
+            )))
+        })
+        .collect();
+    let width = usize::from(size.0);
+    let mut frame = vec![0u16; width * usize::from(size.1)];
+    for _ in 0..count {
+        renderer.clear();
+        draw_mesh(
+            &mut renderer,
+            &mut *cache,
+            mesh,
+            &model,
+            &camera,
+            cull,
+            |f| {
+                if live_shading {
+                    Rgb565::from(shading.color(f))
+                } else {
+                    table[f.face as usize]
+                }
+            },
+        )
+        .map_err(|e| e.to_string())?;
+        renderer
+            .render(&mut FnSink(|y: u16, colors: &[Rgb565], _: &[u16]| {
+                copy_row(&mut frame, width, y, colors);
+                Ok::<(), ()>(())
+            }))
+            .map_err(|e| format!("{e:?}"))?;
+    }
+    Ok(())
+}
+
+/// Inclusive instruction counts per function from `callgrind_annotate`.
+fn inclusive(path: &str) -> Result<Vec<(u64, String)>, String> {
+    let out = std::process::Command::new("callgrind_annotate")
+        .args(["--inclusive=yes", "--threshold=100", path])
+        .output()
+        .map_err(|e| format!("callgrind_annotate: {e}"))?;
+    let text = String::from_utf8_lossy(&out.stdout);
+    Ok(text
+        .lines()
+        .filter_map(|line| {
+            let line = line.trim();
+            let (count, rest) = line.split_once(' ')?;
+            let count: u64 = count.replace(',', "").parse().ok()?;
+            Some((count, rest.to_string()))
+        })
+        .collect())
+}
+
+fn report(path: &str) -> Result<(), String> {
+    let rows = inclusive(path)?;
+    // The largest inclusive count of a function whose name contains all
+    // of `parts` (callgrind lists a function once per file it spans).
+    let cost = |parts: &[&str]| -> u64 {
+        rows.iter()
+            .filter(|(_, name)| parts.iter().all(|p| name.contains(p)))
+            .map(|(c, _)| *c)
+            .max()
+            .unwrap_or(0)
+    };
+    let transform = cost(&["Draw", "transform_vertex"]);
+    let clip = cost(&["Draw", "clipped_part"]);
+    let shade = cost(&["shade_front_face"]);
+    let draw = cost(&["scene::draw_mesh"]);
+    let prepare = cost(&["Tables", "prepare"]);
+    let activation = cost(&["ScanState", "activate_polygon"]);
+    let edges = cost(&["ScanState", "activate_edges"]);
+    let spans = cost(&["scan::fill_span"]);
+    let sink = cost(&["profile::copy_row"]);
+    let scan = cost(&["scan::scan_rows"]);
+    let total = draw + prepare + scan;
+    let stages = [
+        ("transform", transform),
+        ("cull/clip (clipped faces)", clip),
+        ("shade (back-face test, Lambert)", shade),
+        (
+            "table building (per face: corners, outline, sample test)",
+            draw.saturating_sub(transform + clip + shade),
+        ),
+        ("sorting (bucket sort, edge table)", prepare),
+        ("polygon/edge activation", activation + edges),
+        ("spans (depth test and write)", spans),
+        ("sink (row copy)", sink),
+        (
+            "row upkeep (edge stepping, active tables)",
+            scan.saturating_sub(activation + edges + spans + sink),
+        ),
+    ];
+    println!("| stage | instructions | share |");
+    println!("|---|---:|---:|");
+    for (name, count) in stages {
+        println!(
+            "| {name} | {count} | {:.1} % |",
+            100.0 * count as f64 / total.max(1) as f64
+        );
+    }
+    println!("| **frames in all** | {total} | 100 % |");
+    Ok(())
+}
+
+fn run(args: &[String]) -> Result<(), String> {
+    let (mut path, mut size, mut cull, mut count) = (None, (800, 600), Cull::None, 4);
+    let mut live_shading = false;
+    let mut it = args.iter();
+    while let Some(a) = it.next() {
+        let mut value = || it.next().ok_or_else(|| format!("{a} needs a value"));
+        match a.as_str() {
+            "--report" => return report(value()?),
+            "--lambert" => live_shading = true,
+            "--size" => size = parse_size(value()?)?,
+            "--cull" => {
+                cull = match value()?.as_str() {
+                    "none" => Cull::None,
+                    "back" => Cull::Back,
+                    s => return Err(format!("--cull: unknown '{s}' (none, back)")),
+                }
+            }
+            "--frames" => {
+                count = value()?
+                    .parse()
+                    .ok()
+                    .filter(|n| (1..=1000).contains(n))
+                    .ok_or("--frames: expected 1 to 1000")?
+            }
+            s if s.starts_with("--") => return Err(format!("unknown option {s}")),
+            s => path = Some(s.to_string()),
+        }
+    }
+    let mesh = load_model(&path.ok_or("missing MODEL.obj")?)?;
+    frames(&mesh, size, cull, count, live_shading)
+}
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    run_tool(
+        "profile",
+        "usage: profile MODEL.obj [--size WxH] [--cull none|back] [--frames N] | profile --report CALLGRIND.OUT",
+        move || run(&args),
+    )
+}

@@ -1,0 +1,113 @@
+//! The core's storage in ordinary `Vec`s, sized at run time from a
+//! [`Capacities`] value: the same capacity-erased tables and scanner as on
+//! a microcontroller, with no large value on the stack.
+
+use std::vec;
+use std::vec::Vec;
+
+use crate::error::Error;
+use crate::raster::depth::DepthFormat;
+use crate::raster::scan::{ScanParts, ScanStorage};
+use crate::raster::tables::{PolygonEntry, TableParts, TablePartsRef, TableStorage};
+use crate::raster::vertex::ScreenVertex;
+use crate::raster::{ActiveEdge, ActivePolygon, Capacities, EdgeEntry, Renderer};
+
+/// Table storage in `Vec`s.
+#[derive(Debug, Clone)]
+pub struct TableVecs<C> {
+    vertices: Vec<ScreenVertex>,
+    polygons: Vec<PolygonEntry<C>>,
+    corners: Vec<u16>,
+    edges: Vec<EdgeEntry>,
+}
+
+impl<C: Copy> TableVecs<C> {
+    /// Storage for `caps.vertices` vertices, `caps.polygons` polygons and
+    /// `caps.corners` corners; `filler` fills the unused polygon slots.
+    pub fn new(caps: &Capacities, filler: C) -> Self {
+        Self {
+            vertices: vec![ScreenVertex::default(); caps.vertices.min(1 << 16)],
+            polygons: vec![PolygonEntry::filler(filler); caps.polygons],
+            corners: vec![0; caps.corners],
+            edges: vec![EdgeEntry::ZERO; caps.corners],
+        }
+    }
+}
+
+impl<C: Copy> TableStorage for TableVecs<C> {
+    type Color = C;
+
+    fn parts_mut(&mut self) -> TableParts<'_, C> {
+        TableParts {
+            vertices: &mut self.vertices,
+            polygons: &mut self.polygons,
+            corners: &mut self.corners,
+            edges: &mut self.edges,
+        }
+    }
+
+    fn parts(&self) -> TablePartsRef<'_, C> {
+        TablePartsRef {
+            vertices: &self.vertices,
+            polygons: &self.polygons,
+            corners: &self.corners,
+            edges: &self.edges,
+        }
+    }
+}
+
+/// Scanner storage in `Vec`s.
+#[derive(Debug, Clone)]
+pub struct ScanVecs<C, D: DepthFormat> {
+    active: Vec<ActivePolygon<C>>,
+    pool: Vec<ActiveEdge>,
+    depth_row: Vec<D::Value>,
+    color_row: Vec<C>,
+    key_row: Vec<u32>,
+}
+
+impl<C: Copy, D: DepthFormat> ScanVecs<C, D> {
+    /// Storage for rows of `caps.width` pixels, `caps.active_polygons`
+    /// active polygons and `caps.pooled_edges` pooled edges.
+    pub fn new(caps: &Capacities, filler: C) -> Self {
+        Self {
+            active: vec![ActivePolygon::filler(filler); caps.active_polygons],
+            pool: vec![ActiveEdge::EMPTY; caps.pooled_edges],
+            depth_row: vec![D::CLEAR; caps.width],
+            color_row: vec![filler; caps.width],
+            key_row: vec![0; caps.width],
+        }
+    }
+}
+
+impl<C: Copy, D: DepthFormat> ScanStorage for ScanVecs<C, D> {
+    type Color = C;
+    type Depth = D;
+
+    fn parts_mut(&mut self) -> ScanParts<'_, C, D> {
+        ScanParts {
+            active: &mut self.active,
+            pool: &mut self.pool,
+            depth_row: &mut self.depth_row,
+            color_row: &mut self.color_row,
+            key_row: &mut self.key_row,
+        }
+    }
+}
+
+/// A renderer over `Vec` storage with capacities `caps` for frames `width`
+/// x `height` (`width` at most `caps.width`), clearing to `background`.
+pub fn host_renderer<C: Copy, D: DepthFormat>(
+    caps: &Capacities,
+    width: u16,
+    height: u16,
+    background: C,
+) -> Result<Renderer<TableVecs<C>, ScanVecs<C, D>>, Error> {
+    Renderer::from_storage(
+        TableVecs::new(caps, background),
+        ScanVecs::new(caps, background),
+        width,
+        height,
+        background,
+    )
+}

@@ -1,0 +1,104 @@
+//! The core: the scanline z-buffer. Screen-space polygons in, finished
+//! rows out.
+//!
+//! * [`fixed`]: the sub-pixel grid, the input depth format, the guard band
+//!   and the exact rounding helpers.
+//! * [`vertex`]: [`ScreenVertex`], the core's input, and the outline and
+//!   bounding rectangle the core judges a polygon by.
+//! * [`depth`]: the depth formats a row can store.
+//! * [`tables`]: the scene-sized tables (vertices, polygons, corners, edge
+//!   table), sorted by first row in O(n).
+//! * [`scan`]: the row-sized scanner (active polygon table, active edge
+//!   pool, the depth row and the colour row) and [`scan()`](scan::scan).
+//! * [`capacities`]: the capacities, named, and the [`Renderer`] bundle of
+//!   tables and scanner.
+//! * `plane`, `edge`, `active`: the plane set-up, the exact edge DDA, the
+//!   active tables (internal).
+//!
+//! Only one row of depth and one of colour exist: nothing is frame-sized.
+
+mod active;
+pub mod capacities;
+pub mod depth;
+mod edge;
+pub mod fixed;
+mod plane;
+pub mod scan;
+mod slots;
+pub mod tables;
+pub mod vertex;
+
+pub use active::ActivePolygon;
+pub use capacities::{Capacities, Renderer};
+pub use edge::{ActiveEdge, EdgeEntry};
+pub use scan::{FrameStats, ScanArrays, ScanParts, ScanStorage, Scanner, scan};
+pub use tables::{
+    Admission, PolygonEntry, Prepared, TableArrays, TableParts, TablePartsRef, TableStorage, Tables,
+};
+
+use crate::error::Error;
+use vertex::{Outline, ScreenVertex};
+
+/// What scene building needs from a renderer: its frame, its vertex table
+/// and its polygon table. [`Renderer`] implements it for every
+/// configuration, so [`crate::scene`] needs none of the capacities.
+///
+/// A polygon enters in one of two ways, neither needing a buffer per
+/// polygon:
+/// * [`Self::offer_polygon`] takes its corners as an iterator of vertex
+///   indices, judges it and copies the corners only if it is queued;
+/// * corner by corner: [`Self::begin_polygon`], [`Self::add_corner`] for
+///   each corner (vertices may be added in between: they belong to the
+///   polygon), then [`Self::finish_polygon`], which either queues it or
+///   removes its corners and the vertices added since `begin_polygon`.
+///   The corners occupy table space while the polygon is open, so callers
+///   judge it first (the pipeline does, for the clipped faces that use
+///   this way in).
+pub trait PolygonTables<C> {
+    /// Frame width in pixels.
+    fn frame_width(&self) -> u16;
+    /// Frame height in pixels.
+    fn frame_height(&self) -> u16;
+    /// Adds a vertex; see [`Renderer::push_vertex`].
+    fn add_vertex(&mut self, vertex: ScreenVertex) -> Result<u16, Error>;
+    /// A vertex added before.
+    fn get_vertex(&self, index: u16) -> Option<ScreenVertex>;
+    /// Offers a polygon by its corners' vertex indices. Polygons of zero
+    /// area or covering no pixel sample are counted and left out (see
+    /// [`Admission`]); otherwise `decide` sees its [`Outline`] and gives
+    /// its colour, or `None` to leave it out ([`Admission::Declined`]).
+    /// Nothing is stored unless it is queued; on `Err` nothing was added.
+    fn offer_polygon<I>(
+        &mut self,
+        corners: I,
+        decide: impl FnOnce(&Outline) -> Option<C>,
+    ) -> Result<Admission, Error>
+    where
+        I: IntoIterator<Item = u16>,
+        I::IntoIter: Clone;
+    /// [`Self::offer_polygon`] for a triangle: the common case, with no
+    /// iterator.
+    fn offer_triangle(
+        &mut self,
+        corners: [u16; 3],
+        decide: impl FnOnce(&Outline) -> Option<C>,
+    ) -> Result<Admission, Error> {
+        self.offer_polygon(corners, decide)
+    }
+    /// Opens a new polygon, dropping any polygon left open.
+    fn begin_polygon(&mut self);
+    /// Drops the open polygon, if any: its corners and the vertices added
+    /// since [`Self::begin_polygon`]. No polygon is open afterwards.
+    fn discard_polygon(&mut self);
+    /// Appends a corner (a vertex index) to the open polygon. On `Err`
+    /// the open polygon stays as it was.
+    fn add_corner(&mut self, vertex: u16) -> Result<(), Error>;
+    /// Closes the open polygon and offers it as [`Self::offer_polygon`]
+    /// does; whatever the outcome it is closed, and if it was not queued
+    /// its corners and the vertices added since [`Self::begin_polygon`]
+    /// are removed.
+    fn finish_polygon(
+        &mut self,
+        decide: impl FnOnce(&Outline) -> Option<C>,
+    ) -> Result<Admission, Error>;
+}

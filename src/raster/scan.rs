@@ -1,0 +1,752 @@
+//! The row-sized half of the scanline z-buffer: the active polygon table
+//! (APT), the pool of further active edges (AET), and one row of depth and
+//! one of colour; and [`scan`], which runs them over [`Prepared`] tables
+//! and hands each finished row to a [`RowSink`].
+//!
+//! For each row `y` of the band scanned:
+//! * polygons whose first row is `y` enter the APT with their plane's
+//!   gradients `dz/dx = -a/c`, `dz/dy = -b/c` and value at the row, and
+//!   the edges covering `y`;
+//! * edges of the ET bucket `y` join their polygon; a triangle's lower
+//!   short edge joins it by itself on its `switch_row`;
+//! * each active polygon fills its spans (crossings paired even-odd), depth
+//!   starting from the plane at each span's first pixel and stepping by
+//!   `dz/dx`, written where nearer than the row holds; then its edges step
+//!   to the next row;
+//! * the finished row goes to the sink.
+//!
+//! A band that starts below a polygon's first row activates it there, with
+//! the edges covering that row: so two scanners over one set of tables
+//! (two threads, or two cores) produce exactly the rows one would.
+
+use core::ops::Range;
+
+use crate::error::{Error, RenderError};
+use crate::raster::active::{ActivePolygon, EdgePool, NO_EDGE, NO_ROW, SpanDepth};
+use crate::raster::depth::DepthFormat;
+use crate::raster::edge::ActiveEdge;
+use crate::raster::fixed::first_sample_at_or_after;
+use crate::raster::plane::Plane;
+use crate::raster::slots::Slots;
+use crate::raster::tables::{PolygonEntry, Prepared};
+use crate::raster::vertex::ScreenVertex;
+use crate::sink::RowSink;
+
+/// Where a scanner's arrays live: the active polygon table, the edge pool
+/// and the two rows. [`ScanArrays`] holds them in fixed arrays; the host's
+/// `zline::host::ScanVecs` in `Vec`s.
+pub trait ScanStorage {
+    /// The pixel colour.
+    type Color: Copy;
+    /// The depth format of the depth row.
+    type Depth: DepthFormat;
+    /// The arrays, mutably.
+    fn parts_mut(&mut self) -> ScanParts<'_, Self::Color, Self::Depth>;
+}
+
+/// The arrays of a [`ScanStorage`].
+#[derive(Debug)]
+pub struct ScanParts<'a, C, D: DepthFormat> {
+    /// The active polygon table.
+    pub active: &'a mut [ActivePolygon<C>],
+    /// Active edges beyond each polygon's first two.
+    pub pool: &'a mut [ActiveEdge],
+    /// The depth row (its length is the widest frame it can scan).
+    pub depth_row: &'a mut [D::Value],
+    /// The colour row (as long as the depth row).
+    pub color_row: &'a mut [C],
+    /// The tie-break keys of the pixels (as long as the depth row).
+    pub key_row: &'a mut [u32],
+}
+
+/// Fixed-capacity storage for a scanner: rows of `W` pixels, up to `AP`
+/// polygons active on one row and `AE` active edges beyond each polygon's
+/// first two (none for triangles and convex polygons). Build it in a
+/// `static` on a microcontroller (its constructor is `const`).
+#[derive(Debug, Clone)]
+pub struct ScanArrays<C, D: DepthFormat, const W: usize, const AP: usize, const AE: usize> {
+    active: [ActivePolygon<C>; AP],
+    pool: [ActiveEdge; AE],
+    depth_row: [D::Value; W],
+    color_row: [C; W],
+    key_row: [u32; W],
+}
+
+impl<C: Copy, D: DepthFormat, const W: usize, const AP: usize, const AE: usize>
+    ScanArrays<C, D, W, AP, AE>
+{
+    /// Empty storage; `filler` fills the unused slots (any colour).
+    pub const fn new(filler: C) -> Self {
+        Self {
+            active: [ActivePolygon::filler(filler); AP],
+            pool: [ActiveEdge::EMPTY; AE],
+            depth_row: [D::CLEAR; W],
+            color_row: [filler; W],
+            key_row: [0; W],
+        }
+    }
+}
+
+impl<C: Copy, D: DepthFormat, const W: usize, const AP: usize, const AE: usize> ScanStorage
+    for ScanArrays<C, D, W, AP, AE>
+{
+    type Color = C;
+    type Depth = D;
+
+    fn parts_mut(&mut self) -> ScanParts<'_, C, D> {
+        ScanParts {
+            active: &mut self.active,
+            pool: &mut self.pool,
+            depth_row: &mut self.depth_row,
+            color_row: &mut self.color_row,
+            key_row: &mut self.key_row,
+        }
+    }
+}
+
+/// A scanner: the row-sized state of the scanline z-buffer over some
+/// [`ScanStorage`], and the colour of pixels no polygon covers.
+#[derive(Clone)]
+pub struct Scanner<S: ScanStorage> {
+    storage: S,
+    background: S::Color,
+}
+
+impl<S> core::fmt::Debug for Scanner<S>
+where
+    S: ScanStorage + core::fmt::Debug,
+    S::Color: core::fmt::Debug,
+{
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("Scanner")
+            .field("storage", &self.storage)
+            .field("background", &self.background)
+            .finish()
+    }
+}
+
+impl<S: ScanStorage> Scanner<S> {
+    /// A scanner over `storage`, clearing to `background`.
+    pub const fn new(storage: S, background: S::Color) -> Self {
+        Self {
+            storage,
+            background,
+        }
+    }
+
+    /// Colour of pixels no polygon covers.
+    pub fn set_background(&mut self, background: S::Color) {
+        self.background = background;
+    }
+
+    /// The widest frame this scanner can scan.
+    pub fn row_capacity(&mut self) -> usize {
+        self.storage.parts_mut().depth_row.len()
+    }
+}
+
+/// Counts for one rendered frame (or band of rows).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct FrameStats {
+    /// Vertices in the vertex table.
+    pub vertices: u32,
+    /// Polygon corners stored.
+    pub corners: u32,
+    /// Polygons in the polygon table.
+    pub polygons: u32,
+    /// Edges that entered the active edge table.
+    pub edges: u32,
+    /// Largest number of polygons active on one row.
+    pub peak_active_polygons: u32,
+    /// Largest number of edges active on one row.
+    pub peak_active_edges: u32,
+    /// Largest number of those held in the edge pool, beyond each
+    /// polygon's inline pair (zero for triangles and other convex
+    /// polygons).
+    pub peak_pooled_edges: u32,
+    /// Spans filled.
+    pub spans: u32,
+    /// Polygons offered but left out as off-screen.
+    pub off_screen: u32,
+    /// Polygons offered but left out as zero-area.
+    pub degenerate: u32,
+}
+
+impl FrameStats {
+    /// The larger of each peak and count of `self` and `other` (to size
+    /// capacities over several frames, or add up bands).
+    pub fn max(self, other: Self) -> Self {
+        Self {
+            vertices: self.vertices.max(other.vertices),
+            corners: self.corners.max(other.corners),
+            polygons: self.polygons.max(other.polygons),
+            edges: self.edges.max(other.edges),
+            peak_active_polygons: self.peak_active_polygons.max(other.peak_active_polygons),
+            peak_active_edges: self.peak_active_edges.max(other.peak_active_edges),
+            peak_pooled_edges: self.peak_pooled_edges.max(other.peak_pooled_edges),
+            spans: self.spans.max(other.spans),
+            off_screen: self.off_screen.max(other.off_screen),
+            degenerate: self.degenerate.max(other.degenerate),
+        }
+    }
+}
+
+/// Scans `rows` (clipped to the frame) of prepared tables with `scanner`
+/// and sends each finished row to `sink`, one call per row, top to bottom.
+///
+/// Several scanners may scan disjoint bands of the same prepared tables;
+/// the rows they send are exactly those one scanner over the whole frame
+/// would send.
+pub fn scan<S, K>(
+    tables: &Prepared<'_, S::Color>,
+    scanner: &mut Scanner<S>,
+    rows: Range<u16>,
+    sink: &mut K,
+) -> Result<FrameStats, RenderError<K::Error>>
+where
+    S: ScanStorage,
+    K: RowSink<S::Color, <S::Depth as DepthFormat>::Value>,
+{
+    let background = scanner.background;
+    scan_rows::<S::Color, S::Depth, K>(tables, scanner.storage.parts_mut(), background, rows, sink)
+}
+
+/// [`scan`], capacity-erased: compiled once per colour, depth format and
+/// sink.
+fn scan_rows<C: Copy, D: DepthFormat, K: RowSink<C, D::Value>>(
+    tables: &Prepared<'_, C>,
+    parts: ScanParts<'_, C, D>,
+    background: C,
+    rows: Range<u16>,
+    sink: &mut K,
+) -> Result<FrameStats, RenderError<K::Error>> {
+    let width = usize::from(tables.width);
+    if width > parts.depth_row.len() || width > parts.color_row.len() || width > parts.key_row.len()
+    {
+        return Err(RenderError::Table(Error::BadFrameSize));
+    }
+    let (mut active_len, mut pool_len) = (0usize, 0usize);
+    let mut state = ScanState {
+        tables,
+        active: Slots::new(parts.active, &mut active_len),
+        pool: EdgePool::new(Slots::new(parts.pool, &mut pool_len)),
+        stats: FrameStats {
+            vertices: tables.vertices.len() as u32,
+            corners: tables.corners.len() as u32,
+            polygons: tables.polygons.len() as u32,
+            off_screen: tables.off_screen,
+            degenerate: tables.degenerate,
+            ..FrameStats::default()
+        },
+    };
+    let mut row_buffers = RowBuffers::<C, D> {
+        depth: &mut parts.depth_row[..width],
+        color: &mut parts.color_row[..width],
+        key: &mut parts.key_row[..width],
+    };
+    let (first, end) = (rows.start.min(tables.height), rows.end.min(tables.height));
+    let polygons = tables.polygons;
+    let mut next_polygon = polygons.partition_point(|p| p.first_row < first);
+    // Edge-table entries at or above the band's first row are covered by
+    // the activation there.
+    let mut next_edge = tables.edges.partition_point(|e| e.row() <= first);
+    for row in first..end {
+        row_buffers.depth.fill(D::CLEAR);
+        row_buffers.color.fill(background);
+        row_buffers.key.fill(0);
+        if row == first {
+            // Polygons that started above the band and reach into it enter
+            // at its first row, with the edges covering it.
+            for (position, polygon) in polygons[..next_polygon].iter().enumerate() {
+                if polygon.end_row > first {
+                    state.activate_polygon(position, first, &mut row_buffers)?;
+                }
+            }
+        }
+        while polygons
+            .get(next_polygon)
+            .is_some_and(|p| p.first_row == row)
+        {
+            state.activate_polygon(next_polygon, row, &mut row_buffers)?;
+            next_polygon += 1;
+        }
+        while let Some(entry) = tables.edges.get(next_edge).filter(|e| e.row() == row) {
+            next_edge += 1;
+            let position = entry.position() as u32;
+            let slot = state
+                .active
+                .as_slice()
+                .iter()
+                .position(|a| a.position == position)
+                .ok_or(Error::ActivePolygonsFull { row })?;
+            state.activate_edges(slot, row, false)?;
+        }
+        state.note_peaks();
+        state.scan_row(row, &mut row_buffers)?;
+        sink.write_row(row, row_buffers.color, row_buffers.depth)
+            .map_err(RenderError::Sink)?;
+    }
+    Ok(state.stats)
+}
+
+/// The row being built: depth, colour and tie-break key per pixel.
+struct RowBuffers<'a, C, D: DepthFormat> {
+    depth: &'a mut [D::Value],
+    color: &'a mut [C],
+    key: &'a mut [u32],
+}
+
+impl<C: Copy, D: DepthFormat> RowBuffers<'_, C, D> {
+    /// Fills pixels `[start, end)` (clamped to the row) of a polygon with
+    /// `key` and `color`, depths from `source`.
+    #[inline]
+    fn fill(&mut self, start: i32, end: i32, key: u32, color: C, source: &SpanSource) -> bool {
+        let width = self.depth.len() as i32;
+        let (start, end) = (start.clamp(0, width) as usize, end.clamp(0, width) as usize);
+        if start >= end {
+            return false;
+        }
+        fill_span::<C, D>(
+            &mut self.depth[start..end],
+            &mut self.color[start..end],
+            &mut self.key[start..end],
+            start as i32,
+            key,
+            color,
+            source,
+        );
+        true
+    }
+}
+
+/// The state of one scan.
+struct ScanState<'t, 'a, C> {
+    tables: &'t Prepared<'t, C>,
+    active: Slots<'a, ActivePolygon<C>>,
+    pool: EdgePool<'a>,
+    stats: FrameStats,
+}
+
+impl<C: Copy> ScanState<'_, '_, C> {
+    /// The corners of the polygon at `position`, as vertices.
+    fn corners(&self, position: usize) -> impl Iterator<Item = ScreenVertex> + Clone + '_ {
+        entry_corners(
+            &self.tables.polygons[position],
+            self.tables.corners,
+            self.tables.vertices,
+        )
+    }
+
+    /// Moves the polygon at `position` into the APT at `row`, with its
+    /// plane and the edges covering `row`.
+    #[inline(never)]
+    fn activate_polygon<D: DepthFormat>(
+        &mut self,
+        position: usize,
+        row: u16,
+        rows: &mut RowBuffers<'_, C, D>,
+    ) -> Result<(), Error> {
+        let polygon = self.tables.polygons[position];
+        if polygon.corner_count == 3 {
+            return self.activate_triangle(position, row, rows);
+        }
+        let depth = match Plane::new(self.corners(position)).map(|p| (p, p.gradients())) {
+            Some((plane, Some((dz_dx, dz_dy)))) => SpanDepth::Stepped {
+                dz_dx,
+                dz_dy,
+                row_value: row_value(&plane, dz_dy, polygon.first_row, row),
+            },
+            // Non-zero area was checked when the polygon entered the table.
+            Some((_, None)) | None => SpanDepth::Exact,
+        };
+        let entry = ActivePolygon::new(
+            position as u32,
+            polygon.id + 1,
+            polygon.end_row,
+            polygon.color,
+            depth,
+        );
+        self.active
+            .push(entry)
+            .map_err(|_| Error::ActivePolygonsFull { row })?;
+        let slot = self.active.len() - 1;
+        self.activate_edges(slot, row, true)
+    }
+
+    /// [`Self::activate_polygon`] for a triangle: its corners sorted by y,
+    /// its long edge and the short edge covering `row` enter at once, and
+    /// the lower short edge waits for its `switch_row`. A triangle that
+    /// covers this row alone is drawn at once and never enters the APT.
+    #[inline(never)]
+    fn activate_triangle<D: DepthFormat>(
+        &mut self,
+        position: usize,
+        row: u16,
+        rows: &mut RowBuffers<'_, C, D>,
+    ) -> Result<(), Error> {
+        let polygon = self.tables.polygons[position];
+        let start = polygon.corner_start as usize;
+        let (corners, vertices) = (self.tables.corners, self.tables.vertices);
+        let (a, b, c) = (
+            vertices[usize::from(corners[start])],
+            vertices[usize::from(corners[start + 1])],
+            vertices[usize::from(corners[start + 2])],
+        );
+        let Some(plane) = Plane::triangle(a, b, c) else {
+            return Ok(()); // Zero area was left out when it was queued.
+        };
+        let depth = match plane.gradients() {
+            Some((dz_dx, dz_dy)) => SpanDepth::Stepped {
+                dz_dx,
+                dz_dy,
+                row_value: row_value(&plane, dz_dy, polygon.first_row, row),
+            },
+            None => SpanDepth::Exact,
+        };
+        let (top, mid, bot) = sort_by_y(a, b, c);
+        let height = i32::from(self.tables.height);
+        let row_of = |y: i32| first_sample_at_or_after(y);
+        let (mid_row, bot_row) = (row_of(mid.y), row_of(bot.y));
+        let r = i32::from(row);
+        let clip = |end: i32| end.min(height) as u16;
+        let long = ActiveEdge::start(top, bot, row, clip(bot_row), NO_EDGE);
+        let mut switch_row = NO_ROW;
+        let short = if r < mid_row {
+            if mid_row < bot_row.min(height) {
+                switch_row = mid_row as u16;
+            }
+            ActiveEdge::start(top, mid, row, clip(mid_row), NO_EDGE)
+        } else {
+            ActiveEdge::start(mid, bot, row, clip(bot_row), NO_EDGE)
+        };
+        // Screen y points down: the middle corner lies left of the long edge
+        // when this cross product is positive.
+        let cross = i64::from(bot.x - top.x) * i64::from(mid.y - top.y)
+            - i64::from(mid.x - top.x) * i64::from(bot.y - top.y);
+        let mut entry = ActivePolygon::new_triangle(
+            position as u32,
+            polygon.id + 1,
+            polygon.end_row,
+            switch_row,
+            polygon.color,
+            depth,
+            long,
+            short,
+            cross > 0,
+        );
+        self.stats.edges += 2;
+        self.pool.live += 2;
+        if polygon.end_row == row + 1 {
+            // One row: its span now, and no APT entry.
+            self.fill_and_step(&mut entry, row, rows);
+            return Ok(());
+        }
+        self.active
+            .push(entry)
+            .map_err(|_| Error::ActivePolygonsFull { row })
+    }
+
+    /// Fills an active polygon's spans on `row` and steps it down to the
+    /// next row; returns whether it is still active there.
+    #[inline]
+    fn fill_and_step<D: DepthFormat>(
+        &mut self,
+        polygon: &mut ActivePolygon<C>,
+        row: u16,
+        rows: &mut RowBuffers<'_, C, D>,
+    ) -> bool {
+        fill_and_step(
+            polygon,
+            self.tables,
+            &mut self.pool,
+            &mut self.stats,
+            row,
+            rows,
+        )
+    }
+
+    /// A triangle reaching its middle corner's row: its lower short edge
+    /// joins the pair (the upper one has just left it).
+    #[inline(never)]
+    fn switch_triangle(&mut self, slot: usize, row: u16) -> Result<(), Error> {
+        let polygon = &self.tables.polygons[self.active.as_slice()[slot].position as usize];
+        let start = polygon.corner_start as usize;
+        let (corners, vertices) = (self.tables.corners, self.tables.vertices);
+        let (_, mid, bot) = sort_by_y(
+            vertices[usize::from(corners[start])],
+            vertices[usize::from(corners[start + 1])],
+            vertices[usize::from(corners[start + 2])],
+        );
+        let end = first_sample_at_or_after(bot.y).min(i32::from(self.tables.height));
+        let entry = &mut self.active.as_mut_slice()[slot];
+        entry.switch_row = NO_ROW;
+        if end > i32::from(row) {
+            entry.switch_short_edge(ActiveEdge::start(mid, bot, row, end as u16, NO_EDGE));
+            self.stats.edges += 1;
+        }
+        Ok(())
+    }
+
+    /// Starts edges of the active polygon at `slot`: at its activation,
+    /// every edge covering `row`; later, those starting on `row`.
+    #[inline(never)]
+    fn activate_edges(&mut self, slot: usize, row: u16, at_activation: bool) -> Result<(), Error> {
+        let entry = self.active.as_slice()[slot];
+        let polygon = &self.tables.polygons[entry.position as usize];
+        let end_limit = i32::from(self.tables.height);
+        let corners = entry_corners(polygon, self.tables.corners, self.tables.vertices);
+        let mut result = Ok(());
+        let (active, pool, stats) = (&mut self.active, &mut self.pool, &mut self.stats);
+        for_each_edge(corners, |top, bottom| {
+            let first = first_sample_at_or_after(top.y);
+            let end_row = first_sample_at_or_after(bottom.y).min(end_limit);
+            let covers = first <= i32::from(row) && end_row > i32::from(row);
+            let wanted = if at_activation {
+                covers
+            } else {
+                covers && first == i32::from(row)
+            };
+            if wanted && result.is_ok() {
+                let edge = ActiveEdge::start(top, bottom, row, end_row as u16, NO_EDGE);
+                result = active.as_mut_slice()[slot]
+                    .add_edge(edge, pool)
+                    .map_err(|()| Error::ActiveEdgesFull { row });
+                stats.edges += 1;
+            }
+        });
+        result
+    }
+
+    fn note_peaks(&mut self) {
+        let s = &mut self.stats;
+        s.peak_active_polygons = s.peak_active_polygons.max(self.active.len() as u32);
+        s.peak_active_edges = s.peak_active_edges.max(self.pool.live);
+        s.peak_pooled_edges = s.peak_pooled_edges.max(self.pool.pooled);
+    }
+
+    /// Fills every active polygon's spans on `row` into the row buffers,
+    /// then steps each down to the next row: those that end leave the APT
+    /// at once (its order does not matter, ties being broken by key).
+    fn scan_row<D: DepthFormat>(
+        &mut self,
+        row: u16,
+        rows: &mut RowBuffers<'_, C, D>,
+    ) -> Result<(), Error> {
+        let next_row = row + 1;
+        let mut switches = false;
+        let mut slot = 0;
+        let (tables, pool, stats) = (self.tables, &mut self.pool, &mut self.stats);
+        while slot < self.active.len() {
+            let items = self.active.as_mut_slice();
+            let polygon = &mut items[slot];
+            if fill_and_step(polygon, tables, pool, stats, row, rows) {
+                switches |= polygon.switch_row == next_row;
+                slot += 1;
+            } else {
+                let last = items.len() - 1;
+                items[slot] = items[last];
+                self.active.truncate(last);
+            }
+        }
+        if switches {
+            for slot in 0..self.active.len() {
+                if self.active.as_slice()[slot].switch_row == next_row {
+                    self.switch_triangle(slot, next_row)?;
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Fills an active polygon's spans on `row` into the row buffers and steps
+/// it down to the next row; returns whether it is still active there.
+#[inline]
+fn fill_and_step<C: Copy, D: DepthFormat>(
+    polygon: &mut ActivePolygon<C>,
+    tables: &Prepared<'_, C>,
+    pool: &mut EdgePool<'_>,
+    stats: &mut FrameStats,
+    row: u16,
+    rows: &mut RowBuffers<'_, C, D>,
+) -> bool {
+    let source = match polygon.depth {
+        SpanDepth::Stepped {
+            dz_dx, row_value, ..
+        } => SpanSource::Stepped { dz_dx, row_value },
+        SpanDepth::Exact => {
+            // Edge-on: the plane, exactly, at each pixel (rare).
+            let entry = &tables.polygons[polygon.position as usize];
+            match Plane::new(entry_corners(entry, tables.corners, tables.vertices)) {
+                Some(plane) => SpanSource::Exact(plane, row),
+                None => return false,
+            }
+        }
+    };
+    let (key, color) = (polygon.key, polygon.color);
+    let next_row = row + 1;
+    if polygon.is_triangle() {
+        let (start, end) = polygon.triangle_span();
+        if rows.fill(start, end, key, color, &source) {
+            stats.spans += 1;
+        }
+        if polygon.end_row <= next_row {
+            pool.live -= 2;
+            return false;
+        }
+        polygon.advance_triangle(next_row);
+    } else {
+        let spans = &mut stats.spans;
+        polygon.for_each_span(pool, |start, end| {
+            if rows.fill(start, end, key, color, &source) {
+                *spans += 1;
+            }
+        });
+        polygon.advance_edges(next_row, pool);
+        if polygon.end_row <= next_row {
+            return false;
+        }
+    }
+    if let SpanDepth::Stepped {
+        dz_dy, row_value, ..
+    } = &mut polygon.depth
+    {
+        *row_value += *dz_dy;
+    }
+    true
+}
+
+/// The plane's value at column 0 of `row`, exactly as stepping from the
+/// polygon's first row by `dz_dy` gives it: a band that activates the
+/// polygon below its first row writes the depths one scan would.
+/// `|dz_dy| < 2^40` (steeper planes are not stepped) and
+/// `row - first_row < 2^12`, so the product is below 2^52; the sum is the
+/// stepped value one scan reaches, within the bound of [`fill_span`].
+#[inline]
+fn row_value(plane: &Plane, dz_dy: i64, first_row: u16, row: u16) -> i64 {
+    let steps = i64::from(row.saturating_sub(first_row));
+    plane.value_at_pixel(0, i32::from(first_row)) + steps * dz_dy
+}
+
+/// A triangle's corners sorted by y (stable: equal ones keep their order),
+/// so its activation and its switch agree on which edges are which.
+#[inline]
+fn sort_by_y(
+    a: ScreenVertex,
+    b: ScreenVertex,
+    c: ScreenVertex,
+) -> (ScreenVertex, ScreenVertex, ScreenVertex) {
+    let (mut top, mut mid, mut bot) = (a, b, c);
+    if mid.y < top.y {
+        core::mem::swap(&mut top, &mut mid);
+    }
+    if bot.y < mid.y {
+        core::mem::swap(&mut mid, &mut bot);
+        if mid.y < top.y {
+            core::mem::swap(&mut top, &mut mid);
+        }
+    }
+    (top, mid, bot)
+}
+
+/// Calls `f(top, bottom)` for every non-horizontal edge of a polygon, its
+/// ends ordered top first.
+fn for_each_edge(
+    corners: impl Iterator<Item = ScreenVertex> + Clone,
+    mut f: impl FnMut(ScreenVertex, ScreenVertex),
+) {
+    let next = corners.clone().skip(1).chain(corners.clone().take(1));
+    for (a, b) in corners.zip(next) {
+        if a.y != b.y {
+            let (top, bottom) = if a.y < b.y { (a, b) } else { (b, a) };
+            f(top, bottom);
+        }
+    }
+}
+
+/// The corners of a polygon-table entry, as vertices.
+pub(crate) fn entry_corners<'a, C>(
+    polygon: &PolygonEntry<C>,
+    corners: &'a [u16],
+    vertices: &'a [ScreenVertex],
+) -> impl Iterator<Item = ScreenVertex> + Clone + 'a {
+    let start = polygon.corner_start as usize;
+    corners[start..start + usize::from(polygon.corner_count)]
+        .iter()
+        .map(move |&i| vertices[usize::from(i)])
+}
+
+/// Spans of at most this many pixels round each pixel's plane value; longer
+/// ones step the depth format's accumulator.
+const SHORT_SPAN: u32 = 4;
+
+/// Where a span's depths come from.
+enum SpanSource {
+    /// From the row's plane value at column 0 and the gradient.
+    Stepped { dz_dx: i64, row_value: i64 },
+    /// Exactly from the plane, at each pixel of the row.
+    Exact(Plane, u16),
+}
+
+/// Depth-tests and writes one span: pixels `x0 .. x0 + depths.len()`. A
+/// pixel is written when its depth is nearer than the row holds, or equal
+/// with a smaller key (the polygon added first). (Not inlined: the
+/// profile's "spans" stage.)
+#[inline(never)]
+fn fill_span<C: Copy, D: DepthFormat>(
+    depths: &mut [D::Value],
+    colors: &mut [C],
+    keys: &mut [u32],
+    x0: i32,
+    key: u32,
+    color: C,
+    source: &SpanSource,
+) {
+    let write = |depth: D::Value, stored: &mut D::Value, stored_key: &mut u32, pixel: &mut C| {
+        if depth < *stored || (depth == *stored && key < *stored_key) {
+            *stored = depth;
+            *stored_key = key;
+            *pixel = color;
+        }
+    };
+    let len = depths.len() as u32;
+    let pixels = depths
+        .iter_mut()
+        .zip(keys.iter_mut())
+        .zip(colors.iter_mut());
+    match *source {
+        SpanSource::Stepped { dz_dx, row_value } => {
+            // Re-evaluated from the plane at every span start: the error
+            // is the gradient's rounding times the column, never drift from
+            // earlier spans. |dz_dx| < 2^40 (steeper polygons are `Exact`),
+            // x0 < 2^12 and |row_value| < 2^57: no overflow.
+            let start = row_value + dz_dx * i64::from(x0);
+            if len <= SHORT_SPAN {
+                // A few pixels: rounding each plane value costs less than
+                // setting up the accumulator.
+                let mut value = start;
+                for ((stored, stored_key), pixel) in pixels {
+                    write(D::quantize(value), stored, stored_key, pixel);
+                    value += dz_dx;
+                }
+            } else if let Some((mut acc, step)) = D::span(start, dz_dx, len) {
+                for ((stored, stored_key), pixel) in pixels {
+                    write(D::value(acc), stored, stored_key, pixel);
+                    acc = D::advance(acc, step);
+                }
+            } else {
+                let mut value = start;
+                for ((stored, stored_key), pixel) in pixels {
+                    write(D::quantize(value), stored, stored_key, pixel);
+                    value = value.saturating_add(dz_dx);
+                }
+            }
+        }
+        SpanSource::Exact(plane, row) => {
+            for (k, ((stored, stored_key), pixel)) in pixels.enumerate() {
+                let value = plane.value_at_pixel(x0 + k as i32, i32::from(row));
+                write(D::quantize(value), stored, stored_key, pixel);
+            }
+        }
+    }
+}

@@ -1,0 +1,190 @@
+//! The split between the scene-sized tables and the row-sized scanner:
+//! several scanners over one set of prepared tables, each over its own band
+//! of rows (on threads or not), send exactly the rows one scanner sends;
+//! array-backed and `Vec`-backed storage give the same frames.
+
+use proptest::prelude::*;
+use zline::host::{ScanVecs, TableVecs};
+use zline::raster::fixed::{DEPTH_MAX, SUBPIXEL_STEPS};
+use zline::raster::{ScanArrays, TableArrays};
+use zline::{
+    Capacities, Depth16, Depth24, DepthFormat, FnSink, Renderer, ScanStorage, Scanner,
+    ScreenVertex, Tables, scan,
+};
+
+const W: u16 = 48;
+const H: u16 = 40;
+const S: i32 = SUBPIXEL_STEPS;
+
+const CAPS: Capacities = Capacities {
+    width: W as usize,
+    vertices: 256,
+    polygons: 32,
+    corners: 256,
+    active_polygons: 32,
+    pooled_edges: 64,
+};
+
+/// Triangles and polygons of up to 7 corners (concave ones too) from well
+/// off-screen to inside, any depth.
+fn polygon() -> impl Strategy<Value = Vec<ScreenVertex>> {
+    prop::collection::vec(
+        (
+            -10 * S..(i32::from(W) + 10) * S,
+            -10 * S..(i32::from(H) + 10) * S,
+            0..=DEPTH_MAX,
+        ),
+        3..=7,
+    )
+    .prop_map(|corners| {
+        corners
+            .into_iter()
+            .map(|(x, y, z)| ScreenVertex { x, y, z })
+            .collect()
+    })
+}
+
+/// The frame as rows of (colour, depth), row by row as the sink got them.
+type Rows = Vec<(u16, Vec<u32>, Vec<u64>)>;
+
+fn tables(scene: &[Vec<ScreenVertex>]) -> Tables<TableVecs<u32>> {
+    let mut tables = Tables::new(TableVecs::new(&CAPS, 0), W, H).unwrap();
+    for (k, poly) in scene.iter().enumerate() {
+        tables.push_polygon_vertices(poly, k as u32 + 1).unwrap();
+    }
+    tables
+}
+
+fn scan_band<S: ScanStorage<Color = u32>>(
+    prepared: &zline::raster::Prepared<'_, u32>,
+    scanner: &mut Scanner<S>,
+    band: core::ops::Range<u16>,
+) -> Rows
+where
+    <S::Depth as DepthFormat>::Value: Into<u64>,
+{
+    let mut rows = Vec::new();
+    scan(
+        prepared,
+        scanner,
+        band,
+        &mut FnSink(
+            |y: u16, c: &[u32], z: &[<S::Depth as DepthFormat>::Value]| {
+                rows.push((y, c.to_vec(), z.iter().map(|&v| v.into()).collect()));
+                Ok::<(), ()>(())
+            },
+        ),
+    )
+    .unwrap();
+    rows
+}
+
+fn check_bands<D: DepthFormat>(scene: &[Vec<ScreenVertex>], cuts: &[u16])
+where
+    D::Value: Into<u64>,
+{
+    let mut tables = tables(scene);
+    let prepared = tables.prepare();
+    let mut whole = Scanner::new(ScanVecs::<u32, D>::new(&CAPS, 0), 0);
+    let one = scan_band(&prepared, &mut whole, 0..H);
+    // Bands on threads: each thread its own scanner, all sharing the
+    // prepared tables.
+    let mut bounds: Vec<u16> = cuts.iter().map(|c| c % (H + 1)).collect();
+    bounds.extend([0, H]);
+    bounds.sort_unstable();
+    let bands: Vec<Rows> = std::thread::scope(|s| {
+        let handles: Vec<_> = bounds
+            .windows(2)
+            .map(|w| {
+                let (band, prepared) = (w[0]..w[1], &prepared);
+                s.spawn(move || {
+                    let mut scanner = Scanner::new(ScanVecs::<u32, D>::new(&CAPS, 0), 0);
+                    scan_band(prepared, &mut scanner, band)
+                })
+            })
+            .collect();
+        handles.into_iter().map(|h| h.join().unwrap()).collect()
+    });
+    let joined: Rows = bands.into_iter().flatten().collect();
+    assert_eq!(joined.len(), one.len(), "bands {bounds:?}");
+    for (band_row, whole_row) in joined.iter().zip(&one) {
+        assert_eq!(band_row, whole_row, "bands {bounds:?}, row {}", whole_row.0);
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    #[test]
+    fn bands_on_threads_equal_one_scan(
+        scene in prop::collection::vec(polygon(), 1..=10),
+        cuts in prop::collection::vec(0u16..=H, 0..4),
+    ) {
+        check_bands::<Depth16>(&scene, &cuts);
+        check_bands::<Depth24>(&scene, &cuts);
+    }
+}
+
+#[test]
+fn every_single_row_band_equals_one_scan() {
+    // A tall triangle, a concave U and a quad: each band starts inside
+    // some of them.
+    let v = |x: i32, y: i32, z: u32| ScreenVertex::new(x * S, y * S, z).unwrap();
+    let scene = vec![
+        vec![v(2, -5, 100), v(45, 10, 9_000_000), v(10, 50, 16_000_000)],
+        vec![
+            v(5, 5, 5_000_000),
+            v(15, 5, 5_000_000),
+            v(15, 30, 5_000_000),
+            v(25, 30, 5_000_000),
+            v(25, 5, 5_000_000),
+            v(35, 5, 5_000_000),
+            v(35, 38, 5_000_000),
+            v(5, 38, 5_000_000),
+        ],
+        vec![
+            v(0, 0, 8_000_000),
+            v(47, 3, 8_000_000),
+            v(40, 39, 1_000),
+            v(3, 35, 8_000_000),
+        ],
+    ];
+    let cuts: Vec<u16> = (1..H).collect();
+    check_bands::<Depth24>(&scene, &cuts);
+}
+
+#[test]
+fn array_and_vec_storage_give_the_same_frame() {
+    let v = |x: i32, y: i32, z: u32| ScreenVertex::new(x * S, y * S, z).unwrap();
+    let scene = [
+        vec![v(2, 1, 100), v(40, 12, 9_000_000), v(10, 38, 16_000_000)],
+        vec![
+            v(30, 2, 50),
+            v(46, 30, 50),
+            v(5, 20, 12_000_000),
+            v(20, 6, 3_000),
+        ],
+    ];
+    let mut fixed: Renderer<TableArrays<u32, 16, 4, 16>, ScanArrays<u32, Depth16, 48, 4, 4>> =
+        Renderer::with_size(W, H, 0).unwrap();
+    let mut vecs = zline::host::host_renderer::<u32, Depth16>(&CAPS, W, H, 0).unwrap();
+    for (k, poly) in scene.iter().enumerate() {
+        fixed.push_polygon_vertices(poly, k as u32 + 1).unwrap();
+        vecs.push_polygon_vertices(poly, k as u32 + 1).unwrap();
+    }
+    let (mut a, mut b) = (Vec::new(), Vec::new());
+    fixed
+        .render(&mut FnSink(|y: u16, c: &[u32], _: &[u16]| {
+            a.push((y, c.to_vec()));
+            Ok::<(), ()>(())
+        }))
+        .unwrap();
+    vecs.render(&mut FnSink(|y: u16, c: &[u32], _: &[u16]| {
+        b.push((y, c.to_vec()));
+        Ok::<(), ()>(())
+    }))
+    .unwrap();
+    assert_eq!(a, b);
+    assert!(a.iter().flat_map(|(_, c)| c).any(|&c| c == 1));
+    assert!(a.iter().flat_map(|(_, c)| c).any(|&c| c == 2));
+}
