@@ -24,7 +24,7 @@
 //! | table building | `draw_mesh`, less the three above |
 //! | sorting | `Tables::prepare` |
 //! | polygon/edge activation | `ScanState::activate_*` |
-//! | spans | `fill_span` |
+//! | spans | `RowBuffers::fill` |
 //! | sink | `profile::copy_row` |
 //! | row upkeep | `scan_rows`, less activation, spans and sink |
 
@@ -147,7 +147,7 @@ fn report(path: &str) -> Result<(), String> {
     let prepare = cost(&["Tables", "prepare"]);
     let activation = cost(&["ScanState", "activate_polygon"]);
     let edges = cost(&["ScanState", "activate_edges"]);
-    let spans = cost(&["scan::fill_span"]);
+    let spans = cost(&["scan::RowBuffers<C,D>::fill"]);
     let sink = cost(&["profile::copy_row"]);
     let scan = cost(&["scan::scan_rows"]);
     let total = draw + prepare + scan;

@@ -54,6 +54,10 @@ pub struct ActivePolygon<C> {
     short_side: u8,
     /// Further active edges: a list in the [`EdgePool`], sorted by `x`.
     extra: u32,
+    /// For a triangle waiting for its `switch_row`: the vertex-table
+    /// indices of its middle and bottom corners, the ends of the lower
+    /// short edge.
+    pub(crate) lower: [u16; 2],
 }
 
 /// No row: a triangle with no edge left to start.
@@ -85,6 +89,7 @@ impl<C: Copy> ActivePolygon<C> {
             triangle: false,
             short_side: 0,
             extra: NO_EDGE,
+            lower: [0; 2],
         }
     }
 
@@ -119,6 +124,7 @@ impl<C: Copy> ActivePolygon<C> {
             triangle: true,
             short_side: if short_left { 0 } else { 1 },
             extra: NO_EDGE,
+            lower: [0; 2],
         }
     }
 

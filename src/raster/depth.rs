@@ -68,6 +68,7 @@ const Z16_SHIFT: u32 = PLANE_FRAC_BITS + 8 - Z16_ACC_FRAC;
 const Z24_ACC_FRAC: u32 = 32;
 
 /// `value / 2^shift` rounded to nearest (ties up).
+#[inline(always)]
 fn shift_round(value: i64, shift: u32) -> i64 {
     (value + (1 << (shift - 1))) >> shift
 }
@@ -79,6 +80,7 @@ impl DepthFormat for Depth16 {
     const NAME: &'static str = "z16";
     const BITS: u32 = 16;
 
+    #[inline]
     fn span(start: i64, step: i64, len: u32) -> Option<(i32, i32)> {
         // Bias by half a step so that truncation rounds to nearest.
         let first = shift_round(start, Z16_SHIFT) + (1 << (Z16_ACC_FRAC - 1));
@@ -110,6 +112,7 @@ impl DepthFormat for Depth16 {
         acc + step
     }
 
+    #[inline]
     fn quantize(plane_value: i64) -> u16 {
         shift_round(plane_value, PLANE_FRAC_BITS + 8).clamp(0, i64::from(u16::MAX)) as u16
     }
@@ -122,6 +125,7 @@ impl DepthFormat for Depth24 {
     const NAME: &'static str = "z24";
     const BITS: u32 = 24;
 
+    #[inline]
     fn span(start: i64, step: i64, len: u32) -> Option<(i64, i64)> {
         let widen = Z24_ACC_FRAC - PLANE_FRAC_BITS;
         let first = start
@@ -144,6 +148,7 @@ impl DepthFormat for Depth24 {
         acc + step
     }
 
+    #[inline]
     fn quantize(plane_value: i64) -> u32 {
         shift_round(plane_value, PLANE_FRAC_BITS)
             .clamp(0, i64::from(crate::raster::fixed::DEPTH_MAX)) as u32

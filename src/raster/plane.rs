@@ -170,6 +170,39 @@ impl Plane {
         )
     }
 
+    /// The column whose plane value anchors a stepped row: the pixel of
+    /// corner 0, clamped to the frame's `width` columns. Near the polygon
+    /// the set-up product `a·dx` stays small (the one-multiplication path
+    /// of [`Reciprocal`]), and the gradient's rounding is multiplied only
+    /// by the distance from this column.
+    #[inline]
+    fn anchor_column(&self, width: u16) -> i32 {
+        (self.origin.x >> SUBPIXEL_BITS).clamp(0, i32::from(width.max(1)) - 1)
+    }
+
+    /// The value a stepped polygon holds for column 0 of `row`:
+    /// `V(anchor, first_row) - dz_dx·anchor + (row - first_row)·dz_dy`,
+    /// with `V` the exact (rounded) plane value at the anchor column's
+    /// sample. It is exactly what stepping from `first_row` by `dz_dy`
+    /// gives, so a band that starts below `first_row` writes the depths
+    /// one scan would; a span starting at column `x` then adds
+    /// `dz_dx·x`, which cancels the anchor term exactly, so a stored value
+    /// is off the exact plane by at most `2^-17·(1 + rows stepped + |x -
+    /// anchor|)` depth steps before the format's rounding.
+    ///
+    /// Ranges (`dz_dx`, `dz_dy` stepped, so below `2^40`; columns and rows
+    /// below `2^12`): `dz_dx·anchor` and `(row - first_row)·dz_dy` are
+    /// below `2^52`; the result is the plane value at column 0 within
+    /// `2^12` plane units, so below `2^56 + 2^41`.
+    #[inline]
+    pub fn row_start(&self, gradients: (i64, i64), width: u16, first_row: u16, row: u16) -> i64 {
+        let (dz_dx, dz_dy) = gradients;
+        let anchor = self.anchor_column(width);
+        let steps = i64::from(row.saturating_sub(first_row));
+        self.value_at_pixel(anchor, i32::from(first_row)) - dz_dx * i64::from(anchor)
+            + steps * dz_dy
+    }
+
     /// `-coef / c` per pixel in plane units, rounded; `None` when steep.
     #[inline]
     fn gradient(&self, coef: i64) -> Option<i64> {

@@ -29,7 +29,7 @@ use crate::raster::fixed::first_sample_at_or_after;
 use crate::raster::plane::Plane;
 use crate::raster::slots::Slots;
 use crate::raster::tables::{PolygonEntry, Prepared};
-use crate::raster::vertex::ScreenVertex;
+use crate::raster::vertex::{ScreenVertex, TriangleTest};
 use crate::sink::RowSink;
 
 /// Where a scanner's arrays live: the active polygon table, the edge pool
@@ -298,19 +298,21 @@ struct RowBuffers<'a, C, D: DepthFormat> {
 
 impl<C: Copy, D: DepthFormat> RowBuffers<'_, C, D> {
     /// Fills pixels `[start, end)` (clamped to the row) of a polygon with
-    /// `key` and `color`, depths from `source`.
-    #[inline]
+    /// `key` and `color`, depths from `source`; whether any pixel was in
+    /// the row. (Not inlined: the profile's "spans" stage.)
+    #[inline(never)]
     fn fill(&mut self, start: i32, end: i32, key: u32, color: C, source: &SpanSource) -> bool {
         let width = self.depth.len() as i32;
-        let (start, end) = (start.clamp(0, width) as usize, end.clamp(0, width) as usize);
+        let (start, end) = (start.clamp(0, width), end.clamp(0, width));
         if start >= end {
             return false;
         }
+        let range = start as usize..end as usize;
         fill_span::<C, D>(
-            &mut self.depth[start..end],
-            &mut self.color[start..end],
-            &mut self.key[start..end],
-            start as i32,
+            &mut self.depth[range.clone()],
+            &mut self.color[range.clone()],
+            &mut self.key[range],
+            start,
             key,
             color,
             source,
@@ -354,7 +356,12 @@ impl<C: Copy> ScanState<'_, '_, C> {
             Some((plane, Some((dz_dx, dz_dy)))) => SpanDepth::Stepped {
                 dz_dx,
                 dz_dy,
-                row_value: row_value(&plane, dz_dy, polygon.first_row, row),
+                row_value: plane.row_start(
+                    (dz_dx, dz_dy),
+                    self.tables.width,
+                    polygon.first_row,
+                    row,
+                ),
             },
             // Non-zero area was checked when the polygon entered the table.
             Some((_, None)) | None => SpanDepth::Exact,
@@ -387,23 +394,29 @@ impl<C: Copy> ScanState<'_, '_, C> {
         let polygon = self.tables.polygons[position];
         let start = polygon.corner_start as usize;
         let (corners, vertices) = (self.tables.corners, self.tables.vertices);
-        let (a, b, c) = (
-            vertices[usize::from(corners[start])],
-            vertices[usize::from(corners[start + 1])],
-            vertices[usize::from(corners[start + 2])],
-        );
+        let ids = [corners[start], corners[start + 1], corners[start + 2]];
+        let [a, b, c] = ids.map(|id| vertices[usize::from(id)]);
         let Some(plane) = Plane::triangle(a, b, c) else {
             return Ok(()); // Zero area was left out when it was queued.
         };
+        if polygon.end_row == row + 1 && self.draw_tiny_row(a, b, c, &plane, &polygon, row, rows) {
+            return Ok(());
+        }
         let depth = match plane.gradients() {
             Some((dz_dx, dz_dy)) => SpanDepth::Stepped {
                 dz_dx,
                 dz_dy,
-                row_value: row_value(&plane, dz_dy, polygon.first_row, row),
+                row_value: plane.row_start(
+                    (dz_dx, dz_dy),
+                    self.tables.width,
+                    polygon.first_row,
+                    row,
+                ),
             },
             None => SpanDepth::Exact,
         };
-        let (top, mid, bot) = sort_by_y(a, b, c);
+        let [(_, top), (mid_id, mid), (bot_id, bot)] =
+            sort_by_y([(ids[0], a), (ids[1], b), (ids[2], c)]);
         let height = i32::from(self.tables.height);
         let row_of = |y: i32| first_sample_at_or_after(y);
         let (mid_row, bot_row) = (row_of(mid.y), row_of(bot.y));
@@ -434,6 +447,7 @@ impl<C: Copy> ScanState<'_, '_, C> {
             short,
             cross > 0,
         );
+        entry.lower = [mid_id, bot_id];
         self.stats.edges += 2;
         self.pool.live += 2;
         if polygon.end_row == row + 1 {
@@ -444,6 +458,44 @@ impl<C: Copy> ScanState<'_, '_, C> {
         self.active
             .push(entry)
             .map_err(|_| Error::ActivePolygonsFull { row })
+    }
+
+    /// Draws a triangle that covers `row` alone and spans at most
+    /// [`TINY_COLUMNS`] samples of it, with no edges and no gradients: its
+    /// covered samples (contiguous, the triangle being convex) come from
+    /// the fill rule's sample test, and their depths are the plane's exact
+    /// values. Returns `false` (nothing drawn) for a wider triangle.
+    #[allow(clippy::too_many_arguments)]
+    #[inline]
+    fn draw_tiny_row<D: DepthFormat>(
+        &mut self,
+        a: ScreenVertex,
+        b: ScreenVertex,
+        c: ScreenVertex,
+        plane: &Plane,
+        polygon: &PolygonEntry<C>,
+        row: u16,
+        rows: &mut RowBuffers<'_, C, D>,
+    ) -> bool {
+        let width = i32::from(self.tables.width);
+        let first = first_sample_at_or_after(a.x.min(b.x).min(c.x)).max(0);
+        let end = first_sample_at_or_after(a.x.max(b.x).max(c.x)).min(width);
+        if end - first > TINY_COLUMNS {
+            return false;
+        }
+        let test = TriangleTest::new(a, b, c);
+        let (mut start, mut stop) = (end, first);
+        for column in first..end {
+            if test.covers_pixel(column, i32::from(row)) {
+                start = start.min(column);
+                stop = column + 1;
+            }
+        }
+        let source = SpanSource::Exact(*plane, row);
+        if rows.fill(start, stop, polygon.id + 1, polygon.color, &source) {
+            self.stats.spans += 1;
+        }
+        true
     }
 
     /// Fills an active polygon's spans on `row` and steps it down to the
@@ -469,14 +521,9 @@ impl<C: Copy> ScanState<'_, '_, C> {
     /// joins the pair (the upper one has just left it).
     #[inline(never)]
     fn switch_triangle(&mut self, slot: usize, row: u16) -> Result<(), Error> {
-        let polygon = &self.tables.polygons[self.active.as_slice()[slot].position as usize];
-        let start = polygon.corner_start as usize;
-        let (corners, vertices) = (self.tables.corners, self.tables.vertices);
-        let (_, mid, bot) = sort_by_y(
-            vertices[usize::from(corners[start])],
-            vertices[usize::from(corners[start + 1])],
-            vertices[usize::from(corners[start + 2])],
-        );
+        let [mid, bot] = self.active.as_slice()[slot]
+            .lower
+            .map(|id| self.tables.vertices[usize::from(id)]);
         let end = first_sample_at_or_after(bot.y).min(i32::from(self.tables.height));
         let entry = &mut self.active.as_mut_slice()[slot];
         entry.switch_row = NO_ROW;
@@ -616,37 +663,21 @@ fn fill_and_step<C: Copy, D: DepthFormat>(
     true
 }
 
-/// The plane's value at column 0 of `row`, exactly as stepping from the
-/// polygon's first row by `dz_dy` gives it: a band that activates the
-/// polygon below its first row writes the depths one scan would.
-/// `|dz_dy| < 2^40` (steeper planes are not stepped) and
-/// `row - first_row < 2^12`, so the product is below 2^52; the sum is the
-/// stepped value one scan reaches, within the bound of [`fill_span`].
+/// A triangle's corners (with their vertex indices) sorted by y (stable:
+/// equal ones keep their order).
 #[inline]
-fn row_value(plane: &Plane, dz_dy: i64, first_row: u16, row: u16) -> i64 {
-    let steps = i64::from(row.saturating_sub(first_row));
-    plane.value_at_pixel(0, i32::from(first_row)) + steps * dz_dy
-}
-
-/// A triangle's corners sorted by y (stable: equal ones keep their order),
-/// so its activation and its switch agree on which edges are which.
-#[inline]
-fn sort_by_y(
-    a: ScreenVertex,
-    b: ScreenVertex,
-    c: ScreenVertex,
-) -> (ScreenVertex, ScreenVertex, ScreenVertex) {
-    let (mut top, mut mid, mut bot) = (a, b, c);
-    if mid.y < top.y {
+fn sort_by_y(corners: [(u16, ScreenVertex); 3]) -> [(u16, ScreenVertex); 3] {
+    let [mut top, mut mid, mut bot] = corners;
+    if mid.1.y < top.1.y {
         core::mem::swap(&mut top, &mut mid);
     }
-    if bot.y < mid.y {
+    if bot.1.y < mid.1.y {
         core::mem::swap(&mut mid, &mut bot);
-        if mid.y < top.y {
+        if mid.1.y < top.1.y {
             core::mem::swap(&mut top, &mut mid);
         }
     }
-    (top, mid, bot)
+    [top, mid, bot]
 }
 
 /// Calls `f(top, bottom)` for every non-horizontal edge of a polygon, its
@@ -676,6 +707,10 @@ pub(crate) fn entry_corners<'a, C>(
         .map(move |&i| vertices[usize::from(i)])
 }
 
+/// Triangles covering one row and at most this many columns of it are
+/// drawn by sample tests and exact plane values, without edges.
+const TINY_COLUMNS: i32 = 4;
+
 /// Spans of at most this many pixels round each pixel's plane value; longer
 /// ones step the depth format's accumulator.
 const SHORT_SPAN: u32 = 4;
@@ -690,9 +725,8 @@ enum SpanSource {
 
 /// Depth-tests and writes one span: pixels `x0 .. x0 + depths.len()`. A
 /// pixel is written when its depth is nearer than the row holds, or equal
-/// with a smaller key (the polygon added first). (Not inlined: the
-/// profile's "spans" stage.)
-#[inline(never)]
+/// with a smaller key (the polygon added first).
+#[inline(always)]
 fn fill_span<C: Copy, D: DepthFormat>(
     depths: &mut [D::Value],
     colors: &mut [C],
@@ -717,9 +751,10 @@ fn fill_span<C: Copy, D: DepthFormat>(
     match *source {
         SpanSource::Stepped { dz_dx, row_value } => {
             // Re-evaluated from the plane at every span start: the error
-            // is the gradient's rounding times the column, never drift from
-            // earlier spans. |dz_dx| < 2^40 (steeper polygons are `Exact`),
-            // x0 < 2^12 and |row_value| < 2^57: no overflow.
+            // is the gradient's rounding times the distance from the
+            // polygon's anchor column (see `Plane::row_start`), never drift
+            // from earlier spans. |dz_dx| < 2^40 (steeper polygons are
+            // `Exact`), x0 < 2^12 and |row_value| < 2^57: no overflow.
             let start = row_value + dz_dx * i64::from(x0);
             if len <= SHORT_SPAN {
                 // A few pixels: rounding each plane value costs less than

@@ -20,11 +20,9 @@ use core::ops::Range;
 
 use crate::error::Error;
 use crate::raster::edge::{EdgeEntry, MAX_POLYGONS};
-use crate::raster::fixed::{
-    HALF_PIXEL, MAX_FRAME_SIZE, MAX_POLYGON_CORNERS, SUBPIXEL_STEPS, first_sample_at_or_after,
-};
+use crate::raster::fixed::{MAX_FRAME_SIZE, MAX_POLYGON_CORNERS, first_sample_at_or_after};
 use crate::raster::slots::Slots;
-use crate::raster::vertex::{Outline, OutlineBuilder, ScreenRect, ScreenVertex, triangle_covers};
+use crate::raster::vertex::{Outline, OutlineBuilder, ScreenRect, ScreenVertex, TriangleTest};
 
 /// A polygon-table entry (opaque: its fields are the core's own).
 #[derive(Debug, Clone, Copy)]
@@ -454,10 +452,10 @@ impl<S: TableStorage> Tables<S> {
             st.counts.off_screen += 1;
             return Ok(Admission::OffScreen);
         };
-        if !covers_a_sample(a, b, c, columns, rows.clone()) {
+        let Some(rows) = covered_rows(a, b, c, columns, rows) else {
             st.counts.off_screen += 1;
             return Ok(Admission::OffScreen);
-        }
+        };
         let outline = Outline {
             corners: 3,
             twice_area,
@@ -661,17 +659,18 @@ impl<C: Copy> TablesMut<'_, C> {
                 y1: a.y.max(b.y).max(c.y),
             }),
         };
-        let rows = match self.judge(&outline)? {
-            Ok(rows) => rows,
-            Err(admission) => return Ok(admission),
-        };
-        let samples = outline
+        if let Err(admission) = self.judge(&outline)? {
+            return Ok(admission);
+        }
+        let covered = outline
             .rect
-            .and_then(|r| r.samples(self.counts.width, self.counts.height));
-        if !samples.is_some_and(|(columns, rows)| covers_a_sample(a, b, c, columns, rows)) {
+            .and_then(|r| r.samples(self.counts.width, self.counts.height))
+            .and_then(|(columns, rows)| covered_rows(a, b, c, columns, rows));
+        let Some(rows) = covered else {
             self.counts.off_screen += 1;
             return Ok(Admission::OffScreen);
-        }
+        };
+        let rows = (rows.start, rows.end);
         let Some(color) = decide(&outline) else {
             return Ok(Admission::Declined);
         };
@@ -877,27 +876,39 @@ impl<C: Copy> TablesMut<'_, C> {
 /// they cover.
 const TINY_SAMPLES: usize = 4;
 
-/// Whether a triangle covers one of the samples of `columns` x `rows`
-/// (those in its bounding box): tested for tiny triangles (at most
-/// [`TINY_SAMPLES`] samples), assumed for others.
+/// The rows of a triangle's bounding box (its samples: `columns` x `rows`)
+/// that hold a sample it covers. A tiny triangle (at most
+/// [`TINY_SAMPLES`] samples) is tested sample by sample: `None` when it
+/// covers none, else the rows from its first covered sample's to its last
+/// one's (so one covering a single row is known to at activation). Larger
+/// triangles keep all of `rows`.
 #[inline]
-fn covers_a_sample(
+fn covered_rows(
     a: ScreenVertex,
     b: ScreenVertex,
     c: ScreenVertex,
     columns: Range<u16>,
     rows: Range<u16>,
-) -> bool {
+) -> Option<Range<u16>> {
     if columns.len() * rows.len() > TINY_SAMPLES {
-        return true;
+        return Some(rows);
     }
-    rows.into_iter().any(|row| {
-        columns.clone().any(|column| {
-            let xs = i32::from(column) * SUBPIXEL_STEPS + HALF_PIXEL;
-            let ys = i32::from(row) * SUBPIXEL_STEPS + HALF_PIXEL;
-            triangle_covers(a, b, c, xs, ys)
-        })
-    })
+    let test = TriangleTest::new(a, b, c);
+    // One bit per sample, row by row (at most TINY_SAMPLES bits).
+    let (mut mask, mut bit) = (0u32, 0);
+    for row in rows.clone() {
+        for column in columns.clone() {
+            mask |= u32::from(test.covers_pixel(i32::from(column), i32::from(row))) << bit;
+            bit += 1;
+        }
+    }
+    if mask == 0 {
+        return None;
+    }
+    let per_row = columns.len() as u32;
+    let first = mask.trailing_zeros() / per_row;
+    let last = (31 - mask.leading_zeros()) / per_row;
+    Some(rows.start + first as u16..rows.start + last as u16 + 1)
 }
 
 /// Sorts `keys` by row (their top 12 bits), stably: two passes of 6 bits,

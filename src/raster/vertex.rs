@@ -5,8 +5,8 @@ use core::ops::Range;
 
 use crate::error::Error;
 use crate::raster::fixed::{
-    DEPTH_MAX, GUARD_BAND, depth_from_f32, depth_from_f64, first_sample_at_or_after,
-    subpixel_from_f32, subpixel_from_f64,
+    DEPTH_MAX, GUARD_BAND, HALF_PIXEL, SUBPIXEL_STEPS, depth_from_f32, depth_from_f64,
+    first_sample_at_or_after, subpixel_from_f32, subpixel_from_f64,
 };
 
 /// A vertex after projection: position on the sub-pixel grid and depth.
@@ -140,9 +140,8 @@ impl ScreenRect {
 /// steps), by the core's fill rule: an edge counts when it spans the
 /// sample's row (top inclusive, bottom exclusive) and crosses it at or left
 /// of the sample; the sample is inside when an odd number count. This is
-/// exactly the rule the edge DDA applies, with no division: the core uses
-/// it to drop tiny triangles that cover none of the few samples in their
-/// bounding box before they take any table space.
+/// exactly the rule the edge DDA applies, with no division. (For many
+/// samples of one triangle, make a [`TriangleTest`] once.)
 #[inline]
 pub fn triangle_covers(
     a: ScreenVertex,
@@ -151,18 +150,83 @@ pub fn triangle_covers(
     xs: i32,
     ys: i32,
 ) -> bool {
-    let crosses = |p: ScreenVertex, q: ScreenVertex| {
-        let (top, bottom) = if p.y < q.y { (p, q) } else { (q, p) };
-        if top.y == bottom.y || ys < top.y || ys >= bottom.y {
-            return false;
+    TriangleTest::new(a, b, c).covers(xs, ys)
+}
+
+/// One edge of a [`TriangleTest`], its ends ordered top first.
+#[derive(Debug, Clone, Copy)]
+struct EdgeTest {
+    top_x: i64,
+    top_y: i32,
+    bottom_y: i32,
+    dx: i64,
+    dy: i64,
+}
+
+impl EdgeTest {
+    #[inline]
+    fn new(p: ScreenVertex, q: ScreenVertex) -> Self {
+        let (top, bottom) = if p.y <= q.y { (p, q) } else { (q, p) };
+        Self {
+            top_x: i64::from(top.x),
+            top_y: top.y,
+            bottom_y: bottom.y,
+            dx: i64::from(bottom.x) - i64::from(top.x),
+            dy: i64::from(bottom.y) - i64::from(top.y),
         }
-        // crossing x = top.x + (ys - top.y)·dx/dy <= xs, with dy > 0; every
-        // product is below 2^44 inside the guard band.
-        let dx = i64::from(bottom.x) - i64::from(top.x);
-        let dy = i64::from(bottom.y) - i64::from(top.y);
-        (i64::from(top.x) - i64::from(xs)) * dy + (i64::from(ys) - i64::from(top.y)) * dx <= 0
-    };
-    crosses(a, b) ^ crosses(b, c) ^ crosses(c, a)
+    }
+
+    /// Whether the edge spans row `ys` and crosses it at or left of `xs`:
+    /// `top_x + (ys - top_y)·dx/dy <= xs` with `dy > 0`, multiplied out.
+    /// Inside the guard band every product is below `2^44`. A horizontal
+    /// edge spans no row. Branch-free: the three tests are combined with
+    /// `&`, not `&&`.
+    #[inline]
+    fn counts(&self, xs: i32, ys: i32) -> bool {
+        let spans = (ys >= self.top_y) & (ys < self.bottom_y);
+        let left =
+            (self.top_x - i64::from(xs)) * self.dy + i64::from(ys - self.top_y) * self.dx <= 0;
+        spans & left
+    }
+}
+
+/// The fill rule's sample test for one triangle, set up once and asked for
+/// many samples (see [`triangle_covers`]): the core uses it to drop tiny
+/// triangles that cover none of the few samples in their bounding box, to
+/// find the rows they do cover, and to draw those covering one row.
+#[derive(Debug, Clone, Copy)]
+pub struct TriangleTest {
+    edges: [EdgeTest; 3],
+}
+
+impl TriangleTest {
+    /// The test for triangle `a b c` (corners inside the guard band).
+    #[inline]
+    pub fn new(a: ScreenVertex, b: ScreenVertex, c: ScreenVertex) -> Self {
+        Self {
+            edges: [
+                EdgeTest::new(a, b),
+                EdgeTest::new(b, c),
+                EdgeTest::new(c, a),
+            ],
+        }
+    }
+
+    /// Whether the triangle covers sample point `(xs, ys)` (sub-pixel steps).
+    #[inline]
+    pub fn covers(&self, xs: i32, ys: i32) -> bool {
+        let [e0, e1, e2] = &self.edges;
+        e0.counts(xs, ys) ^ e1.counts(xs, ys) ^ e2.counts(xs, ys)
+    }
+
+    /// Whether the triangle covers the sample of pixel `(column, row)`.
+    #[inline]
+    pub fn covers_pixel(&self, column: i32, row: i32) -> bool {
+        self.covers(
+            column * SUBPIXEL_STEPS + HALF_PIXEL,
+            row * SUBPIXEL_STEPS + HALF_PIXEL,
+        )
+    }
 }
 
 /// A polygon's outline as the core judges it: its number of corners, twice
