@@ -5,16 +5,40 @@
 //! colour, never a frame, and hands each finished row to any
 //! embedded-graphics [`DrawTarget`](embedded_graphics_core::draw_target::DrawTarget).
 //!
-//! The pipeline, one module a stage:
+//! The pipeline, one module a stage (tiny-skia's shape: geometry, then
+//! edges, then scan conversion, then a blitter that receives finished
+//! rows):
 //!
 //! | stage | module | what it does |
 //! |---|---|---|
-//! | front end | [`front`] | meshes ([`front::mesh`], [`front::obj`]) in world space through the camera ([`front::geometry`]), culled, clipped ([`front::clip`]), projected and shaded ([`front::shade`]) into screen polygons ([`front::scene`]) |
-//! | core | [`raster`] | screen polygons ([`raster::vertex`], [`raster::fixed`]) into the scene-sized tables ([`raster::tables`]), scanned row by row ([`raster::scan`]) into one depth row ([`raster::depth`]) and one colour row |
-//! | blitter | [`sink`] | finished rows to a `DrawTarget`, a closure or a checksum |
+//! | front end | [`front`] | world-space meshes to screen polygons in the core's tables |
+//! | | [`front::mesh`] | the [`Mesh`](front::mesh::Mesh) trait over one array layout; [`StaticMesh`](front::mesh::StaticMesh) for flash; the planarity rule |
+//! | | [`front::obj`] | the `no_std` OBJ reader, with line numbers in every error |
+//! | | [`front::geometry`] | vectors, matrices, camera transforms, Newell's normal |
+//! | | [`front::clip`] | streaming homogeneous clipping in `f64` |
+//! | | [`front::scene`] | [`draw_mesh`](front::scene::draw_mesh): transform, cull, clip, project, shade, offer each face to the tables |
+//! | | [`front::shade`] | one colour per face: flat, Lambert, depth grey, face id |
+//! | core | [`raster`] | the scanline z-buffer: screen polygons in, finished rows out |
+//! | | [`raster::fixed`] | the sub-pixel grid, input depth, guard band, exact rounding and division |
+//! | | [`raster::vertex`] | [`ScreenVertex`], the outline and bounding rectangle a polygon is judged by, the fill rule's sample test |
+//! | | [`raster::tables`] | the scene-sized tables (vertices, polygons, corners, edge table), sorted by first row in O(n) |
+//! | | [`raster::scan`](mod@raster::scan) | the row-sized [`Scanner`] (active polygon table, active edge pool, the rows) and [`scan()`] |
+//! | | [`raster::depth`] | the depth formats a row stores ([`Depth16`], [`Depth24`]) |
+//! | | [`raster::capacities`] | [`Capacities`] by name, and the [`Renderer`] bundle of tables and scanner |
+//! | | `raster::plane`, `raster::edge`, `raster::active`, `raster::slots` (internal) | the plane set-up, the exact edge DDA, the active tables, the capacity-erased list they live in |
+//! | blitter | [`sink`] | finished rows to a `DrawTarget` ([`DrawTargetSink`]), a closure ([`FnSink`]) or a checksum ([`Crc32Sink`]) |
 //! | | [`error`] | what can go wrong, by name |
-//! | host side (feature `std`) | [`methods`] | the comparison renderers and checks: the float64 reference, the exact rational oracle, the accuracy comparison, the scanline core on `Vec`s |
-//! | | [`host`] | the tools' support: meshes in `Vec`s and `Vec`-backed storage, procedural shapes, the mesh-to-Rust writer, command-line helpers, the fuzzers' checks |
+//! | comparison (feature `std`) | [`methods`] | the renderers and checks zline is measured against |
+//! | | `methods::reference` | the float64 ray-cast reference ([`methods::ReferenceFrame`]) |
+//! | | [`methods::exact`] | the exact rational oracle for the core |
+//! | | `methods::accuracy` | face-id comparison with the reference, mismatches excused or hard |
+//! | | `methods::scanline_host` | the scanline core on `Vec` storage, whole-frame output ([`methods::HostScanline`]) |
+//! | tools' support (feature `std`) | [`host`] | what the examples, tools and fuzzers share |
+//! | | `host::host_mesh`, `host::storage` | meshes and core storage in `Vec`s ([`host::HostMesh`], [`host::TableVecs`], [`host::ScanVecs`]) |
+//! | | [`host::shapes`] | procedural meshes (torus knot, icosphere, boxes, terrain) |
+//! | | `host::rust_source` | a mesh as Rust statics for flash |
+//! | | `host::cli` | the command-line helpers the tools share |
+//! | | [`host::fuzz_checks`] | the properties the fuzzers check, replayed by `cargo test` |
 //!
 //! ```
 //! use embedded_graphics::mock_display::MockDisplay;

@@ -26,7 +26,7 @@
 //! - `v x y z` is a vertex; numbers after `z` (`w`, vertex colours) are
 //!   ignored. Coordinates must be finite: `nan` and `inf` are errors.
 //! - `f` lists 3 or more corners (at most `N`, and at most
-//!   [`MAX_FACE_CORNERS`](crate::front::scene::MAX_FACE_CORNERS)), each `v`,
+//!   [`crate::front::scene::MAX_FACE_CORNERS`]), each `v`,
 //!   `v/vt`, `v//vn` or `v/vt/vn`. Only `v` is used, but `vt` and `vn` are
 //!   checked like `v` against the `vt` and `vn` lines.
 //!   Positive indices count from 1 and may name any line of their kind in

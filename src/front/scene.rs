@@ -49,7 +49,7 @@ use crate::raster::{Admission, PolygonTables};
 
 /// Most corners a mesh face may have: clipping adds at most one corner per
 /// plane (six), and a polygon has at most
-/// [`MAX_POLYGON_CORNERS`](crate::raster::fixed::MAX_POLYGON_CORNERS).
+/// [`crate::raster::fixed::MAX_POLYGON_CORNERS`].
 pub const MAX_FACE_CORNERS: usize = MAX_POLYGON_CORNERS - 6;
 /// Half-width of the band around the frame's centre, in pixels, inside
 /// which vertices are projected as they are. Faces reaching beyond it are

@@ -1,5 +1,5 @@
 //! Face shading, chosen per draw: every face gets one colour from its
-//! [`FaceInfo`](crate::front::scene::FaceInfo).
+//! [`crate::front::scene::FaceInfo`].
 
 use crate::front::geometry::Vec3;
 use crate::front::scene::FaceInfo;

@@ -2,7 +2,7 @@
 //! steps it.
 //!
 //! The renderer evaluates each polygon's plane in *plane units*: an `i64`
-//! holding the input depth (Q0.24, see [`crate::fixed`]) with
+//! holding the input depth (Q0.24, see [`crate::raster::fixed`]) with
 //! [`PLANE_FRAC_BITS`] extra fractional bits. A depth format turns a span's
 //! start value and per-pixel step, both in plane units, into its own
 //! accumulator, and the accumulator into the stored value.

@@ -8,7 +8,7 @@
 //! * [`depth`]: the depth formats a row can store.
 //! * [`tables`]: the scene-sized tables (vertices, polygons, corners, edge
 //!   table), sorted by first row in O(n).
-//! * [`scan`]: the row-sized scanner (active polygon table, active edge
+//! * [`scan`](mod@scan): the row-sized scanner (active polygon table, active edge
 //!   pool, the depth row and the colour row) and [`scan()`](scan::scan).
 //! * [`capacities`]: the capacities, named, and the [`Renderer`] bundle of
 //!   tables and scanner.
@@ -41,7 +41,7 @@ use vertex::{Outline, ScreenVertex};
 
 /// What scene building needs from a renderer: its frame, its vertex table
 /// and its polygon table. [`Renderer`] implements it for every
-/// configuration, so [`crate::scene`] needs none of the capacities.
+/// configuration, so [`crate::front::scene`] needs none of the capacities.
 ///
 /// A polygon enters in one of two ways, neither needing a buffer per
 /// polygon:

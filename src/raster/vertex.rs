@@ -11,9 +11,9 @@ use crate::raster::fixed::{
 
 /// A vertex after projection: position on the sub-pixel grid and depth.
 ///
-/// `x` and `y` are in 1/256 pixel ([`SUBPIXEL_STEPS`](crate::raster::fixed::SUBPIXEL_STEPS)),
+/// `x` and `y` are in 1/256 pixel ([`crate::raster::fixed::SUBPIXEL_STEPS`]),
 /// `z` is Q0.24 with 0 at the near plane and
-/// [`DEPTH_MAX`](crate::raster::fixed::DEPTH_MAX) at the far plane (smaller is
+/// [`crate::raster::fixed::DEPTH_MAX`] at the far plane (smaller is
 /// nearer). `z` must be affine in screen space (e.g. `z_ndc`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct ScreenVertex {
