@@ -12,13 +12,21 @@
 //! depth along the pixel's ray), and hard mismatches (the rest). It exits
 //! non-zero when any z24 frame has a hard mismatch. z16 is reported, not
 //! enforced.
+//!
+//! Each mesh runs twice through the scanline core: in `f32` (`z16`,
+//! `z24`), and quantized (`QuantizedHostMesh`: `i16` positions in its
+//! bounding sphere, a unit normal per face) through the integer front end
+//! (`z16 int`, `z24 int`), the path a microcontroller without an FPU
+//! takes. Both are compared with the reference of the original mesh.
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
+use zline::front::geometry::Mat4;
+use zline::front::mesh::Mesh;
 use zline::front::scene::{Camera, Cull, reference_model};
 use zline::front::shade::Shading;
-use zline::host::{HostMesh, parse_size, run_tool};
+use zline::host::{HostMesh, QuantizedHostMesh, parse_size, run_tool};
 use zline::methods::{Comparison, HostScanline, ReferenceFrame, ReferenceView, compare};
 use zline::{Depth16, Depth24, DepthFormat};
 
@@ -59,18 +67,17 @@ fn parse(args: &[String]) -> Result<Options, String> {
     Ok(o)
 }
 
-fn scanline_ids<D: DepthFormat>(
+fn scanline_ids<D: DepthFormat, M: Mesh>(
     host: &mut HostScanline<D>,
-    mesh: &HostMesh,
+    mesh: &M,
+    model: &Mat4,
     o: &Options,
-    (yaw, pitch): (f32, f32),
 ) -> Result<Vec<u32>, String>
 where
     D::Value: Into<u32>,
 {
-    let model = reference_model(mesh, yaw, pitch).map_err(|e| e.to_string())?;
     let camera = Camera::reference(o.width, o.height);
-    host.render(mesh, &model, &camera, o.cull, &Shading::FaceId)
+    host.render(mesh, model, &camera, o.cull, &Shading::FaceId)
         .map_err(|e| e.to_string())?;
     Ok(host.frame().faces.clone())
 }
@@ -103,10 +110,16 @@ fn run(args: &[String]) -> Result<bool, String> {
         "| mesh | yaw/pitch | depth | pixels | mismatches | excused at edges | excused as ties | hard |"
     );
     println!("|---|---|---|---|---|---|---|---|");
-    let (mut totals16, mut totals24) = (Comparison::default(), Comparison::default());
+    let mut totals = [(); 4].map(|()| Comparison::default());
+    const FORMATS: [&str; 4] = ["z16", "z24", "z16 int", "z24 int"];
     for path in meshes(&o.dir)? {
         let bytes = std::fs::read(&path).map_err(|e| format!("{}: {e}", path.display()))?;
         let mesh = HostMesh::from_obj(&bytes).map_err(|e| format!("{}: {e}", path.display()))?;
+        let quantized =
+            QuantizedHostMesh::new(&mesh).map_err(|e| format!("{}: {e}", path.display()))?;
+        let quantized = quantized
+            .mesh()
+            .map_err(|e| format!("{}: {e:?}", path.display()))?;
         let name = path
             .file_name()
             .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
@@ -121,19 +134,15 @@ fn run(args: &[String]) -> Result<bool, String> {
                     cull_back: o.cull == Cull::Back,
                 },
             );
-            for (format, host_ids, totals) in [
-                (
-                    "z16",
-                    scanline_ids(&mut z16, &mesh, &o, view)?,
-                    &mut totals16,
-                ),
-                (
-                    "z24",
-                    scanline_ids(&mut z24, &mesh, &o, view)?,
-                    &mut totals24,
-                ),
-            ] {
-                let c = compare(&reference, &host_ids);
+            let model = reference_model(&mesh, view.0, view.1).map_err(|e| e.to_string())?;
+            let ids = [
+                scanline_ids(&mut z16, &mesh, &model, &o)?,
+                scanline_ids(&mut z24, &mesh, &model, &o)?,
+                scanline_ids(&mut z16, &quantized, &model, &o)?,
+                scanline_ids(&mut z24, &quantized, &model, &o)?,
+            ];
+            for ((format, host_ids), totals) in FORMATS.iter().zip(&ids).zip(&mut totals) {
+                let c = compare(&reference, host_ids);
                 row(&name, view, format, &c);
                 totals.pixels += c.pixels;
                 totals.mismatches += c.mismatches;
@@ -143,13 +152,14 @@ fn run(args: &[String]) -> Result<bool, String> {
             }
         }
     }
-    row("**all**", (0.0, 0.0), "z16", &totals16);
-    row("**all**", (0.0, 0.0), "z24", &totals24);
+    for (format, t) in FORMATS.iter().zip(&totals) {
+        row("**all**", (0.0, 0.0), format, t);
+    }
     println!(
-        "accuracy: z24 hard mismatches {} (target 0), z16 hard mismatches {}",
-        totals24.hard, totals16.hard
+        "accuracy: z24 hard mismatches {} (target 0), z24 int {} (target 0), z16 {}, z16 int {}",
+        totals[1].hard, totals[3].hard, totals[0].hard, totals[2].hard
     );
-    Ok(totals24.hard == 0)
+    Ok(totals[1].hard == 0 && totals[3].hard == 0)
 }
 
 fn main() -> ExitCode {

@@ -10,6 +10,7 @@
 //! `corners` for the last face), each corner a 0-based vertex index.
 
 use crate::front::geometry::{Vec3, newell_normal};
+use crate::front::quantized::QuantizedView;
 
 /// A polygon mesh: positions and faces of 3 or more corners.
 pub trait Mesh {
@@ -28,6 +29,14 @@ pub trait Mesh {
     /// its generator) answers without any arithmetic.
     fn face_is_planar(&self, index: usize) -> bool {
         is_planar(self, index)
+    }
+
+    /// The mesh's positions quantized in its bounding sphere and its face
+    /// normals ([`QuantizedView`]), when it has them: then
+    /// [`draw_mesh`](crate::front::scene::draw_mesh) transforms, projects
+    /// and shades it in integers. `None` (the default) for meshes in `f32`.
+    fn quantized(&self) -> Option<QuantizedView<'_>> {
+        None
     }
 }
 
@@ -55,6 +64,15 @@ pub enum MeshError {
         /// The offending face.
         face: usize,
     },
+    /// A quantized mesh's normals: not one per face (`face: None`), or one
+    /// longer than a unit vector rounded (`face: Some(f)`).
+    BadNormals {
+        /// The offending face, if one.
+        face: Option<usize>,
+    },
+    /// A quantized mesh's sphere: its centre is not finite, or its radius
+    /// is not finite and positive.
+    BadSphere,
 }
 
 /// A mesh over borrowed slices: `'static` ones live in flash.

@@ -9,11 +9,18 @@
 //! * [`clip`]: streaming homogeneous clipping in `f64`.
 //! * [`scene`]: [`draw_mesh`](scene::draw_mesh): transform, cull, clip,
 //!   project, shade, and offer each face to the tables.
-//! * [`shade`]: one colour per face.
+//! * [`shade`]: one colour per face, in `f32` or, for quantized meshes,
+//!   in integers.
+//! * [`quantized`]: meshes quantized for the integer front end (`i16`
+//!   positions, unit face normals), kept in flash.
+//! * [`fixed_point`]: the integer front end: transform, clip tests,
+//!   projection and normals without floating point.
 
 pub mod clip;
+pub mod fixed_point;
 pub mod geometry;
 pub mod mesh;
 pub mod obj;
+pub mod quantized;
 pub mod scene;
 pub mod shade;

@@ -41,8 +41,10 @@ use core::fmt;
 
 use crate::error::Error;
 use crate::front::clip::{self, ClipPoint, ClipVertex, Clipper};
+use crate::front::fixed_point::FixedFrame;
 use crate::front::geometry::{Mat4, Vec3, Vec4, newell_normal, radians};
 use crate::front::mesh::Mesh;
+use crate::front::quantized::{NORMAL_SCALE, QuantizedView};
 use crate::raster::fixed::MAX_POLYGON_CORNERS;
 use crate::raster::vertex::{Outline, OutlineBuilder, ScreenVertex};
 use crate::raster::{Admission, PolygonTables};
@@ -128,7 +130,9 @@ pub fn reference_model_around(centre: Vec3, radius: f32, yaw_deg: f32, pitch_deg
 pub const RADIUS_RANGE: (f32, f32) = (f32::MIN_POSITIVE, 1.0 / f32::MIN_POSITIVE);
 
 /// Centre of the axis-aligned bounding box of all vertices, and the largest
-/// distance from it to a vertex (0 for an empty or one-point mesh).
+/// distance from it to a vertex (0 for an empty or one-point mesh). For a
+/// [quantized mesh](crate::front::quantized) it is the sphere it was
+/// quantized in: the original mesh's.
 ///
 /// Computed in `f64`, so no finite `f32` coordinates overflow or underflow
 /// on the way (`f32` squares of coordinates beyond about `1.8e19`, or
@@ -136,6 +140,13 @@ pub const RADIUS_RANGE: (f32, f32) = (f32::MIN_POSITIVE, 1.0 / f32::MIN_POSITIVE
 /// radius is positive but outside [`RADIUS_RANGE`], where the scale `1/r`
 /// would lose precision in `f32`, or when a position is not finite.
 pub fn bounding_sphere<M: Mesh + ?Sized>(mesh: &M) -> Result<(Vec3, f32), Error> {
+    if let Some(q) = mesh.quantized() {
+        // The sphere the mesh was quantized in: the original mesh's
+        // bounding sphere, known exactly, with no arithmetic (so no
+        // floating-point library can round it differently).
+        let [x, y, z] = q.centre;
+        return Ok((Vec3::new(x, y, z), q.radius));
+    }
     let count = mesh.vertex_count();
     if count == 0 {
         return Ok((Vec3::default(), 0.0));
@@ -209,6 +220,14 @@ enum FaceGeometry<'a> {
     },
     /// Given.
     Known { normal: Vec3, view_depth: f32 },
+    /// From a quantized mesh: the stored normal, rotated in integers.
+    Quantized {
+        mesh: &'a dyn Mesh,
+        corners: &'a [u16],
+        model_view: &'a Mat4,
+        normal: [i16; 3],
+        frame: &'a FixedFrame,
+    },
 }
 
 impl core::fmt::Debug for FaceInfo<'_> {
@@ -235,18 +254,37 @@ impl FaceInfo<'static> {
 
 impl FaceInfo<'_> {
     /// Unit normal from the face's winding (Newell's, from its corners), in
-    /// view space.
+    /// view space. For a quantized mesh it is [`Self::normal_q15`] as a
+    /// `f32` vector.
     pub fn normal(&self) -> Vec3 {
         match self.geometry {
             FaceGeometry::Mesh {
                 mesh,
                 corners,
                 model_view,
-            } => {
-                let n = newell_normal(corners.iter().map(|&i| mesh.position(usize::from(i))));
-                model_view.transform_vector(n).normalized()
-            }
+            } => mesh_normal(mesh, corners, model_view),
             FaceGeometry::Known { normal, .. } => normal,
+            FaceGeometry::Quantized {
+                mesh,
+                corners,
+                model_view,
+                normal,
+                frame,
+            } => match frame.view_normal(normal) {
+                Some(n) => normal_vector_i32(n),
+                None => mesh_normal(mesh, corners, model_view),
+            },
+        }
+    }
+
+    /// The unit normal in view space in integers, units of `1/32767`, when
+    /// the face comes from a [quantized mesh](crate::front::quantized):
+    /// its stored normal rotated by the model-view rotation, the same on
+    /// every target and with no floating point. `None` for other faces.
+    pub fn normal_q15(&self) -> Option<[i32; 3]> {
+        match self.geometry {
+            FaceGeometry::Quantized { normal, frame, .. } => frame.view_normal(normal),
+            _ => None,
         }
     }
 
@@ -257,6 +295,12 @@ impl FaceInfo<'_> {
                 mesh,
                 corners,
                 model_view,
+            }
+            | FaceGeometry::Quantized {
+                mesh,
+                corners,
+                model_view,
+                ..
             } => {
                 let mut sum = Vec3::default();
                 for &i in corners {
@@ -269,6 +313,18 @@ impl FaceInfo<'_> {
             FaceGeometry::Known { view_depth, .. } => view_depth,
         }
     }
+}
+
+/// The view-space unit normal of a face from its corners (Newell's).
+fn mesh_normal(mesh: &dyn Mesh, corners: &[u16], model_view: &Mat4) -> Vec3 {
+    let n = newell_normal(corners.iter().map(|&i| mesh.position(usize::from(i))));
+    model_view.transform_vector(n).normalized()
+}
+
+/// An integer normal in units of `1/32767` as a `f32` vector.
+fn normal_vector_i32(n: [i32; 3]) -> Vec3 {
+    let s = 1.0 / NORMAL_SCALE as f32;
+    Vec3::new(n[0] as f32 * s, n[1] as f32 * s, n[2] as f32 * s)
 }
 
 /// Counts of what happened to a mesh's faces in one draw.
@@ -387,6 +443,8 @@ struct Frame {
     /// Guard band half-widths in NDC units, x and y.
     guard: (f32, f32),
     cull: Cull,
+    /// The integer front end, for a quantized mesh whose matrices fit it.
+    fixed: Option<FixedFrame>,
 }
 
 /// `a · b` in `f64`.
@@ -405,16 +463,29 @@ fn to64(m: &Mat4) -> [[f64; 4]; 4] {
 }
 
 impl Frame {
-    fn new(model: &Mat4, camera: &Camera, cull: Cull) -> Self {
+    fn new(model: &Mat4, camera: &Camera, cull: Cull, quantized: Option<&QuantizedView>) -> Self {
         let model_view = camera.view.mul(model);
         let (width, height) = (f32::from(camera.width), f32::from(camera.height));
+        let mvp64 = mul64(
+            &to64(&camera.projection),
+            &mul64(&to64(&camera.view), &to64(model)),
+        );
+        let mvp = camera.projection.mul(&model_view);
+        let fixed = quantized.and_then(|q| {
+            FixedFrame::new(
+                &mvp,
+                &model_view,
+                q.centre,
+                q.radius,
+                camera.width,
+                camera.height,
+            )
+        });
         Self {
-            mvp: camera.projection.mul(&model_view),
-            mvp64: mul64(
-                &to64(&camera.projection),
-                &mul64(&to64(&camera.view), &to64(model)),
-            ),
+            mvp,
+            mvp64,
             model_view,
+            fixed,
             width,
             height,
             guard: (
@@ -478,14 +549,25 @@ impl Frame {
         corners: &'a [u16],
         front: bool,
     ) -> FaceInfo<'a> {
+        let model_view = &self.model_view;
+        let geometry = match (&self.fixed, mesh.quantized()) {
+            (Some(frame), Some(q)) => FaceGeometry::Quantized {
+                mesh,
+                corners,
+                model_view,
+                normal: q.normals.get(face).copied().unwrap_or_default(),
+                frame,
+            },
+            _ => FaceGeometry::Mesh {
+                mesh,
+                corners,
+                model_view,
+            },
+        };
         FaceInfo {
             face: face as u32,
             front,
-            geometry: FaceGeometry::Mesh {
-                mesh,
-                corners,
-                model_view: &self.model_view,
-            },
+            geometry,
         }
     }
 }
@@ -520,7 +602,8 @@ where
         });
     };
     slots.fill(EMPTY);
-    let frame = Frame::new(model, camera, cull);
+    let quantized = mesh.quantized();
+    let frame = Frame::new(model, camera, cull, quantized.as_ref());
     let mut stats = DrawStats {
         faces: mesh.face_count() as u32,
         ..DrawStats::default()
@@ -529,6 +612,9 @@ where
         tables,
         cache,
         mesh,
+        positions: quantized
+            .filter(|_| frame.fixed.is_some())
+            .map(|q| q.positions),
         frame: &frame,
         stats: &mut stats,
         shade: &mut shade,
@@ -547,6 +633,9 @@ struct Draw<'a, T: ?Sized, M: ?Sized, S, const VM: usize> {
     tables: &'a mut T,
     cache: &'a mut VertexCache<VM>,
     mesh: &'a M,
+    /// The quantized positions, when the integer front end transforms
+    /// this mesh.
+    positions: Option<&'a [[i16; 3]]>,
     frame: &'a Frame,
     stats: &'a mut DrawStats,
     shade: &'a mut S,
@@ -665,6 +754,27 @@ where
     /// finite. Once per vertex per draw (the profile's "transform" stage).
     #[inline(never)]
     fn transform_vertex(&mut self, index: usize) -> Result<u16, Error> {
+        if let (Some(fixed), Some(positions)) = (&self.frame.fixed, self.positions) {
+            // The integer front end: a point outside the clipping band is
+            // clipped in f64 like any other; none is non-finite.
+            let q = positions.get(index).ok_or(Error::MeshIndexOutOfRange)?;
+            let c = fixed.clip(*q);
+            let stored = if fixed.inside(&c) {
+                fixed.project(&c)
+            } else {
+                None
+            };
+            return match stored {
+                Some(v) => {
+                    let id = self.tables.add_vertex(v)?;
+                    if id >= NON_FINITE {
+                        return Err(Error::VertexTableFull);
+                    }
+                    Ok(id)
+                }
+                None => Ok(NEEDS_CLIP),
+            };
+        }
         let p = self.frame.clip_position(self.mesh, index);
         let stored = if !p.is_finite() {
             None

@@ -1,6 +1,13 @@
 //! Face shading, chosen per draw: every face gets one colour from its
 //! [`crate::front::scene::FaceInfo`].
+//!
+//! Lambert shading has two paths that agree to within one step of 8-bit
+//! colour: `f32` for meshes in `f32`, and integers for
+//! [quantized meshes](crate::front::quantized), whose view-space normals
+//! come from [`FaceInfo::normal_q15`](crate::front::scene::FaceInfo::normal_q15):
+//! no floating point per face, the same colour on every target.
 
+use crate::front::fixed_point::{fraction_bits, unit_q15};
 use crate::front::geometry::Vec3;
 use crate::front::scene::FaceInfo;
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
@@ -10,17 +17,8 @@ use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 pub enum Shading {
     /// One colour for every face.
     Flat(Rgb888),
-    /// Flat Lambert: `base · (ambient + (1 - ambient) · max(0, n · light))`,
-    /// two-sided (a face seen from behind is lit as if turned to the
-    /// viewer). `light` points towards the light, in view space.
-    Lambert {
-        /// Surface colour.
-        base: Rgb888,
-        /// Unit direction towards the light, view space.
-        light: Vec3,
-        /// Ambient fraction, 0 to 1.
-        ambient: f32,
-    },
+    /// Flat Lambert (see [`Lambert`]).
+    Lambert(Lambert),
     /// Grey by view distance of the face's centre: white at `near`, black
     /// at `far` (nearer is brighter).
     Depth {
@@ -33,34 +31,104 @@ pub enum Shading {
     FaceId,
 }
 
+/// Flat Lambert shading: `base · (ambient + (1 - ambient) · max(0, n ·
+/// light))`, two-sided (a face seen from behind is lit as if turned to the
+/// viewer). `light` points towards the light, in view space.
+///
+/// The integer path (for faces with [`FaceInfo::normal_q15`]) computes the
+/// same in units of `2^-15`: `d = max(0, n · l) >> 15` with `n`, `l` in
+/// units of `1/32767` (each product and the sum below `2^31`), `k = a +
+/// ((32768 - a) · d) >> 15`, each channel `(v · k + 2^14) >> 15`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Lambert {
+    base: Rgb888,
+    light: Vec3,
+    ambient: f32,
+    /// `light` in units of `1/32767`.
+    light_q15: [i32; 3],
+    /// `ambient` in units of `2^-15`.
+    ambient_q15: i32,
+}
+
+impl Lambert {
+    /// Lambert shading of colour `base`, lit from the unit direction
+    /// `light` (view space; normalised here), with `ambient` (0 to 1) of
+    /// light everywhere.
+    pub fn new(base: Rgb888, light: Vec3, ambient: f32) -> Self {
+        let raw = light;
+        let light = light.normalized();
+        let ambient = if ambient.is_finite() {
+            ambient.clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        Self {
+            base,
+            light,
+            ambient,
+            // In exact integer arithmetic from the caller's values (not the
+            // f32 normalisation above), so every target gets the same
+            // integers whatever its floating-point library rounds.
+            light_q15: unit_q15([raw.x, raw.y, raw.z]).unwrap_or([0; 3]),
+            ambient_q15: fraction_bits(ambient, 15),
+        }
+    }
+
+    /// The surface colour.
+    pub fn base(&self) -> Rgb888 {
+        self.base
+    }
+
+    /// The unit direction towards the light, view space.
+    pub fn light(&self) -> Vec3 {
+        self.light
+    }
+
+    /// The ambient fraction.
+    pub fn ambient(&self) -> f32 {
+        self.ambient
+    }
+
+    /// The colour of one face.
+    pub fn color(&self, face: &FaceInfo) -> Rgb888 {
+        if let Some(n) = face.normal_q15() {
+            let l = self.light_q15;
+            let dot: i64 = (0..3).map(|k| i64::from(n[k]) * i64::from(l[k])).sum();
+            let dot = if face.front { dot } else { -dot };
+            // Below 2^15 · (1 + 2^-10) for the normals a quantized mesh
+            // accepts; clamped for any other input.
+            let d = (dot.max(0) >> 15).min(1 << 15) as i32;
+            let a = self.ambient_q15;
+            let k = a + (((32768 - a) * d) >> 15);
+            let ch = |v: u8| ((i32::from(v) * k + (1 << 14)) >> 15).clamp(0, 255) as u8;
+            return Rgb888::new(ch(self.base.r()), ch(self.base.g()), ch(self.base.b()));
+        }
+        let n = if face.front {
+            face.normal()
+        } else {
+            -face.normal()
+        };
+        let k = self.ambient + (1.0 - self.ambient) * n.dot(self.light).max(0.0);
+        scale(self.base, k)
+    }
+}
+
 impl Shading {
     /// Lambert in warm white, lit from the upper left behind the viewer,
     /// 20 % ambient.
     pub fn lambert() -> Self {
-        Shading::Lambert {
-            base: Rgb888::new(230, 220, 200),
-            light: Vec3::new(-0.4, 0.5, 0.77).normalized(),
-            ambient: 0.2,
-        }
+        Shading::Lambert(Lambert::new(
+            Rgb888::new(230, 220, 200),
+            Vec3::new(-0.4, 0.5, 0.77),
+            0.2,
+        ))
     }
 
     /// The colour of one face.
     pub fn color(&self, face: &FaceInfo) -> Rgb888 {
         match *self {
             Shading::Flat(c) => c,
-            Shading::Lambert {
-                base,
-                light,
-                ambient,
-            } => {
-                let n = if face.front {
-                    face.normal()
-                } else {
-                    -face.normal()
-                };
-                let k = ambient + (1.0 - ambient) * n.dot(light).max(0.0);
-                scale(base, k)
-            }
+            Shading::Lambert(ref lambert) => lambert.color(face),
             Shading::Depth { near, far } => {
                 let t = ((far - face.view_depth()) / (far - near)).clamp(0.0, 1.0);
                 scale(Rgb888::WHITE, t)
@@ -102,11 +170,11 @@ mod tests {
 
     #[test]
     fn lambert_is_two_sided_with_ambient_floor() {
-        let s = Shading::Lambert {
-            base: Rgb888::new(200, 100, 50),
-            light: Vec3::new(0.0, 0.0, 1.0),
-            ambient: 0.25,
-        };
+        let s = Shading::Lambert(Lambert::new(
+            Rgb888::new(200, 100, 50),
+            Vec3::new(0.0, 0.0, 1.0),
+            0.25,
+        ));
         let facing = face(Vec3::new(0.0, 0.0, 1.0), true, 3.0);
         assert_eq!(s.color(&facing), Rgb888::new(200, 100, 50));
         let flipped = face(Vec3::new(0.0, 0.0, -1.0), false, 3.0);

@@ -6,11 +6,13 @@
 mod cli;
 pub mod fuzz_checks;
 mod host_mesh;
+mod quantize;
 mod rust_source;
 pub mod shapes;
 mod storage;
 
 pub use cli::{load_model, parse_angle, parse_size, run_tool};
 pub use host_mesh::HostMesh;
-pub use rust_source::static_mesh_source;
+pub use quantize::QuantizedHostMesh;
+pub use rust_source::{quantized_mesh_source, static_mesh_source};
 pub use storage::{ScanVecs, TableVecs, host_renderer};

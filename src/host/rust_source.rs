@@ -7,7 +7,7 @@ use std::string::{String, ToString};
 use std::vec::Vec;
 
 use crate::front::mesh::planar_face_bits;
-use crate::host::HostMesh;
+use crate::host::{HostMesh, QuantizedHostMesh};
 
 /// Rust source defining `pub static NAME: zline::front::mesh::StaticMesh<'static>`
 /// and its three arrays (`NAME_POSITIONS`, `NAME_CORNERS`,
@@ -68,6 +68,69 @@ pub fn static_mesh_source(mesh: &HostMesh, name: &str, origin: &str) -> Result<S
          Ok(mesh) => match mesh.with_planar_faces(&{name}_PLANAR) {{\n        \
          Ok(mesh) => mesh,\n        Err(_) => panic!(\"{name}: invalid planarity bits\"),\n    }},\n    \
          Err(_) => panic!(\"{name}: invalid mesh\"),\n}};"
+    );
+    Ok(out)
+}
+
+/// Rust source for a [`QuantizedMesh`](crate::front::quantized::QuantizedMesh)
+/// of `mesh` named `name` (see [`QuantizedHostMesh`]): 6 bytes a vertex
+/// and 6 a face in flash instead of 12 a vertex, and the integer front end
+/// draws it with no floating point per vertex or face.
+pub fn quantized_mesh_source(mesh: &HostMesh, name: &str, origin: &str) -> Result<String, String> {
+    check_name(name)?;
+    let origin = origin.replace(char::is_control, "?");
+    let q = QuantizedHostMesh::new(mesh).map_err(|e| format!("{origin}: {e}"))?;
+    q.mesh().map_err(|e| format!("{origin}: {e:?}"))?;
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "// Generated from {origin}: {} vertices, {} faces, {} corners, quantized in the\n\
+         // sphere centre {:?}, radius {:?}. Do not edit.\n",
+        q.positions.len(),
+        q.face_starts.len(),
+        q.corners.len(),
+        q.centre,
+        q.radius
+    );
+    let triple = |p: &[i16; 3]| format!("[{}, {}, {}]", p[0], p[1], p[2]);
+    let _ = writeln!(
+        out,
+        "static {name}_POSITIONS: [[i16; 3]; {}] = [\n{}];\n",
+        q.positions.len(),
+        rows(&q.positions, 4, triple)
+    );
+    let _ = writeln!(
+        out,
+        "static {name}_NORMALS: [[i16; 3]; {}] = [\n{}];\n",
+        q.normals.len(),
+        rows(&q.normals, 4, triple)
+    );
+    let _ = writeln!(
+        out,
+        "static {name}_CORNERS: [u16; {}] = [\n{}];\n",
+        q.corners.len(),
+        rows(&q.corners, 16, u16::to_string)
+    );
+    let _ = writeln!(
+        out,
+        "static {name}_FACE_STARTS: [u32; {}] = [\n{}];\n",
+        q.face_starts.len(),
+        rows(&q.face_starts, 16, u32::to_string)
+    );
+    let _ = writeln!(
+        out,
+        "// Bit f set: face f is planar.\nstatic {name}_PLANAR: [u32; {}] = [\n{}];\n",
+        q.planar.len(),
+        rows(&q.planar, 8, |b| format!("0x{b:08X}"))
+    );
+    let _ = writeln!(
+        out,
+        "/// Mesh from {origin}, quantized, checked at compile time.\n\
+         pub static {name}: zline::front::quantized::QuantizedMesh<'static> = match zline::front::quantized::QuantizedMesh::new(\n    \
+         &{name}_POSITIONS,\n    &{name}_NORMALS,\n    &{name}_CORNERS,\n    &{name}_FACE_STARTS,\n    &{name}_PLANAR,\n    \
+         [{:?}, {:?}, {:?}],\n    {:?},\n) {{\n    \
+         Ok(mesh) => mesh,\n    Err(_) => panic!(\"{name}: invalid mesh\"),\n}};",
+        q.centre[0], q.centre[1], q.centre[2], q.radius
     );
     Ok(out)
 }

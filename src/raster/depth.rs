@@ -127,15 +127,24 @@ impl DepthFormat for Depth24 {
 
     #[inline]
     fn span(start: i64, step: i64, len: u32) -> Option<(i64, i64)> {
+        // In plane units: the accumulator is `plane · 2^16 + 2^31`, and it
+        // lies in [0, DEPTH_MAX · 2^32) exactly when the plane value lies
+        // in [-2^15, DEPTH_MAX · 2^16 - 2^15). With |step| < 2^40 and
+        // len <= 2^12 the last value is within 2^52 of the first, and with
+        // |start| < 2^57 nothing overflows; other input is refused. (No
+        // checked multiplications: on a Cortex-M0+ each costs a call.)
         let widen = Z24_ACC_FRAC - PLANE_FRAC_BITS;
-        let first = start
-            .checked_mul(1 << widen)?
-            .checked_add(1 << (Z24_ACC_FRAC - 1))?;
-        let step = step.checked_mul(1 << widen)?;
-        let last = first.checked_add(step.checked_mul(i64::from(len) - 1)?)?;
-        let limit = i64::from(crate::raster::fixed::DEPTH_MAX) << Z24_ACC_FRAC;
-        let in_range = |v: i64| (0..limit).contains(&v);
-        (in_range(first) && in_range(last)).then_some((first, step))
+        if step.unsigned_abs() >= 1 << 40 || start.unsigned_abs() >= 1 << 57 || len > 1 << 12 {
+            return None;
+        }
+        let last = start + step * (i64::from(len) - 1);
+        let (lo, hi) = (
+            -(1i64 << 15),
+            (i64::from(crate::raster::fixed::DEPTH_MAX) << widen) - (1 << 15),
+        );
+        let in_range = |v: i64| (lo..hi).contains(&v);
+        (in_range(start) && in_range(last))
+            .then_some(((start << widen) + (1 << (Z24_ACC_FRAC - 1)), step << widen))
     }
 
     #[inline(always)]

@@ -22,7 +22,7 @@
 //! |---|---|---|
 //! | `dx`, `dy` | `|dx| < 2^22`, `0 < dy < 2^22` | `i32` |
 //! | `den = 256·dy` | `< 2^30` | `i32` |
-//! | set-up numerator `(x_top - 128)·dy + (y_sample - y_top)·dx` | `< 2^44 + 2^43` (`0 <= y_sample - y_top < dy`) | `i64` |
+//! | set-up numerator `s·dy + (y_sample - y_top)·dx`, `s = (x_top - 128) mod 256` (the whole pixels `(x_top - 128) div 256` are added after the division) | `< 2^30 + 2^44` (`0 <= y_sample - y_top < dy`); `< 2^31` when `dy, abs(dx) < 2^15` | `i64`; `i32` when `dy, abs(dx) < 2^15` |
 //! | crossing `x` (pixels) | `|x| <= 2^13 + 1` | `i32` |
 //! | `remainder`, `step_remainder` | `[0, den)` | `i32` |
 //! | `remainder - step_remainder` while stepping | `(-2^30, 2^30)` | `i32` |
@@ -31,7 +31,7 @@
 //! The tests below step edges between the guard band's corners over every
 //! row they cover and compare each crossing with the exact `i128` value.
 
-use crate::raster::fixed::{HALF_PIXEL, SUBPIXEL_STEPS};
+use crate::raster::fixed::{HALF_PIXEL, SUBPIXEL_BITS, SUBPIXEL_STEPS};
 use crate::raster::vertex::ScreenVertex;
 
 /// Edge-table entry, packed in 4 bytes: the row where edges of a polygon
@@ -146,10 +146,23 @@ impl ActiveEdge {
         let sample_y = i32::from(row) * SUBPIXEL_STEPS + HALF_PIXEL;
         // Crossing x at the sample line, minus half a pixel, times den:
         // x(row) - 0.5px = (x_top - half)·dy + (yc - y_top)·dx, over dy.
-        // The products need 64 bits.
-        let numerator = i64::from(top.x - HALF_PIXEL) * i64::from(dy)
-            + i64::from(sample_y - top.y) * i64::from(dx);
-        let (x, remainder) = ceil_div_rem(numerator, den);
+        // With x_top - half = 256·p + s (0 <= s < 256) the whole pixels p
+        // come out of the division exactly, leaving s·dy + (yc - y_top)·dx
+        // (0 <= yc - y_top < dy): below 2^31 when dy, |dx| < 2^15 (edges
+        // under 128 px each way), so a 32-bit product and division do
+        // (fast on a Cortex-M0+); longer edges take 64 bits.
+        let t = top.x - HALF_PIXEL;
+        let (whole, s) = (t >> SUBPIXEL_BITS, t & (SUBPIXEL_STEPS - 1));
+        let along = sample_y - top.y;
+        let (x, remainder) = if dy < 1 << 15 && dx.unsigned_abs() < 1 << 15 {
+            ceil_div_rem(i64::from(s * dy + along * dx), den)
+        } else {
+            ceil_div_rem(
+                i64::from(s) * i64::from(dy) + i64::from(along) * i64::from(dx),
+                den,
+            )
+        };
+        let x = x + whole;
         // floor(dx / dy) and its remainder, in one 32-bit division; an edge
         // covering one row is never stepped and needs none.
         let (mut step, mut rest) = if end_row > row + 1 {

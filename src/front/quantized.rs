@@ -1,0 +1,373 @@
+//! Meshes quantized for the integer front end: positions as `i16` within
+//! the mesh's bounding sphere and one unit normal per face, both made once
+//! (by `cargo run --example obj2rust -- --quantized`, or a firmware's
+//! build script) and kept in flash.
+//!
+//! A vertex `q` stands for the position `centre + radius · q / 32767`
+//! ([`POSITION_SCALE`]), so every coordinate of a mesh inside its bounding
+//! sphere is held to `radius / 65534`. A face normal `n` stands for the
+//! unit vector `n / 32767` ([`NORMAL_SCALE`]), from Newell's method over
+//! the face's original corners.
+//!
+//! [`draw_mesh`](crate::front::scene::draw_mesh) draws such a mesh with
+//! integer arithmetic only (see [`crate::front::fixed_point`]): on a core
+//! without an FPU it costs no floating point per vertex or per face, and
+//! every target computes the same frame bit for bit.
+
+use crate::front::geometry::Vec3;
+use crate::front::mesh::{Mesh, MeshError, face_of, is_planar};
+use crate::front::scene::MAX_FACE_CORNERS;
+
+/// A quantized coordinate `q` is `q / POSITION_SCALE` bounding-sphere
+/// radii from the centre.
+pub const POSITION_SCALE: i32 = 32_767;
+/// A quantized normal component `n` is `n / NORMAL_SCALE`.
+pub const NORMAL_SCALE: i32 = 32_767;
+
+/// Largest squared length a stored normal may have: `(32767 · (1 +
+/// 2^-12))^2`, room for rounding each component of a unit vector. With it,
+/// every rotated normal and every dot product with a unit light direction
+/// in Q15 stays below `2^30 · (1 + 2^-11)`, far inside `i32`.
+const NORMAL_LENGTH2_MAX: i64 = {
+    let n = NORMAL_SCALE as i64;
+    let len = n + n / 4096 + 1;
+    len * len
+};
+
+/// What the integer front end reads from a quantized mesh: its positions,
+/// its face normals, and the sphere they are quantized in.
+#[derive(Debug, Clone, Copy)]
+pub struct QuantizedView<'a> {
+    /// Vertex positions, `centre + radius · q / POSITION_SCALE`.
+    pub positions: &'a [[i16; 3]],
+    /// One unit normal per face, `n / NORMAL_SCALE`; zero for a face of no
+    /// area.
+    pub normals: &'a [[i16; 3]],
+    /// Centre of the quantization sphere.
+    pub centre: [f32; 3],
+    /// Radius of the quantization sphere (positive, finite).
+    pub radius: f32,
+}
+
+impl QuantizedView<'_> {
+    /// The position vertex `index` stands for, in `f64` (exact: a 16-bit
+    /// integer times a `f32` fits a `f64`'s mantissa, up to the final sum).
+    pub fn position64(&self, index: usize) -> [f64; 3] {
+        let q = self.positions[index];
+        let scale = f64::from(self.radius) / f64::from(POSITION_SCALE);
+        core::array::from_fn(|k| f64::from(self.centre[k]) + f64::from(q[k]) * scale)
+    }
+
+    /// The position vertex `index` stands for, in `f32`.
+    pub fn position(&self, index: usize) -> [f32; 3] {
+        self.position64(index).map(|v| v as f32)
+    }
+}
+
+/// A quantized mesh over borrowed slices: `'static` ones live in flash.
+/// It is a [`Mesh`] like any other (positions read back in `f32`), and
+/// [`Mesh::quantized`] lends the integer data to the integer front end.
+#[derive(Debug, Clone, Copy)]
+pub struct QuantizedMesh<'a> {
+    view: QuantizedView<'a>,
+    corners: &'a [u16],
+    face_starts: &'a [u32],
+    /// Bit `f` set when face `f` is planar.
+    planar: &'a [u32],
+}
+
+impl<'a> QuantizedMesh<'a> {
+    /// Checks the arrays and wraps them. `const`, so a static mesh is
+    /// checked at compile time. `planar` holds one bit per face (bit
+    /// `f % 32` of word `f / 32`), as
+    /// [`planar_face_bits`](crate::front::mesh::planar_face_bits) makes.
+    #[allow(clippy::too_many_arguments)]
+    pub const fn new(
+        positions: &'a [[i16; 3]],
+        normals: &'a [[i16; 3]],
+        corners: &'a [u16],
+        face_starts: &'a [u32],
+        planar: &'a [u32],
+        centre: [f32; 3],
+        radius: f32,
+    ) -> Result<Self, MeshError> {
+        if positions.len() > 1 << 16 {
+            return Err(MeshError::TooManyVertices);
+        }
+        let mut k = 0;
+        while k < corners.len() {
+            if corners[k] as usize >= positions.len() {
+                return Err(MeshError::IndexOutOfRange { corner: k });
+            }
+            k += 1;
+        }
+        let mut f = 0;
+        while f < face_starts.len() {
+            let start = face_starts[f] as usize;
+            let end = if f + 1 < face_starts.len() {
+                face_starts[f + 1] as usize
+            } else {
+                corners.len()
+            };
+            if end > corners.len() || start + 3 > end {
+                return Err(MeshError::BadFaceStarts { face: f });
+            }
+            if end - start > MAX_FACE_CORNERS {
+                return Err(MeshError::FaceTooLarge { face: f });
+            }
+            f += 1;
+        }
+        if planar.len() < face_starts.len().div_ceil(32) {
+            return Err(MeshError::BadPlanarity);
+        }
+        if normals.len() != face_starts.len() {
+            return Err(MeshError::BadNormals { face: None });
+        }
+        let mut f = 0;
+        while f < normals.len() {
+            let [x, y, z] = normals[f];
+            let (x, y, z) = (x as i64, y as i64, z as i64);
+            if x * x + y * y + z * z > NORMAL_LENGTH2_MAX {
+                return Err(MeshError::BadNormals { face: Some(f) });
+            }
+            f += 1;
+        }
+        let finite = centre[0].is_finite()
+            && centre[1].is_finite()
+            && centre[2].is_finite()
+            && radius.is_finite();
+        if !finite || radius <= 0.0 {
+            return Err(MeshError::BadSphere);
+        }
+        Ok(Self {
+            view: QuantizedView {
+                positions,
+                normals,
+                centre,
+                radius,
+            },
+            corners,
+            face_starts,
+            planar,
+        })
+    }
+
+    /// The integer data.
+    pub const fn view(&self) -> QuantizedView<'a> {
+        self.view
+    }
+
+    /// All corners, face after face.
+    pub const fn corners(&self) -> &'a [u16] {
+        self.corners
+    }
+
+    /// Where each face starts in [`Self::corners`].
+    pub const fn face_starts(&self) -> &'a [u32] {
+        self.face_starts
+    }
+}
+
+impl Mesh for QuantizedMesh<'_> {
+    fn vertex_count(&self) -> usize {
+        self.view.positions.len()
+    }
+
+    fn position(&self, index: usize) -> [f32; 3] {
+        self.view.position(index)
+    }
+
+    fn face_count(&self) -> usize {
+        self.face_starts.len()
+    }
+
+    fn face(&self, index: usize) -> &[u16] {
+        face_of(self.corners, self.face_starts, index)
+    }
+
+    fn face_is_planar(&self, index: usize) -> bool {
+        match self.planar.get(index / 32) {
+            Some(word) => word & (1 << (index % 32)) != 0,
+            None => is_planar(self, index),
+        }
+    }
+
+    fn quantized(&self) -> Option<QuantizedView<'_>> {
+        Some(self.view)
+    }
+}
+
+/// A position quantized in a sphere: `round((p - centre) / radius ·
+/// POSITION_SCALE)`, each component clamped to `±POSITION_SCALE` (a
+/// position outside the sphere, which a bounding sphere never leaves out,
+/// is pulled onto its box).
+pub fn quantize_position(p: [f64; 3], centre: [f64; 3], radius: f64) -> [i16; 3] {
+    let scale = f64::from(POSITION_SCALE) / radius;
+    core::array::from_fn(|k| {
+        let v = libm::round((p[k] - centre[k]) * scale);
+        v.clamp(-f64::from(POSITION_SCALE), f64::from(POSITION_SCALE)) as i16
+    })
+}
+
+/// A face's unit normal, quantized: Newell's normal of `corners` in `f64`,
+/// normalised and rounded to [`NORMAL_SCALE`]; zero when the face has no
+/// area.
+pub fn quantize_normal(corners: impl IntoIterator<Item = [f64; 3]> + Clone) -> [i16; 3] {
+    let (mut a, mut b, mut c) = (0.0f64, 0.0f64, 0.0f64);
+    let first = corners.clone().into_iter().next();
+    let next = corners.clone().into_iter().skip(1).chain(first);
+    for (p, q) in corners.into_iter().zip(next) {
+        a += (p[1] - q[1]) * (p[2] + q[2]);
+        b += (p[2] - q[2]) * (p[0] + q[0]);
+        c += (p[0] - q[0]) * (p[1] + q[1]);
+    }
+    let length = libm::sqrt(a * a + b * b + c * c);
+    if !(length > 0.0 && length.is_finite()) {
+        return [0; 3];
+    }
+    let s = f64::from(NORMAL_SCALE) / length;
+    [a, b, c].map(|v| libm::round(v * s) as i16)
+}
+
+/// The normal a quantized face stands for, as a `f32` vector.
+pub fn normal_vector(n: [i16; 3]) -> Vec3 {
+    let s = 1.0 / NORMAL_SCALE as f32;
+    Vec3::new(
+        f32::from(n[0]) * s,
+        f32::from(n[1]) * s,
+        f32::from(n[2]) * s,
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const Q: [[i16; 3]; 4] = [[0, 0, 0], [32767, 0, 0], [32767, 32767, 0], [0, 32767, 0]];
+    const N: [[i16; 3]; 2] = [[0, 0, 32767], [0, 0, 32767]];
+
+    #[test]
+    fn validates_and_reads_back() {
+        let m = QuantizedMesh::new(
+            &Q,
+            &N,
+            &[0, 1, 2, 0, 2, 3],
+            &[0, 3],
+            &[0b11],
+            [1.0, 2.0, 3.0],
+            2.0,
+        )
+        .unwrap();
+        assert_eq!(m.position(2), [3.0, 4.0, 3.0]);
+        assert_eq!(m.face(1), &[0, 2, 3]);
+        assert!(m.quantized().is_some());
+        let bad = |r: Result<QuantizedMesh<'static>, MeshError>| r.err();
+        assert_eq!(
+            bad(QuantizedMesh::new(
+                &Q,
+                &N[..1],
+                &[0, 1, 2, 0, 2, 3],
+                &[0, 3],
+                &[3],
+                [0.0; 3],
+                1.0
+            )),
+            Some(MeshError::BadNormals { face: None })
+        );
+        assert_eq!(
+            bad(QuantizedMesh::new(
+                &Q,
+                &[[0, 0, 32767], [32767, 32767, 0]],
+                &[0, 1, 2, 0, 2, 3],
+                &[0, 3],
+                &[3],
+                [0.0; 3],
+                1.0
+            )),
+            Some(MeshError::BadNormals { face: Some(1) })
+        );
+        assert_eq!(
+            bad(QuantizedMesh::new(
+                &Q,
+                &N,
+                &[0, 1, 2, 0, 2, 3],
+                &[0, 3],
+                &[3],
+                [0.0; 3],
+                0.0
+            )),
+            Some(MeshError::BadSphere)
+        );
+        assert_eq!(
+            bad(QuantizedMesh::new(
+                &Q,
+                &N,
+                &[0, 1, 2, 0, 2, 3],
+                &[0, 3],
+                &[3],
+                [f32::NAN, 0.0, 0.0],
+                1.0
+            )),
+            Some(MeshError::BadSphere)
+        );
+        assert_eq!(
+            bad(QuantizedMesh::new(
+                &Q,
+                &N,
+                &[0, 1, 2, 0, 2, 3],
+                &[0, 3],
+                &[],
+                [0.0; 3],
+                1.0
+            )),
+            Some(MeshError::BadPlanarity)
+        );
+        assert_eq!(
+            bad(QuantizedMesh::new(
+                &Q,
+                &N,
+                &[0, 1, 9],
+                &[0],
+                &[1],
+                [0.0; 3],
+                1.0
+            )),
+            Some(MeshError::IndexOutOfRange { corner: 2 })
+        );
+    }
+
+    #[test]
+    fn quantization_round_trips_within_half_a_step() {
+        let (c, r) = ([0.5, -1.0, 2.0], 3.0);
+        for p in [
+            [0.5, -1.0, 2.0],
+            [3.5, -1.0, 2.0],
+            [-2.0, 1.0, 0.25],
+            [0.123, 0.456, 0.789],
+        ] {
+            let q = quantize_position(p, c, r);
+            for k in 0..3 {
+                let back = c[k] + f64::from(q[k]) * r / f64::from(POSITION_SCALE);
+                assert!((back - p[k]).abs() <= 0.5 * r / f64::from(POSITION_SCALE) + 1e-12);
+            }
+        }
+        // Outside the sphere: clamped, never wrapped.
+        assert_eq!(
+            quantize_position([10.0, -10.0, 0.0], [0.0; 3], 1.0),
+            [32767, -32767, 0]
+        );
+    }
+
+    #[test]
+    fn normals_are_unit_and_fit() {
+        let n = quantize_normal([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]);
+        assert_eq!(n, [0, 0, 32767]);
+        let n = quantize_normal([[0.0, 0.0, 0.0], [1.0, 1.0, 0.3], [-0.2, 1.0, 0.7]]);
+        let len2: i64 = n.iter().map(|&v| i64::from(v) * i64::from(v)).sum();
+        assert!(((32767 - 2) * (32767 - 2)..=NORMAL_LENGTH2_MAX).contains(&len2));
+        assert_eq!(
+            quantize_normal([[1.0, 1.0, 1.0], [2.0, 2.0, 2.0], [3.0, 3.0, 3.0]]),
+            [0; 3]
+        );
+    }
+}

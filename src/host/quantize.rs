@@ -1,0 +1,80 @@
+//! Quantizing a host mesh for the integer front end: positions in its
+//! bounding sphere, a unit normal per face, planarity bits; owned in
+//! `Vec`s and lent out as a [`QuantizedMesh`].
+
+use crate::error::Error;
+use crate::front::mesh::{Mesh, MeshError, planar_face_bits};
+use crate::front::quantized::{QuantizedMesh, quantize_normal, quantize_position};
+use crate::front::scene::bounding_sphere;
+use crate::host::HostMesh;
+use std::vec::Vec;
+
+/// A mesh quantized for the integer front end, in `Vec`s.
+#[derive(Debug, Clone, PartialEq)]
+pub struct QuantizedHostMesh {
+    /// Quantized positions.
+    pub positions: Vec<[i16; 3]>,
+    /// One quantized unit normal per face.
+    pub normals: Vec<[i16; 3]>,
+    /// Corners of all faces, face after face.
+    pub corners: Vec<u16>,
+    /// Where each face starts in `corners`.
+    pub face_starts: Vec<u32>,
+    /// Planarity bits of the original faces.
+    pub planar: Vec<u32>,
+    /// Centre of the quantization sphere (the mesh's bounding sphere).
+    pub centre: [f32; 3],
+    /// Its radius (1 for a mesh of one point).
+    pub radius: f32,
+}
+
+impl QuantizedHostMesh {
+    /// Quantizes `mesh` in its [`bounding_sphere`]; each face's normal
+    /// comes from its original corners, in `f64`.
+    pub fn new(mesh: &HostMesh) -> Result<Self, Error> {
+        let (centre, radius) = bounding_sphere(mesh)?;
+        let radius = if radius > 0.0 { radius } else { 1.0 };
+        let c = [
+            f64::from(centre.x),
+            f64::from(centre.y),
+            f64::from(centre.z),
+        ];
+        let positions = mesh
+            .positions
+            .iter()
+            .map(|p| quantize_position(p.map(f64::from), c, f64::from(radius)))
+            .collect();
+        let normals = (0..mesh.face_count())
+            .map(|f| {
+                let corners = mesh.face(f);
+                quantize_normal(
+                    corners
+                        .iter()
+                        .map(|&i| mesh.positions[usize::from(i)].map(f64::from)),
+                )
+            })
+            .collect();
+        Ok(Self {
+            positions,
+            normals,
+            corners: mesh.corners.clone(),
+            face_starts: mesh.face_starts.clone(),
+            planar: planar_face_bits(mesh).collect(),
+            centre: [centre.x, centre.y, centre.z],
+            radius,
+        })
+    }
+
+    /// The mesh, checked, over these arrays.
+    pub fn mesh(&self) -> Result<QuantizedMesh<'_>, MeshError> {
+        QuantizedMesh::new(
+            &self.positions,
+            &self.normals,
+            &self.corners,
+            &self.face_starts,
+            &self.planar,
+            self.centre,
+            self.radius,
+        )
+    }
+}
