@@ -1,7 +1,8 @@
 //! Prepares the emulated firmware on the host:
 //! 1. the memory map (`memory.x`, QEMU mps2-an385) and cortex-m-rt's linker
 //!    script;
-//! 2. the scenes' meshes as Rust statics, so they live in flash;
+//! 2. the scenes' meshes as Rust statics, quantized for the integer front
+//!    end, so they live in flash;
 //! 3. each scene's expected CRC, from rendering it on the host with the
 //!    very same code (`src/frame.rs`); the firmware fails if its own frame
 //!    differs;
@@ -19,9 +20,10 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
-use zline::front::mesh::{Mesh, StaticMesh};
+use zline::front::mesh::Mesh;
+use zline::front::quantized::QuantizedMesh;
 use zline::front::scene::VertexCache;
-use zline::host::{HostMesh, shapes, static_mesh_source};
+use zline::host::{HostMesh, QuantizedHostMesh, quantized_mesh_source, shapes};
 use zline::host::{ScanVecs, TableVecs, host_renderer};
 use zline::{Capacities, Crc32Sink, Depth16, Depth24, DepthFormat, FrameStats, Renderer};
 
@@ -106,7 +108,7 @@ fn generate() -> String {
     for &(shape, _, _) in &scene_list {
         if !meshes.iter().any(|(s, _)| *s == shape) {
             let mesh = shapes::by_name(shape).expect("known shape");
-            let source = static_mesh_source(
+            let source = quantized_mesh_source(
                 &mesh,
                 &const_name(shape),
                 &format!("zline::host::shapes `{shape}`"),
@@ -127,8 +129,9 @@ fn generate() -> String {
     let mut scenes = String::new();
     for &(shape, yaw, pitch) in &scene_list {
         let host = &meshes.iter().find(|(s, _)| *s == shape).expect("mesh").1;
-        let mesh =
-            StaticMesh::new(&host.positions, &host.corners, &host.face_starts).expect("valid mesh");
+        // The very arrays the firmware's statics hold.
+        let quantized = QuantizedHostMesh::new(host).expect("quantizable mesh");
+        let mesh = quantized.mesh().expect("valid mesh");
         let crc16 = expected(&mut z16, &mut cache, &mesh, yaw, pitch, &mut needs);
         let crc24 = expected(&mut z24, &mut cache, &mesh, yaw, pitch, &mut needs);
         // ZLINE_QEMU_BAD_CRC=1 flips one bit of one expected CRC: a self-test
@@ -165,7 +168,7 @@ fn generate() -> String {
 fn expected<D: DepthFormat>(
     renderer: &mut HostRenderer<D>,
     cache: &mut VertexCache<65536>,
-    mesh: &StaticMesh<'_>,
+    mesh: &QuantizedMesh<'_>,
     yaw: f32,
     pitch: f32,
     needs: &mut Needs,

@@ -5,10 +5,16 @@
 //! 2. Writes the mesh as Rust statics (`OUT_DIR/mesh.rs`), so it stays in
 //!    flash: the built-in torus knot, or the OBJ file named by the
 //!    environment variable `ZLINE_MESH`.
-//! 3. Runs zline's scanline core on the host over every view the firmware
-//!    shows and writes the table capacities those views need, plus a
-//!    margin, to `OUT_DIR/capacities.rs`. A mesh whose tables would not
-//!    leave enough RAM for the stack fails the build here.
+//! 3. Renders every view the firmware shows on the host, with the very
+//!    code the firmware runs (`src/frame.rs`), and writes the table
+//!    capacities those views need (plus a margin) and each view's expected
+//!    CRC-32 (of the big-endian Rgb565 stream the LCD receives) to
+//!    `OUT_DIR/capacities.rs`. A mesh whose tables would not leave enough
+//!    RAM for the stack fails the build here. `ZLINE_RP2040_BAD_CRC=1`
+//!    corrupts the first expected CRC (a self-test of the emulator check).
+
+#[path = "src/frame.rs"]
+mod frame;
 
 use std::env;
 use std::fmt::Write as _;
@@ -16,13 +22,23 @@ use std::fs;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use embedded_graphics_core::pixelcolor::Rgb565;
+use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use zline::front::mesh::{Mesh, StaticMesh};
-use zline::front::scene::{Camera, Cull, MAX_FACE_CORNERS, reference_model};
-use zline::front::shade::Shading;
-use zline::host::{HostMesh, shapes, static_mesh_source};
-use zline::methods::HostScanline;
-use zline::{Depth16, FrameStats};
+use zline::front::scene::{MAX_FACE_CORNERS, VertexCache, bounding_sphere};
+use zline::host::{
+    HostMesh, QuantizedHostMesh, ScanVecs, TableVecs, host_renderer, quantized_mesh_source, shapes,
+};
+use zline::{Capacities, Crc32Sink, Depth16, FrameStats, Renderer};
+
+/// Room for any view on the host, where the capacities are measured.
+const HOST_CAPACITIES: Capacities = Capacities {
+    width: WIDTH as usize,
+    vertices: 65_536,
+    polygons: 65_536,
+    corners: 262_144,
+    active_polygons: 16_384,
+    pooled_edges: 16_384,
+};
 
 /// LCD size in pixels (ST7789 240x240 module).
 const WIDTH: u16 = 240;
@@ -72,6 +88,8 @@ fn run() -> Result<(), String> {
 
     // 2. The mesh, as statics in flash.
     println!("cargo:rerun-if-env-changed=ZLINE_MESH");
+    println!("cargo:rerun-if-env-changed=ZLINE_RP2040_BAD_CRC");
+    println!("cargo:rerun-if-changed=src/frame.rs");
     let (mesh, origin) = match env::var_os("ZLINE_MESH").filter(|p| !p.is_empty()) {
         Some(path) => {
             let path = PathBuf::from(path);
@@ -84,7 +102,9 @@ fn run() -> Result<(), String> {
         ),
     };
     check_mesh(&mesh, &origin)?;
-    let source = static_mesh_source(&mesh, "MESH", &origin)?;
+    // Quantized, so the firmware's integer front end draws it with no
+    // floating point per vertex or face.
+    let source = quantized_mesh_source(&mesh, "MESH", &origin)?;
     write(&out.join("mesh.rs"), &source)?;
 
     // 3. Table capacities for every view the firmware shows.
@@ -145,16 +165,31 @@ fn measure(mesh: HostMesh, origin: &str) -> Result<String, String> {
 }
 
 fn measure_views(mesh: &HostMesh, origin: &str) -> Result<String, String> {
-    let mut host =
-        HostScanline::<Depth16>::new(WIDTH, HEIGHT).map_err(|e| format!("host renderer: {e}"))?;
-    let camera = Camera::reference(WIDTH, HEIGHT);
+    // The very arrays the firmware's statics hold.
+    let quantized = QuantizedHostMesh::new(mesh).map_err(|e| format!("{origin}: {e}"))?;
+    let quantized = quantized
+        .mesh()
+        .map_err(|e| format!("{origin}: invalid quantized mesh: {e:?}"))?;
+    let mut host: Renderer<TableVecs<Rgb565>, ScanVecs<Rgb565, Depth16>> =
+        host_renderer(&HOST_CAPACITIES, WIDTH, HEIGHT, Rgb565::BLACK)
+            .map_err(|e| format!("host renderer: {e}"))?;
+    let mut cache: Box<VertexCache<65536>> = Box::default();
+    // The firmware computes the sphere once at start-up, the same way.
+    let sphere = bounding_sphere(&quantized).map_err(|e| format!("{origin}: {e}"))?;
     let mut peak = FrameStats::default();
+    let mut crcs = Vec::new();
     for step in 0..YAW_STEPS {
-        let model = reference_model(mesh, yaw_deg(step), PITCH_DEG)
-            .map_err(|e| format!("{origin}: {e}"))?;
-        let (_, s) = host
-            .render(mesh, &model, &camera, Cull::Back, &Shading::FaceId)
-            .map_err(|e| format!("{origin}: view {step} does not render on the host: {e}"))?;
+        let mut crc = Crc32Sink::new();
+        let (_, s) = frame::render_frame(
+            &mut host,
+            &mut cache,
+            &quantized,
+            sphere,
+            (yaw_deg(step), PITCH_DEG),
+            &mut crc,
+        )
+        .map_err(|e| format!("{origin}: view {step} does not render on the host: {e:?}"))?;
+        crcs.push(crc.value());
         peak.vertices = peak.vertices.max(s.vertices);
         peak.polygons = peak.polygons.max(s.polygons);
         peak.corners = peak.corners.max(s.corners);
@@ -229,6 +264,20 @@ fn measure_views(mesh: &HostMesh, origin: &str) -> Result<String, String> {
     for (name, ty, value) in items {
         let _ = writeln!(s, "pub const {name}: {ty} = {value};");
     }
+    // ZLINE_RP2040_BAD_CRC=1 flips one bit of the first expected CRC: the
+    // emulator check must then fail.
+    if env::var_os("ZLINE_RP2040_BAD_CRC").is_some() {
+        crcs[0] ^= 1;
+    }
+    let listed: Vec<String> = crcs.iter().map(|c| format!("0x{c:08X}")).collect();
+    let _ = writeln!(
+        s,
+        "/// CRC-32 of each view's frame as the LCD receives it (big-endian Rgb565),\n\
+         /// rendered on the host by the firmware's own frame code.\n\
+         pub const EXPECTED_CRCS: [u32; {}] = [{}];",
+        crcs.len(),
+        listed.join(", ")
+    );
     let _ = writeln!(
         s,
         "/// The renderer's capacities, by name.\n\

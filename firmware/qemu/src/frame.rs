@@ -1,11 +1,12 @@
 //! One frame of a scene, exactly as both sides compute it: the firmware on
 //! the emulated Cortex-M and its build script on the host (which includes
-//! this file to produce the expected CRCs). Same code, same `f32`
-//! arithmetic, same pixels.
+//! this file to produce the expected CRCs). Same code, same arithmetic
+//! (the meshes are quantized, so the integer front end draws them), same
+//! pixels.
 
 use embedded_graphics_core::pixelcolor::Rgb565;
 use zline::front::geometry::Vec3;
-use zline::front::mesh::StaticMesh;
+use zline::front::mesh::Mesh;
 use zline::front::scene::{
     Camera, Cull, DrawStats, VertexCache, draw_mesh, reference_model_around,
 };
@@ -19,10 +20,10 @@ pub const SIZE: u16 = 240;
 /// Draws `mesh`, whose bounding sphere is `(centre, radius)` (computed once
 /// per mesh), in the reference view at `yaw`/`pitch` (Lambert, back faces
 /// culled) and sends the frame to `sink`.
-pub fn render_frame<T, S, K, const VM: usize>(
+pub fn render_frame<T, S, K, M, const VM: usize>(
     renderer: &mut Renderer<T, S>,
     cache: &mut VertexCache<VM>,
-    mesh: &StaticMesh<'_>,
+    mesh: &M,
     (centre, radius): (Vec3, f32),
     (yaw, pitch): (f32, f32),
     sink: &mut K,
@@ -31,6 +32,7 @@ where
     T: TableStorage<Color = Rgb565>,
     S: ScanStorage<Color = Rgb565>,
     K: RowSink<Rgb565, <S::Depth as DepthFormat>::Value>,
+    M: Mesh,
 {
     renderer.clear();
     let model = reference_model_around(centre, radius, yaw, pitch);

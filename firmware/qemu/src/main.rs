@@ -23,7 +23,7 @@ use cortex_m_rt::entry;
 use cortex_m_semihosting::{debug, hprintln};
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use static_cell::ConstStaticCell;
-use zline::front::mesh::StaticMesh;
+use zline::front::quantized::QuantizedMesh;
 use zline::front::scene::VertexCache;
 use zline::raster::{ScanArrays, ScanStorage, TableArrays};
 use zline::{Crc32Sink, Depth16, Depth24, DepthFormat, FnSink, FrameStats, Renderer};
@@ -38,7 +38,7 @@ enum DepthKind {
 /// One frame to check.
 struct Scene {
     name: &'static str,
-    mesh: &'static StaticMesh<'static>,
+    mesh: &'static QuantizedMesh<'static>,
     yaw: f32,
     pitch: f32,
     depth: DepthKind,

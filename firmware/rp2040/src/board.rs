@@ -14,7 +14,8 @@
 //! | GND         | 38       | GND  |                           |
 //!
 //! The pins are chosen in one place, the block marked "Pinout" in
-//! [`init`]. SCK and MOSI must belong to the SPI block chosen there
+//! [`init`], and named in the types [`LcdSpi`], [`LcdCs`] and [`LcdDc`]
+//! (change both together). SCK and MOSI must belong to the SPI block chosen there
 //! (SPI0: SCK on GP2/6/18/22, TX on GP3/7/19; SPI1: SCK on GP10/14/26, TX on
 //! GP11/15/27); the HAL checks this at compile time. CS, DC, RST and the
 //! backlight can be any free GPIO.
@@ -23,23 +24,83 @@
 //! unconnected. They need SPI mode 3 (clock idles high), which is why
 //! [`SPI_MODE`] is mode 3; modules with CS work in mode 3 as well.
 
+use core::convert::Infallible;
+
 use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use embedded_hal::digital::{OutputPin, PinState};
-use embedded_hal::spi::{MODE_3, Mode};
-use embedded_hal_bus::spi::ExclusiveDevice;
+use embedded_hal::spi::{MODE_3, Mode, Operation, SpiBus, SpiDevice};
 use mipidsi::Builder;
 use mipidsi::interface::SpiInterface;
 use mipidsi::models::ST7789;
 use mipidsi::options::{ColorInversion, ColorOrder, Orientation};
 use rp2040_hal::Clock;
+use rp2040_hal::dma::DMAExt;
 use rp2040_hal::fugit::RateExtU32;
-use rp2040_hal::gpio::{FunctionSpi, OutputDriveStrength, OutputSlewRate, Pins};
+use rp2040_hal::gpio::bank0::{Gpio16, Gpio17, Gpio18, Gpio19};
+use rp2040_hal::gpio::{
+    FunctionSio, FunctionSpi, OutputDriveStrength, OutputSlewRate, Pin, Pins, PullDown, SioOutput,
+};
 use rp2040_hal::{self as hal, pac};
 use static_cell::ConstStaticCell;
 
 use crate::Fault;
+use crate::lcd::LcdRows;
 use crate::sizes::{HEIGHT, SPI_BUFFER, WIDTH};
+
+/// SPI0 with MOSI on GP19 and SCK on GP18, 8-bit frames.
+pub type LcdSpi = hal::Spi<
+    hal::spi::Enabled,
+    pac::SPI0,
+    (
+        Pin<Gpio19, FunctionSpi, PullDown>,
+        Pin<Gpio18, FunctionSpi, PullDown>,
+    ),
+    8,
+>;
+/// The LCD's chip select, GP17.
+pub type LcdCs = Pin<Gpio17, FunctionSio<SioOutput>, PullDown>;
+/// The LCD's data/command pin, GP16.
+pub type LcdDc = Pin<Gpio16, FunctionSio<SioOutput>, PullDown>;
+
+/// The SPI bus and chip select as one SPI device, for mipidsi's start-up;
+/// unlike embedded-hal-bus' `ExclusiveDevice`, it gives both back
+/// ([`Self::into_parts`]) for the DMA row stream.
+struct LcdDevice {
+    spi: LcdSpi,
+    cs: LcdCs,
+}
+
+impl LcdDevice {
+    fn into_parts(self) -> (LcdSpi, LcdCs) {
+        (self.spi, self.cs)
+    }
+}
+
+impl embedded_hal::spi::ErrorType for LcdDevice {
+    type Error = Infallible;
+}
+
+impl SpiDevice for LcdDevice {
+    fn transaction(&mut self, operations: &mut [Operation<'_, u8>]) -> Result<(), Infallible> {
+        self.cs.set_low()?;
+        for op in operations {
+            match op {
+                Operation::Write(bytes) => self.spi.write(bytes)?,
+                Operation::Transfer(read, write) => self.spi.transfer(read, write)?,
+                Operation::TransferInPlace(bytes) => self.spi.transfer_in_place(bytes)?,
+                Operation::Read(bytes) => self.spi.read(bytes)?,
+                Operation::DelayNs(ns) => {
+                    self.spi.flush()?;
+                    // 125 cycles a microsecond at 125 MHz.
+                    cortex_m::asm::delay(ns.div_ceil(8));
+                }
+            }
+        }
+        self.spi.flush()?;
+        self.cs.set_high()
+    }
+}
 
 /// Crystal on the Pico.
 const XTAL_HZ: u32 = 12_000_000;
@@ -70,10 +131,11 @@ pub const OFFSET: (u16, u16) = (0, 0);
 /// sends goes out in one SPI write. In `.bss`, not on the stack.
 static SPI_BUF: ConstStaticCell<[u8; SPI_BUFFER]> = ConstStaticCell::new([0; SPI_BUFFER]);
 
-/// Brings up clocks, the timer, SPI and the LCD (reset, initialised,
-/// backlight on). Returns the display and the timer (a microsecond clock
-/// and delay).
-pub fn init() -> Result<(impl DrawTarget<Color = Rgb565>, hal::Timer), Fault> {
+/// Brings up clocks, the timer, SPI and the LCD (reset, initialised by
+/// mipidsi, cleared to black, backlight on), then hands SPI0, CS, DC and
+/// DMA channel 0 to the row stream. Returns the row stream and the timer
+/// (a microsecond clock and delay).
+pub fn init() -> Result<(LcdRows, hal::Timer), Fault> {
     let mut pac = pac::Peripherals::take().ok_or(Fault::Peripherals)?;
     let mut watchdog = hal::Watchdog::new(pac.WATCHDOG);
     // 125 MHz system and peripheral clocks from the 12 MHz crystal.
@@ -124,7 +186,7 @@ pub fn init() -> Result<(impl DrawTarget<Color = Rgb565>, hal::Timer), Fault> {
     let rst = rst.into_push_pull_output_in_state(PinState::High);
     let mut backlight = backlight.into_push_pull_output_in_state(PinState::Low);
 
-    let device = ExclusiveDevice::new(spi, cs, timer).map_err(|_| Fault::Spi)?;
+    let device = LcdDevice { spi, cs };
     let buffer = SPI_BUF.try_take().ok_or(Fault::Display)?;
     let mut display = Builder::new(ST7789, SpiInterface::new(device, dc, buffer))
         .display_size(WIDTH, HEIGHT)
@@ -139,5 +201,11 @@ pub fn init() -> Result<(impl DrawTarget<Color = Rgb565>, hal::Timer), Fault> {
     display.clear(Rgb565::BLACK).map_err(|_| Fault::Display)?;
     // The pin keeps its level when `backlight` goes out of scope.
     backlight.set_high().map_err(|_| Fault::Display)?;
-    Ok((display, timer))
+    // mipidsi has set the panel up; from now on rows go out by DMA.
+    let (interface, _model, _reset) = display.release();
+    let (device, dc) = interface.release();
+    let (spi, cs) = device.into_parts();
+    let dma = pac.DMA.split(&mut pac.RESETS);
+    let rows = LcdRows::new(spi, cs, dc, dma.ch0).ok_or(Fault::Display)?;
+    Ok((rows, timer))
 }

@@ -1,0 +1,42 @@
+//! One firmware frame, exactly as both sides compute it: the firmware on
+//! the RP2040 and its build script on the host (which includes this file
+//! to produce each view's expected CRC-32). Same code, same integer front
+//! end (the mesh is quantized), same pixels.
+
+use embedded_graphics_core::pixelcolor::Rgb565;
+use zline::front::geometry::Vec3;
+use zline::front::mesh::Mesh;
+use zline::front::scene::{
+    Camera, Cull, DrawStats, VertexCache, draw_mesh, reference_model_around,
+};
+use zline::front::shade::Shading;
+use zline::raster::{ScanStorage, TableStorage};
+use zline::{DepthFormat, FrameStats, RenderError, Renderer, RowSink};
+
+/// Draws `mesh` (bounding sphere `(centre, radius)`, computed once) in the
+/// reference view at `yaw`/`pitch` degrees, Lambert-shaded with back faces
+/// culled, and sends the frame to `sink` row by row.
+pub fn render_frame<T, S, K, M, const VM: usize>(
+    renderer: &mut Renderer<T, S>,
+    cache: &mut VertexCache<VM>,
+    mesh: &M,
+    (centre, radius): (Vec3, f32),
+    (yaw, pitch): (f32, f32),
+    sink: &mut K,
+) -> Result<(DrawStats, FrameStats), RenderError<K::Error>>
+where
+    T: TableStorage<Color = Rgb565>,
+    S: ScanStorage<Color = Rgb565>,
+    K: RowSink<Rgb565, <S::Depth as DepthFormat>::Value>,
+    M: Mesh,
+{
+    renderer.clear();
+    let model = reference_model_around(centre, radius, yaw, pitch);
+    let camera = Camera::reference(renderer.width(), renderer.height());
+    let shading = Shading::lambert();
+    let draw = draw_mesh(renderer, cache, mesh, &model, &camera, Cull::Back, |f| {
+        Rgb565::from(shading.color(f))
+    })?;
+    let frame = renderer.render(sink)?;
+    Ok((draw, frame))
+}
