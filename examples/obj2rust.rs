@@ -2,8 +2,15 @@
 //! [`StaticMesh`](zline::front::mesh::StaticMesh) static:
 //!
 //! ```sh
-//! cargo run --example obj2rust -- MODEL.obj NAME > name.rs
+//! cargo run --example obj2rust -- [--quantized] MODEL.obj NAME > name.rs
 //! ```
+//!
+//! With `--quantized` it writes a
+//! [`QuantizedMesh`](zline::front::quantized::QuantizedMesh) instead:
+//! `i16` positions in the mesh's bounding sphere and a unit normal per
+//! face (6 bytes a vertex and 6 a face), which `draw_mesh` transforms,
+//! projects and shades with integers only: the choice for a core without
+//! an FPU.
 //!
 //! `name.rs` defines `pub static NAME: zline::front::mesh::StaticMesh<'static>`
 //! over three `const` arrays (positions, corners, face starts). Include it
@@ -21,18 +28,27 @@
 use std::io::Write as _;
 use std::process::ExitCode;
 
-use zline::host::{HostMesh, static_mesh_source};
+use zline::host::{HostMesh, quantized_mesh_source, static_mesh_source};
 
 fn run(args: &[String]) -> Result<(), String> {
-    let [path, name] = args else {
-        return Err("usage: obj2rust MODEL.obj NAME > name.rs".into());
+    let (quantized, rest) = match args.first().map(String::as_str) {
+        Some("--quantized") => (true, &args[1..]),
+        _ => (false, args),
+    };
+    let [path, name] = rest else {
+        return Err("usage: obj2rust [--quantized] MODEL.obj NAME > name.rs".into());
     };
     let bytes = std::fs::read(path).map_err(|e| format!("cannot read {path}: {e}"))?;
     let mesh = HostMesh::from_obj(&bytes).map_err(|e| format!("{path}: {e}"))?;
     let origin = std::path::Path::new(path)
         .file_name()
         .map_or(path.clone(), |f| f.to_string_lossy().into_owned());
-    let text = static_mesh_source(&mesh, name, &format!("`{origin}` by obj2rust"))?;
+    let origin = format!("`{origin}` by obj2rust");
+    let text = if quantized {
+        quantized_mesh_source(&mesh, name, &origin)?
+    } else {
+        static_mesh_source(&mesh, name, &origin)?
+    };
     let mut stdout = std::io::stdout().lock();
     stdout
         .write_all(text.as_bytes())

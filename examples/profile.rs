@@ -2,10 +2,10 @@
 //! callgrind (instructions, not seconds: the same on every run).
 //!
 //! ```sh
-//! cargo build --release --example profile
+//! cargo build --release --features profile --example profile
 //! valgrind --tool=callgrind --callgrind-out-file=cg.out \
 //!     target/release/examples/profile ../shared/meshes/stanford-bunny.obj --size 800x600 --frames 4
-//! cargo run --release --example profile -- --report cg.out
+//! cargo run --release --features profile --example profile -- --report cg.out
 //! ```
 //!
 //! The frame is the peers bench's: the reference view, each face's Lambert
@@ -24,7 +24,7 @@
 //! | table building | `draw_mesh`, less the three above |
 //! | sorting | `Tables::prepare` |
 //! | polygon/edge activation | `ScanState::activate_*` |
-//! | spans | `RowBuffers::fill` |
+//! | spans | `RowBuffers::fill`, `RowBuffers::fill_in_range` |
 //! | sink | `profile::copy_row` |
 //! | row upkeep | `scan_rows`, less activation, spans and sink |
 
@@ -147,7 +147,16 @@ fn report(path: &str) -> Result<(), String> {
     let prepare = cost(&["Tables", "prepare"]);
     let activation = cost(&["ScanState", "activate_polygon"]);
     let edges = cost(&["ScanState", "activate_edges"]);
-    let spans = cost(&["scan::RowBuffers<C,D>::fill"]);
+    let fill_in_range = cost(&["scan::RowBuffers<C,D>::fill_in_range"]);
+    let fill = rows
+        .iter()
+        .filter(|(_, name)| {
+            name.contains("scan::RowBuffers<C,D>::fill") && !name.contains("fill_in_range")
+        })
+        .map(|(c, _)| *c)
+        .max()
+        .unwrap_or(0);
+    let spans = fill + fill_in_range;
     let sink = cost(&["profile::copy_row"]);
     let scan = cost(&["scan::scan_rows"]);
     let total = draw + prepare + scan;

@@ -22,6 +22,10 @@ pub(crate) enum SpanDepth {
         dz_dx: i64,
         dz_dy: i64,
         row_value: i64,
+        /// The depth format's accumulator step for `dz_dx`, when the
+        /// polygon stays in [`IN_RANGE`](crate::raster::depth::IN_RANGE)
+        /// and its spans need no range check.
+        accumulator: Option<i64>,
     },
     /// Edge-on polygon: its plane is evaluated exactly at each pixel.
     Exact,

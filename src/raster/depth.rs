@@ -47,7 +47,24 @@ pub trait DepthFormat {
     /// Rounds a plane value to the nearest stored value, clamped to the
     /// format's range.
     fn quantize(plane_value: i64) -> Self::Value;
+    /// A polygon's per-pixel plane step (`abs(step) < 2^40`) as this
+    /// format's accumulator step, computed once per polygon; `None` when it
+    /// does not fit the accumulator.
+    fn accumulator_step(step: i64) -> Option<i64>;
+    /// The accumulator at a pixel whose plane value is `start`, and the
+    /// step from [`DepthFormat::accumulator_step`], for a span of a polygon
+    /// whose every value lies in [`IN_RANGE`] depth steps: no per-span
+    /// range check (the caller has made it once per polygon).
+    fn accumulator(start: i64, step: i64) -> (Self::Accum, Self::Accum);
 }
+
+/// Depths (input steps) of a triangle's corners for which its spans take
+/// the accumulator with no per-span range check: a pixel covered by the
+/// triangle lies inside it, so its exact plane value is a convex
+/// combination of the corners' depths, and the stepped value is within a
+/// tenth of a step of it; the margin of 256 steps covers that and the
+/// [`Depth16`] rounding (a depth above `2^24 - 128` would round to 2^16).
+pub const IN_RANGE: core::ops::RangeInclusive<u32> = 1..=crate::raster::fixed::DEPTH_MAX - 256;
 
 /// 16-bit depth: `u16` entries (480 bytes for a 240-pixel row); one step is
 /// 2^-16 of the depth range. The span accumulator is an `i32` in Q16.15.
@@ -109,12 +126,32 @@ impl DepthFormat for Depth16 {
 
     #[inline(always)]
     fn advance(acc: i32, step: i32) -> i32 {
-        acc + step
+        // The advance past a span's last pixel is never stored, and may
+        // leave the range: it wraps rather than overflowing.
+        acc.wrapping_add(step)
     }
 
     #[inline]
     fn quantize(plane_value: i64) -> u16 {
         shift_round(plane_value, PLANE_FRAC_BITS + 8).clamp(0, i64::from(u16::MAX)) as u16
+    }
+
+    #[inline]
+    fn accumulator_step(step: i64) -> Option<i64> {
+        // |step| < 2^40 plane units: the shifted step is below 2^31 only
+        // for the gentler gradients, which is every polygon in practice.
+        i32::try_from(shift_round(step, Z16_SHIFT))
+            .ok()
+            .map(i64::from)
+    }
+
+    #[inline]
+    fn accumulator(start: i64, step: i64) -> (i32, i32) {
+        // In range, start < 2^40 plane units: below 2^31 once shifted.
+        (
+            (shift_round(start, Z16_SHIFT) + (1 << (Z16_ACC_FRAC - 1))) as i32,
+            step as i32,
+        )
     }
 }
 
@@ -154,13 +191,32 @@ impl DepthFormat for Depth24 {
 
     #[inline(always)]
     fn advance(acc: i64, step: i64) -> i64 {
-        acc + step
+        acc.wrapping_add(step)
     }
 
     #[inline]
     fn quantize(plane_value: i64) -> u32 {
         shift_round(plane_value, PLANE_FRAC_BITS)
             .clamp(0, i64::from(crate::raster::fixed::DEPTH_MAX)) as u32
+    }
+
+    #[inline]
+    fn accumulator_step(step: i64) -> Option<i64> {
+        // |step| < 2^40: times 2^16, below 2^56.
+        if step.unsigned_abs() < 1 << 40 {
+            Some(step << (Z24_ACC_FRAC - PLANE_FRAC_BITS))
+        } else {
+            None
+        }
+    }
+
+    #[inline]
+    fn accumulator(start: i64, step: i64) -> (i64, i64) {
+        // In range, start < 2^40 plane units: below 2^56 once shifted.
+        (
+            (start << (Z24_ACC_FRAC - PLANE_FRAC_BITS)) + (1 << (Z24_ACC_FRAC - 1)),
+            step,
+        )
     }
 }
 

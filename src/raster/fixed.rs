@@ -221,6 +221,69 @@ impl Reciprocal {
     }
 }
 
+/// Exact division by one 31-bit divisor, several times, without a 64-bit
+/// division (a Cortex-M0+ has no divide instruction, and compiler-builtins'
+/// 64-bit division costs hundreds of instructions there): a 32-bit
+/// reciprocal from one 32-bit division and a Newton step
+/// ([`crate::front::fixed_point::reciprocal62`]), a quotient estimate from
+/// two 64-bit products, and at most a few corrections against the exact
+/// remainder. For quotients below `2^26`; larger ones are refused.
+///
+/// Ranges: `0 < d < 2^31`, normalised to `dn = d·2^(s-1)` in `[2^30,
+/// 2^31)` (`s` its leading zeros, at least 1); `R ~ 2^62 / dn` within 8;
+/// for `n < 2^57`: `(n >> 32)·R < 2^57` and `(n mod 2^32)·R < 2^64`; the
+/// estimate `q` is within `q·2^-28 + 2 < 3` of `n / d`, so each correction
+/// loop runs at most 3 times; `q·d < 2^57`.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Divisor {
+    d: u64,
+    recip: u64,
+    /// `63 - s`: the estimate is `(n·R) >> shift`.
+    shift: u32,
+}
+
+impl Divisor {
+    /// Largest quotient [`Self::div_rem`] computes.
+    pub const QUOTIENT_LIMIT: u64 = 1 << 26;
+
+    /// Division by `d` (`0 < d < 2^31`).
+    #[inline]
+    pub fn new(d: u32) -> Self {
+        debug_assert!(d > 0 && d < 1 << 31);
+        let s = d.leading_zeros();
+        let recip = crate::front::fixed_point::reciprocal62(d << (s - 1));
+        Self {
+            d: u64::from(d),
+            recip,
+            shift: 63 - s,
+        }
+    }
+
+    /// `(n / d, n mod d)` exactly, for `n < 2^57`; `None` when the quotient
+    /// is [`Self::QUOTIENT_LIMIT`] or more.
+    #[inline]
+    pub fn div_rem(&self, n: u64) -> Option<(u64, u64)> {
+        debug_assert!(n < 1 << 57);
+        let (high, low) = (n >> 32, n & 0xFFFF_FFFF);
+        let product = high * self.recip + ((low * self.recip) >> 32);
+        let mut q = product >> (self.shift - 32);
+        if q >= Self::QUOTIENT_LIMIT + 4 {
+            return None;
+        }
+        let mut qd = q * self.d;
+        while qd > n {
+            q -= 1;
+            qd -= self.d;
+        }
+        let mut r = n - qd;
+        while r >= self.d {
+            q += 1;
+            r -= self.d;
+        }
+        (q < Self::QUOTIENT_LIMIT).then_some((q, r))
+    }
+}
+
 /// First pixel whose sample point lies at or to the right of sub-pixel
 /// coordinate `x` (`ceil((x - HALF_PIXEL) / SUBPIXEL_STEPS)`). The same
 /// function gives the first row at or below a sub-pixel y.
@@ -233,6 +296,40 @@ pub(crate) fn first_sample_at_or_after(x: i32) -> i32 {
 mod tests {
     use super::*;
     use proptest::strategy::Strategy;
+
+    #[test]
+    fn divisor_is_exact() {
+        let check = |n: u64, d: u32| {
+            let got = Divisor::new(d).div_rem(n);
+            let (q, r) = (n / u64::from(d), n % u64::from(d));
+            if q < Divisor::QUOTIENT_LIMIT {
+                assert_eq!(got, Some((q, r)), "{n} / {d}");
+            } else {
+                assert_eq!(got, None, "{n} / {d}");
+            }
+        };
+        let mut x = 0x9E37_79B9_7F4A_7C15u64;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        };
+        for _ in 0..200_000 {
+            let d = (next() as u32 >> (next() % 31)).max(1) & 0x7FFF_FFFF;
+            let d = d.max(1);
+            // Quotients on both sides of the limit.
+            let q = next() % (Divisor::QUOTIENT_LIMIT * 2);
+            let n = (q * u64::from(d) + next() % u64::from(d)).min((1 << 57) - 1);
+            check(n, d);
+            check(next() >> 7, d);
+        }
+        for d in [1u32, 2, 3, (1 << 30) - 1, 1 << 30, (1 << 31) - 1] {
+            for n in [0u64, 1, u64::from(d) - 1, u64::from(d), (1 << 57) - 1] {
+                check(n, d);
+            }
+        }
+    }
 
     #[test]
     fn sample_rounding() {

@@ -37,7 +37,8 @@
 //! arithmetic, with overflow checks on.
 
 use crate::raster::fixed::{
-    HALF_PIXEL, MAX_POLYGON_CORNERS, PLANE_FRAC_BITS, Reciprocal, SUBPIXEL_BITS, SUBPIXEL_STEPS,
+    Divisor, HALF_PIXEL, MAX_POLYGON_CORNERS, PLANE_FRAC_BITS, Reciprocal, SUBPIXEL_BITS,
+    SUBPIXEL_STEPS,
 };
 use crate::raster::vertex::ScreenVertex;
 
@@ -222,6 +223,105 @@ impl Plane {
     /// steep (at least the whole depth range per pixel).
     pub fn gradients(&self) -> Option<(i64, i64)> {
         Some((self.gradient(self.a)?, self.gradient(self.b)?))
+    }
+}
+
+/// A triangle's depth gradients and the corner they are anchored at: the
+/// set-up the scanner steps, made with no reciprocal and no 128-bit
+/// product, so that it is cheap on a 32-bit core without a divider.
+///
+/// With the corners relative to `o`, `c = px·qy - py·qx` (twice the area),
+/// `a = py·qz - pz·qy`, `b = pz·qx - px·qz`, and each gradient
+/// `round(-a·2^24 / c)` (plane units per pixel) comes from two exact
+/// divisions by `c`: `-a·2^8 = n·c + r` (`0 <= r < c`), then
+/// `n·2^16 + round(r·2^16 / c)`. That is the same rounding as
+/// [`Plane::gradients`], to the unit.
+///
+/// The row value at column 0 is anchored at `o` itself, where the plane's
+/// value is `z_o` exactly: `z_o·2^16 + round((dz_dx·(128 - o.x) +
+/// dz_dy·(y_s - o.y)) / 256)` for the sample line `y_s` of the row. A
+/// pixel `x` then stores `row value + dz_dx·x`, off the exact plane by at
+/// most `2^-17·(1 + |x - o_x| + |y - o_y|)` depth steps (pixels from the
+/// corner), plus `2^-17` for the final shift; and the value at a row is
+/// exactly the value at an earlier row plus `dz_dy` per row, so stepping
+/// and bands agree.
+///
+/// # Ranges
+/// Taken when the triangle fits (else [`Plane`] does it):
+/// | quantity | bound | held in |
+/// |---|---|---|
+/// | `px, py, qx, qy` | `< 2^16` (triangles under 256 px each way) | `i32` |
+/// | `c` | `< 2^31`, non-zero | `i32` / `i64` |
+/// | `a, b` (`|dz| < 2^24`) | `< 2^41` | `i64` |
+/// | `-a·2^8`, `-b·2^8` | `< 2^49` | `i64` |
+/// | `r·2^17 + c` | `< 2^48` | `i64` |
+/// | gradient (else steep: `None`) | `< 2^40` | `i64` |
+/// | `dz_dx·(128 - o.x)`, `dz_dy·(y_s - o.y)` (`|o| < 2^21`) | `< 2^61.01` each, `< 2^62.01` summed | `i64` |
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct TrianglePlane {
+    pub dz_dx: i64,
+    pub dz_dy: i64,
+    origin: ScreenVertex,
+}
+
+impl TrianglePlane {
+    /// The plane of triangle `o p q`; `None` when its area is zero, when
+    /// it is too large for this set-up (256 px or more each way) or when a
+    /// gradient is steep.
+    #[inline]
+    pub fn new(o: ScreenVertex, p: ScreenVertex, q: ScreenVertex) -> Option<Self> {
+        let small = |d: i32| d.unsigned_abs() < 1 << 16;
+        let (px, py, qx, qy) = (p.x - o.x, p.y - o.y, q.x - o.x, q.y - o.y);
+        if !(small(px) && small(py) && small(qx) && small(qy)) {
+            return None;
+        }
+        // Each product below 2^32 in magnitude: i64, but no overflow check
+        // needed.
+        let c = i64::from(px) * i64::from(qy) - i64::from(py) * i64::from(qx);
+        if c == 0 || c.unsigned_abs() >= 1 << 31 {
+            return None;
+        }
+        let (pz, qz) = (
+            i64::from(p.z) - i64::from(o.z),
+            i64::from(q.z) - i64::from(o.z),
+        );
+        let a = i64::from(py) * qz - pz * i64::from(qy);
+        let b = pz * i64::from(qx) - i64::from(px) * qz;
+        let divisor = Divisor::new(c.unsigned_abs() as u32);
+        let d = c.unsigned_abs();
+        let gradient = |coef: i64| {
+            // round(-coef·2^8·2^16 / c), exactly, in two divisions by the
+            // same divisor: |n| = whole·d + rest, then the fraction.
+            let n = if c < 0 { coef } else { -coef } << SUBPIXEL_BITS;
+            let (whole, rest) = divisor.div_rem(n.unsigned_abs())?;
+            let (whole, rest) = (whole as i64, rest as i64);
+            // floor for a negative numerator: -(whole + 1) and d - rest.
+            let (whole, rest) = if n < 0 && rest != 0 {
+                (-whole - 1, d as i64 - rest)
+            } else if n < 0 {
+                (-whole, 0)
+            } else {
+                (whole, rest)
+            };
+            let (fraction, _) =
+                divisor.div_rem(((rest << (PLANE_FRAC_BITS + 1)) + d as i64) as u64 >> 1)?;
+            let g = (whole << PLANE_FRAC_BITS) + fraction as i64;
+            (g.abs() < STEEP_GRADIENT).then_some(g)
+        };
+        Some(Self {
+            dz_dx: gradient(a)?,
+            dz_dy: gradient(b)?,
+            origin: o,
+        })
+    }
+
+    /// The value at column 0 of `row` (see the type's notes).
+    #[inline]
+    pub fn row_start(&self, row: u16) -> i64 {
+        let o = self.origin;
+        let sample_y = i32::from(row) * SUBPIXEL_STEPS + HALF_PIXEL;
+        let sum = self.dz_dx * i64::from(HALF_PIXEL - o.x) + self.dz_dy * i64::from(sample_y - o.y);
+        (i64::from(o.z) << PLANE_FRAC_BITS) + ((sum + (1 << (SUBPIXEL_BITS - 1))) >> SUBPIXEL_BITS)
     }
 }
 

@@ -23,10 +23,10 @@ use core::ops::Range;
 
 use crate::error::{Error, RenderError};
 use crate::raster::active::{ActivePolygon, EdgePool, NO_EDGE, NO_ROW, SpanDepth};
-use crate::raster::depth::DepthFormat;
+use crate::raster::depth::{DepthFormat, IN_RANGE};
 use crate::raster::edge::ActiveEdge;
 use crate::raster::fixed::first_sample_at_or_after;
-use crate::raster::plane::Plane;
+use crate::raster::plane::{Plane, TrianglePlane};
 use crate::raster::slots::Slots;
 use crate::raster::tables::{PolygonEntry, Prepared};
 use crate::raster::vertex::{ScreenVertex, TriangleTest};
@@ -251,9 +251,11 @@ fn scan_rows<C: Copy, D: DepthFormat, K: RowSink<C, D::Value>>(
     // the activation there.
     let mut next_edge = tables.edges.partition_point(|e| e.row() <= first);
     for row in first..end {
+        // The key row needs no clearing: a key is compared only where the
+        // stored depth equals the new one and is not CLEAR, that is where
+        // this row has written it (see `fill_span`).
         row_buffers.depth.fill(D::CLEAR);
         row_buffers.color.fill(background);
-        row_buffers.key.fill(0);
         if row == first {
             // Polygons that started above the band and reach into it enter
             // at its first row, with the edges covering it.
@@ -297,10 +299,56 @@ struct RowBuffers<'a, C, D: DepthFormat> {
 }
 
 impl<C: Copy, D: DepthFormat> RowBuffers<'_, C, D> {
+    /// Fills pixels `[start, end)` (clamped to the row) of a triangle that
+    /// stays in range (see [`IN_RANGE`]): depths from the accumulator,
+    /// starting from the plane value `row_value + dz_dx · x` at the first
+    /// pixel, with no range check, no rounding and no call per span; whether
+    /// any pixel was in the row. (With the `profile` feature it is kept out
+    /// of line: the profile's "spans" stage.)
+    #[cfg_attr(feature = "profile", inline(never))]
+    #[cfg_attr(not(feature = "profile"), inline(always))]
+    #[allow(clippy::too_many_arguments)]
+    fn fill_in_range(
+        &mut self,
+        start: i32,
+        end: i32,
+        key: u32,
+        color: C,
+        row_value: i64,
+        dz_dx: i64,
+        accumulator_step: i64,
+    ) -> bool {
+        let width = self.depth.len() as i32;
+        let (start, end) = (start.max(0), end.min(width));
+        if start >= end {
+            return false;
+        }
+        let (first, last) = (start as usize, end as usize);
+        let (depths, keys, colors) = (
+            &mut self.depth[first..last],
+            &mut self.key[first..last],
+            &mut self.color[first..last],
+        );
+        // |dz_dx| < 2^40, start < 2^12: the product is below 2^52.
+        let (mut acc, step) =
+            D::accumulator(row_value + dz_dx * i64::from(start), accumulator_step);
+        for ((stored, stored_key), pixel) in depths.iter_mut().zip(keys).zip(colors) {
+            let depth = D::value(acc);
+            if depth < *stored || (depth == *stored && depth != D::CLEAR && key < *stored_key) {
+                *stored = depth;
+                *stored_key = key;
+                *pixel = color;
+            }
+            acc = D::advance(acc, step);
+        }
+        true
+    }
+
     /// Fills pixels `[start, end)` (clamped to the row) of a polygon with
     /// `key` and `color`, depths from `source`; whether any pixel was in
-    /// the row. (Not inlined: the profile's "spans" stage.)
-    #[inline(never)]
+    /// the row. (With the `profile` feature it is kept out of line: the
+    /// profile's "spans" stage.)
+    #[cfg_attr(feature = "profile", inline(never))]
     fn fill(&mut self, start: i32, end: i32, key: u32, color: C, source: &SpanSource) -> bool {
         let width = self.depth.len() as i32;
         let (start, end) = (start.clamp(0, width), end.clamp(0, width));
@@ -362,6 +410,9 @@ impl<C: Copy> ScanState<'_, '_, C> {
                     polygon.first_row,
                     row,
                 ),
+                // A polygon's plane is Newell's fit: its corners may lie
+                // off it, so its range is checked span by span.
+                accumulator: None,
             },
             // Non-zero area was checked when the polygon entered the table.
             Some((_, None)) | None => SpanDepth::Exact,
@@ -396,24 +447,33 @@ impl<C: Copy> ScanState<'_, '_, C> {
         let (corners, vertices) = (self.tables.corners, self.tables.vertices);
         let ids = [corners[start], corners[start + 1], corners[start + 2]];
         let [a, b, c] = ids.map(|id| vertices[usize::from(id)]);
-        let Some(plane) = Plane::triangle(a, b, c) else {
-            return Ok(()); // Zero area was left out when it was queued.
-        };
-        if polygon.end_row == row + 1 && self.draw_tiny_row(a, b, c, &plane, &polygon, row, rows) {
+        if polygon.end_row == row + 1 && self.draw_tiny_row(a, b, c, &polygon, row, rows) {
             return Ok(());
         }
-        let depth = match plane.gradients() {
-            Some((dz_dx, dz_dy)) => SpanDepth::Stepped {
-                dz_dx,
-                dz_dy,
-                row_value: plane.row_start(
-                    (dz_dx, dz_dy),
-                    self.tables.width,
-                    polygon.first_row,
-                    row,
-                ),
+        // The plane passes through the corners: in range when they are
+        // (see IN_RANGE).
+        let in_range = [a.z, b.z, c.z].iter().all(|z| IN_RANGE.contains(z));
+        let stepped = |dz_dx: i64, dz_dy: i64, row_value: i64| SpanDepth::Stepped {
+            dz_dx,
+            dz_dy,
+            row_value,
+            accumulator: in_range.then(|| D::accumulator_step(dz_dx)).flatten(),
+        };
+        let depth = match TrianglePlane::new(a, b, c) {
+            // The common case: two exact divisions per gradient.
+            Some(plane) => stepped(plane.dz_dx, plane.dz_dy, plane.row_start(row)),
+            // Large (256 px or more) or steep: the general plane.
+            None => match Plane::triangle(a, b, c) {
+                Some(plane) => match plane.gradients() {
+                    Some((dz_dx, dz_dy)) => stepped(
+                        dz_dx,
+                        dz_dy,
+                        plane.row_start((dz_dx, dz_dy), self.tables.width, polygon.first_row, row),
+                    ),
+                    None => SpanDepth::Exact,
+                },
+                None => return Ok(()), // Zero area was left out when it was queued.
             },
-            None => SpanDepth::Exact,
         };
         let [(_, top), (mid_id, mid), (bot_id, bot)] =
             sort_by_y([(ids[0], a), (ids[1], b), (ids[2], c)]);
@@ -472,7 +532,6 @@ impl<C: Copy> ScanState<'_, '_, C> {
         a: ScreenVertex,
         b: ScreenVertex,
         c: ScreenVertex,
-        plane: &Plane,
         polygon: &PolygonEntry<C>,
         row: u16,
         rows: &mut RowBuffers<'_, C, D>,
@@ -491,7 +550,10 @@ impl<C: Copy> ScanState<'_, '_, C> {
                 stop = column + 1;
             }
         }
-        let source = SpanSource::Exact(*plane, row);
+        let Some(plane) = Plane::triangle(a, b, c) else {
+            return true; // No area: nothing to draw.
+        };
+        let source = SpanSource::Exact(plane, row);
         if rows.fill(start, stop, polygon.id + 1, polygon.color, &source) {
             self.stats.spans += 1;
         }
@@ -619,8 +681,15 @@ fn fill_and_step<C: Copy, D: DepthFormat>(
 ) -> bool {
     let source = match polygon.depth {
         SpanDepth::Stepped {
-            dz_dx, row_value, ..
-        } => SpanSource::Stepped { dz_dx, row_value },
+            dz_dx,
+            row_value,
+            accumulator,
+            ..
+        } => SpanSource::Stepped {
+            dz_dx,
+            row_value,
+            accumulator,
+        },
         SpanDepth::Exact => {
             // Edge-on: the plane, exactly, at each pixel (rare).
             let entry = &tables.polygons[polygon.position as usize];
@@ -634,7 +703,15 @@ fn fill_and_step<C: Copy, D: DepthFormat>(
     let next_row = row + 1;
     if polygon.is_triangle() {
         let (start, end) = polygon.triangle_span();
-        if rows.fill(start, end, key, color, &source) {
+        let filled = match source {
+            SpanSource::Stepped {
+                dz_dx,
+                row_value,
+                accumulator: Some(step),
+            } => rows.fill_in_range(start, end, key, color, row_value, dz_dx, step),
+            _ => rows.fill(start, end, key, color, &source),
+        };
+        if filled {
             stats.spans += 1;
         }
         if polygon.end_row <= next_row {
@@ -717,8 +794,13 @@ const SHORT_SPAN: u32 = 4;
 
 /// Where a span's depths come from.
 enum SpanSource {
-    /// From the row's plane value at column 0 and the gradient.
-    Stepped { dz_dx: i64, row_value: i64 },
+    /// From the row's plane value at column 0 and the gradient; with the
+    /// accumulator step when the polygon is known to stay in range.
+    Stepped {
+        dz_dx: i64,
+        row_value: i64,
+        accumulator: Option<i64>,
+    },
     /// Exactly from the plane, at each pixel of the row.
     Exact(Plane, u16),
 }
@@ -737,7 +819,7 @@ fn fill_span<C: Copy, D: DepthFormat>(
     source: &SpanSource,
 ) {
     let write = |depth: D::Value, stored: &mut D::Value, stored_key: &mut u32, pixel: &mut C| {
-        if depth < *stored || (depth == *stored && key < *stored_key) {
+        if depth < *stored || (depth == *stored && depth != D::CLEAR && key < *stored_key) {
             *stored = depth;
             *stored_key = key;
             *pixel = color;
@@ -749,7 +831,22 @@ fn fill_span<C: Copy, D: DepthFormat>(
         .zip(keys.iter_mut())
         .zip(colors.iter_mut());
     match *source {
-        SpanSource::Stepped { dz_dx, row_value } => {
+        SpanSource::Stepped {
+            dz_dx,
+            row_value,
+            accumulator: Some(step),
+        } => {
+            // In range (checked once per polygon): the accumulator, with
+            // no range check and no rounding per pixel.
+            let (mut acc, step) = D::accumulator(row_value + dz_dx * i64::from(x0), step);
+            for ((stored, stored_key), pixel) in pixels {
+                write(D::value(acc), stored, stored_key, pixel);
+                acc = D::advance(acc, step);
+            }
+        }
+        SpanSource::Stepped {
+            dz_dx, row_value, ..
+        } => {
             // Re-evaluated from the plane at every span start: the error
             // is the gradient's rounding times the distance from the
             // polygon's anchor column (see `Plane::row_start`), never drift
