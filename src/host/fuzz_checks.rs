@@ -25,8 +25,9 @@ use crate::front::geometry::{Mat4, Vec3};
 use crate::front::mesh::{Mesh, StaticMesh};
 use crate::front::obj::{ObjMesh, ObjReader, Statement, count};
 use crate::front::scene::{Camera, Cull, DrawError, VertexCache, draw_mesh, reference_model};
-use crate::host::HostMesh;
+use crate::front::shade::Shading;
 use crate::host::host_renderer;
+use crate::host::{HostMesh, QuantizedHostMesh};
 use crate::methods::exact::check_frame;
 use crate::raster::depth::{Depth16, Depth24, DepthFormat};
 use crate::raster::fixed::{DEPTH_MAX, GUARD_BAND, SUBPIXEL_STEPS};
@@ -291,10 +292,21 @@ pub fn pipeline(data: &[u8]) {
             Camera::perspective(view, fov, width, height, near, far),
         )
     };
-    if z24 {
-        pipeline_check::<Depth24>(&mesh, &model, &camera, cull);
+    // Flag 8: the same mesh quantized, through the integer front end.
+    if flags & 8 != 0 {
+        let Ok(quantized) = QuantizedHostMesh::new(&mesh) else {
+            return; // Error::MeshExtent, as for the f32 mesh.
+        };
+        let quantized = quantized.mesh().expect("a quantized host mesh is valid");
+        if z24 {
+            pipeline_check::<Depth24, _>(&quantized, &model, &camera, cull);
+        } else {
+            pipeline_check::<Depth16, _>(&quantized, &model, &camera, cull);
+        }
+    } else if z24 {
+        pipeline_check::<Depth24, _>(&mesh, &model, &camera, cull);
     } else {
-        pipeline_check::<Depth16>(&mesh, &model, &camera, cull);
+        pipeline_check::<Depth16, _>(&mesh, &model, &camera, cull);
     }
 }
 
@@ -308,7 +320,7 @@ const PIPELINE_CAPACITIES: Capacities = Capacities {
     pooled_edges: 256,
 };
 
-fn pipeline_check<D: DepthFormat>(mesh: &HostMesh, model: &Mat4, camera: &Camera, cull: Cull) {
+fn pipeline_check<D: DepthFormat, M: Mesh>(mesh: &M, model: &Mat4, camera: &Camera, cull: Cull) {
     let mut renderer =
         host_renderer::<u32, D>(&PIPELINE_CAPACITIES, camera.width, camera.height, 0)
             .expect("frame size");
@@ -316,7 +328,11 @@ fn pipeline_check<D: DepthFormat>(mesh: &HostMesh, model: &Mat4, camera: &Camera
     if mesh.vertex_count() > 4096 {
         return;
     }
+    let shading = Shading::lambert();
     let stats = match draw_mesh(&mut renderer, &mut *cache, mesh, model, camera, cull, |f| {
+        // Lambert too (the integer path for a quantized mesh): any panic
+        // or overflow in it is a finding.
+        core::hint::black_box(shading.color(f));
         f.face + 1
     }) {
         Ok(stats) => stats,
