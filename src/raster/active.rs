@@ -264,6 +264,14 @@ impl<'a> EdgePool<'a> {
         }
     }
 
+    /// Empties the pool: every list in it is forgotten.
+    pub fn reset(&mut self) {
+        self.edges.truncate(0);
+        self.free = NO_EDGE;
+        self.live = 0;
+        self.pooled = 0;
+    }
+
     /// Stores `edge` in the list starting at `head`, keeping it sorted by
     /// `x`; returns the new head. `Err` when more edges are active than the
     /// capacity.

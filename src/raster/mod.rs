@@ -12,6 +12,8 @@
 //!   pool, the depth row and the colour row) and [`scan()`](scan::scan).
 //! * [`capacities`]: the capacities, named, and the [`Renderer`] bundle of
 //!   tables and scanner.
+//! * [`zbuffer`]: the z-buffer methods it is compared with (a full-frame
+//!   or banded depth buffer, and the painter's pass), on the same tables.
 //! * `plane`, `edge`, `active`: the plane set-up, the exact edge DDA, the
 //!   active tables (internal).
 //!
@@ -27,6 +29,7 @@ pub mod scan;
 mod slots;
 pub mod tables;
 pub mod vertex;
+pub mod zbuffer;
 
 pub use active::ActivePolygon;
 pub use capacities::{Capacities, Renderer};

@@ -243,6 +243,7 @@ fn scan_rows<C: Copy, D: DepthFormat, K: RowSink<C, D::Value>>(
         depth: &mut parts.depth_row[..width],
         color: &mut parts.color_row[..width],
         key: &mut parts.key_row[..width],
+        write: PixelWrite::NearerOrFirstAdded,
     };
     let (first, end) = (rows.start.min(tables.height), rows.end.min(tables.height));
     let polygons = tables.polygons;
@@ -292,10 +293,13 @@ fn scan_rows<C: Copy, D: DepthFormat, K: RowSink<C, D::Value>>(
 }
 
 /// The row being built: depth, colour and tie-break key per pixel.
-struct RowBuffers<'a, C, D: DepthFormat> {
-    depth: &'a mut [D::Value],
-    color: &'a mut [C],
-    key: &'a mut [u32],
+pub(crate) struct RowBuffers<'a, C, D: DepthFormat> {
+    pub depth: &'a mut [D::Value],
+    pub color: &'a mut [C],
+    pub key: &'a mut [u32],
+    /// How a covered pixel is written: the scanline's test, or the other
+    /// methods' ([`crate::raster::zbuffer`]).
+    pub write: PixelWrite,
 }
 
 impl<C: Copy, D: DepthFormat> RowBuffers<'_, C, D> {
@@ -332,6 +336,26 @@ impl<C: Copy, D: DepthFormat> RowBuffers<'_, C, D> {
         // |dz_dx| < 2^40, start < 2^12: the product is below 2^52.
         let (mut acc, step) =
             D::accumulator(row_value + dz_dx * i64::from(start), accumulator_step);
+        match self.write {
+            PixelWrite::NearerOrFirstAdded => {}
+            PixelWrite::Overwrite => {
+                for (stored, pixel) in depths.iter_mut().zip(colors) {
+                    (*stored, *pixel) = (D::value(acc), color);
+                    acc = D::advance(acc, step);
+                }
+                return true;
+            }
+            PixelWrite::Nearer => {
+                for (stored, pixel) in depths.iter_mut().zip(colors) {
+                    let depth = D::value(acc);
+                    if depth < *stored {
+                        (*stored, *pixel) = (depth, color);
+                    }
+                    acc = D::advance(acc, step);
+                }
+                return true;
+            }
+        }
         for ((stored, stored_key), pixel) in depths.iter_mut().zip(keys).zip(colors) {
             let depth = D::value(acc);
             if depth < *stored || (depth == *stored && depth != D::CLEAR && key < *stored_key) {
@@ -361,20 +385,32 @@ impl<C: Copy, D: DepthFormat> RowBuffers<'_, C, D> {
             &mut self.color[range.clone()],
             &mut self.key[range],
             start,
-            key,
-            color,
+            (key, color, self.write),
             source,
         );
         true
     }
 }
 
+/// How a covered pixel is written.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum PixelWrite {
+    /// Where nearer, or equally near and added earlier (the key row): the
+    /// scanline z-buffer, whatever order its polygons are scanned in.
+    NearerOrFirstAdded,
+    /// Where strictly nearer: the z-buffer, drawing in the order polygons
+    /// were added, so the first drawn keeps a tie.
+    Nearer,
+    /// Always: the painter's pass.
+    Overwrite,
+}
+
 /// The state of one scan.
-struct ScanState<'t, 'a, C> {
-    tables: &'t Prepared<'t, C>,
-    active: Slots<'a, ActivePolygon<C>>,
-    pool: EdgePool<'a>,
-    stats: FrameStats,
+pub(crate) struct ScanState<'t, 'a, C> {
+    pub tables: &'t Prepared<'t, C>,
+    pub active: Slots<'a, ActivePolygon<C>>,
+    pub pool: EdgePool<'a>,
+    pub stats: FrameStats,
 }
 
 impl<C: Copy> ScanState<'_, '_, C> {
@@ -390,7 +426,7 @@ impl<C: Copy> ScanState<'_, '_, C> {
     /// Moves the polygon at `position` into the APT at `row`, with its
     /// plane and the edges covering `row`.
     #[inline(never)]
-    fn activate_polygon<D: DepthFormat>(
+    pub(crate) fn activate_polygon<D: DepthFormat>(
         &mut self,
         position: usize,
         row: u16,
@@ -582,7 +618,7 @@ impl<C: Copy> ScanState<'_, '_, C> {
     /// A triangle reaching its middle corner's row: its lower short edge
     /// joins the pair (the upper one has just left it).
     #[inline(never)]
-    fn switch_triangle(&mut self, slot: usize, row: u16) -> Result<(), Error> {
+    pub(crate) fn switch_triangle(&mut self, slot: usize, row: u16) -> Result<(), Error> {
         let [mid, bot] = self.active.as_slice()[slot]
             .lower
             .map(|id| self.tables.vertices[usize::from(id)]);
@@ -599,7 +635,12 @@ impl<C: Copy> ScanState<'_, '_, C> {
     /// Starts edges of the active polygon at `slot`: at its activation,
     /// every edge covering `row`; later, those starting on `row`.
     #[inline(never)]
-    fn activate_edges(&mut self, slot: usize, row: u16, at_activation: bool) -> Result<(), Error> {
+    pub(crate) fn activate_edges(
+        &mut self,
+        slot: usize,
+        row: u16,
+        at_activation: bool,
+    ) -> Result<(), Error> {
         let entry = self.active.as_slice()[slot];
         let polygon = &self.tables.polygons[entry.position as usize];
         let end_limit = i32::from(self.tables.height);
@@ -671,7 +712,7 @@ impl<C: Copy> ScanState<'_, '_, C> {
 /// Fills an active polygon's spans on `row` into the row buffers and steps
 /// it down to the next row; returns whether it is still active there.
 #[inline]
-fn fill_and_step<C: Copy, D: DepthFormat>(
+pub(crate) fn fill_and_step<C: Copy, D: DepthFormat>(
     polygon: &mut ActivePolygon<C>,
     tables: &Prepared<'_, C>,
     pool: &mut EdgePool<'_>,
@@ -814,12 +855,18 @@ fn fill_span<C: Copy, D: DepthFormat>(
     colors: &mut [C],
     keys: &mut [u32],
     x0: i32,
-    key: u32,
-    color: C,
+    (key, color, mode): (u32, C, PixelWrite),
     source: &SpanSource,
 ) {
     let write = |depth: D::Value, stored: &mut D::Value, stored_key: &mut u32, pixel: &mut C| {
-        if depth < *stored || (depth == *stored && depth != D::CLEAR && key < *stored_key) {
+        let wins = match mode {
+            PixelWrite::NearerOrFirstAdded => {
+                depth < *stored || (depth == *stored && depth != D::CLEAR && key < *stored_key)
+            }
+            PixelWrite::Nearer => depth < *stored,
+            PixelWrite::Overwrite => true,
+        };
+        if wins {
             *stored = depth;
             *stored_key = key;
             *pixel = color;

@@ -522,6 +522,34 @@ impl<S: TableStorage> Tables<S> {
     }
 }
 
+impl<S: TableStorage> Tables<S> {
+    /// The tables as they are, for the methods that draw polygon after
+    /// polygon ([`crate::raster::zbuffer`]): the polygons in the order they
+    /// were added (unless [`Self::prepare`] has sorted them since), no edge
+    /// table. A polygon left open is dropped first.
+    pub fn in_drawing_order(&mut self) -> Prepared<'_, S::Color> {
+        self.view().discard_polygon();
+        let parts = self.storage.parts();
+        let st = &self.state;
+        Prepared {
+            vertices: &parts.vertices[..st.vertices],
+            polygons: &parts.polygons[..st.polygons],
+            corners: &parts.corners[..st.corners],
+            edges: &[],
+            width: st.counts.width,
+            height: st.counts.height,
+            off_screen: st.counts.off_screen,
+            degenerate: st.counts.degenerate,
+        }
+    }
+
+    /// Whether [`Self::prepare`] has sorted the polygons by first row
+    /// since the tables were cleared.
+    pub fn is_prepared(&self) -> bool {
+        self.state.counts.prepared
+    }
+}
+
 impl<S: TableStorage> PolygonTables<S::Color> for Tables<S> {
     fn frame_width(&self) -> u16 {
         self.width()
