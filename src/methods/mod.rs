@@ -1,14 +1,20 @@
 //! Host-side comparison renderers and checks (feature `std`): the float64
 //! reference renderer, the exact rational oracle for the core, the
-//! accuracy comparison against the reference, and the scanline core over
-//! `Vec` storage with a whole-frame output. None of this is needed by the
-//! core.
+//! accuracy comparison against the reference, the scanline core over `Vec`
+//! storage with a whole-frame output, the interval (span) scanline and the
+//! painter's algorithm, and [`MethodRenderer`], which runs any [`Method`]
+//! (these, and the core's z-buffer and bands) on the same scene. None of
+//! this is needed by the core.
 
 mod accuracy;
 pub mod exact;
+pub mod interval;
+pub mod painter;
 mod reference;
+mod run;
 mod scanline_host;
 
 pub use accuracy::{Comparison, compare};
 pub use reference::{BACKGROUND, ReferenceFrame, ReferenceView};
+pub use run::{Memory, Method, MethodFrame, MethodRenderer};
 pub use scanline_host::{HOST_CAPACITIES, HostFrame, HostPixel, HostRenderer, HostScanline};

@@ -392,6 +392,59 @@ impl<C: Copy, D: DepthFormat> RowBuffers<'_, C, D> {
     }
 }
 
+/// The plane a polygon is drawn with on a row, set up as the scanner sets
+/// it up at activation: for the comparison methods that draw from the same
+/// tables ([`crate::methods`]).
+#[cfg(feature = "std")]
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum RowPlane {
+    /// The gradient and the value at column 0 of the row, in plane units.
+    Stepped { dz_dx: i64, row_value: i64 },
+    /// A steep plane, evaluated exactly at each pixel.
+    Exact(Plane),
+}
+
+#[cfg(feature = "std")]
+impl RowPlane {
+    /// The plane value at pixel `x` of `row` (the row it was set up for).
+    pub fn value(&self, x: i32, row: u16) -> i64 {
+        match *self {
+            Self::Stepped { dz_dx, row_value } => row_value + dz_dx * i64::from(x),
+            Self::Exact(plane) => plane.value_at_pixel(x, i32::from(row)),
+        }
+    }
+}
+
+/// The plane of the polygon at `position` on `row` (see [`RowPlane`]);
+/// `None` for a polygon of no area.
+#[cfg(feature = "std")]
+pub(crate) fn row_plane<C>(
+    tables: &Prepared<'_, C>,
+    position: usize,
+    row: u16,
+) -> Option<RowPlane> {
+    let polygon = &tables.polygons[position];
+    let corners = || entry_corners(polygon, tables.corners, tables.vertices);
+    if polygon.corner_count == 3 {
+        let mut c = corners();
+        let (a, b, cc) = (c.next()?, c.next()?, c.next()?);
+        if let Some(plane) = TrianglePlane::new(a, b, cc) {
+            return Some(RowPlane::Stepped {
+                dz_dx: plane.dz_dx,
+                row_value: plane.row_start(row),
+            });
+        }
+    }
+    let plane = Plane::new(corners())?;
+    Some(match plane.gradients() {
+        Some((dz_dx, dz_dy)) => RowPlane::Stepped {
+            dz_dx,
+            row_value: plane.row_start((dz_dx, dz_dy), tables.width, polygon.first_row, row),
+        },
+        None => RowPlane::Exact(plane),
+    })
+}
+
 /// How a covered pixel is written.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum PixelWrite {
@@ -800,7 +853,7 @@ fn sort_by_y(corners: [(u16, ScreenVertex); 3]) -> [(u16, ScreenVertex); 3] {
 
 /// Calls `f(top, bottom)` for every non-horizontal edge of a polygon, its
 /// ends ordered top first.
-fn for_each_edge(
+pub(crate) fn for_each_edge(
     corners: impl Iterator<Item = ScreenVertex> + Clone,
     mut f: impl FnMut(ScreenVertex, ScreenVertex),
 ) {

@@ -1,0 +1,198 @@
+//! The interval (span) scanline: visibility without any depth buffer.
+//!
+//! On each row, every active polygon contributes its spans (its edge
+//! crossings paired even-odd, by the core's fill rule). The span ends cut
+//! the row into intervals; in each interval the polygons covering it are
+//! compared by their planes (in the core's plane units, set up as the core
+//! sets them up) at the interval's two ends. The lower envelope of planes
+//! is concave, so a polygon nearest at both ends is nearest all the way;
+//! otherwise the interval is split in two, recursively, down to the pixel
+//! where two polygons cross. On exactly equal depth the polygon added
+//! first wins, as in the core.
+//!
+//! It keeps one row of colour and, per row, the list of spans: no depth is
+//! stored. (The depth row it sends with each row is the winning plane
+//! value, quantised, for comparison only.)
+
+use std::vec::Vec;
+
+use crate::raster::ActiveEdge;
+use crate::raster::depth::DepthFormat;
+use crate::raster::fixed::first_sample_at_or_after;
+use crate::raster::scan::{RowPlane, entry_corners, for_each_edge, row_plane};
+use crate::raster::tables::Prepared;
+use crate::sink::RowSink;
+
+/// One polygon's span on the current row.
+#[derive(Debug, Clone, Copy)]
+struct Segment {
+    start: i32,
+    end: i32,
+    key: u32,
+    position: usize,
+}
+
+/// Counts and sizes of one [`render_intervals`] frame.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct IntervalStats {
+    /// Spans gathered, summed over the rows.
+    pub spans: u64,
+    /// Intervals resolved, summed over the rows.
+    pub intervals: u64,
+    /// Most spans on one row.
+    pub peak_spans: usize,
+    /// Most polygons active on one row.
+    pub peak_active: usize,
+}
+
+impl IntervalStats {
+    /// Bytes the method needs beyond the tables: the peak span list, the
+    /// active list and a row of colour.
+    pub fn working_bytes<C>(&self, width: usize) -> usize {
+        self.peak_spans * core::mem::size_of::<Segment>()
+            + self.peak_active * core::mem::size_of::<(usize, RowPlane)>()
+            + width * core::mem::size_of::<C>()
+    }
+}
+
+/// Draws prepared tables (sorted by first row) row by row with the interval
+/// method, clearing to `background`, and sends each row to `sink`.
+pub fn render_intervals<C: Copy, D: DepthFormat, K: RowSink<C, D::Value>>(
+    tables: &Prepared<'_, C>,
+    background: C,
+    sink: &mut K,
+) -> Result<IntervalStats, crate::error::RenderError<K::Error>> {
+    let (width, height) = (i32::from(tables.width), tables.height);
+    let mut stats = IntervalStats::default();
+    let mut active: Vec<(usize, RowPlane)> = Vec::new();
+    let mut next = 0usize;
+    let mut segments: Vec<Segment> = Vec::new();
+    let mut crossings: Vec<i32> = Vec::new();
+    let mut colors = std::vec![background; width as usize];
+    let mut depths = std::vec![D::CLEAR; width as usize];
+    for row in 0..height {
+        active.retain(|&(p, _)| tables.polygons[p].end_row > row);
+        while let Some(polygon) = tables.polygons.get(next).filter(|p| p.first_row <= row) {
+            if polygon.end_row > row {
+                // The plane as the core sets it up, at this row; later rows
+                // step it by dz_dy, done here by setting it up again.
+                active.push((
+                    next,
+                    RowPlane::Stepped {
+                        dz_dx: 0,
+                        row_value: 0,
+                    },
+                ));
+            }
+            next += 1;
+        }
+        stats.peak_active = stats.peak_active.max(active.len());
+        segments.clear();
+        for entry in &mut active {
+            let position = entry.0;
+            match row_plane(tables, position, row) {
+                Some(plane) => entry.1 = plane,
+                None => continue,
+            }
+            let polygon = &tables.polygons[position];
+            crossings.clear();
+            let corners = entry_corners(polygon, tables.corners, tables.vertices);
+            for_each_edge(corners, |top, bottom| {
+                let first = first_sample_at_or_after(top.y);
+                let end = first_sample_at_or_after(bottom.y);
+                if first <= i32::from(row) && end > i32::from(row) {
+                    let edge = ActiveEdge::start(top, bottom, row, row + 1, u32::MAX);
+                    crossings.push(edge.x);
+                }
+            });
+            crossings.sort_unstable();
+            for pair in crossings.chunks_exact(2) {
+                let (start, end) = (pair[0].max(0), pair[1].min(width));
+                if start < end {
+                    segments.push(Segment {
+                        start,
+                        end,
+                        key: polygon.id + 1,
+                        position,
+                    });
+                }
+            }
+        }
+        stats.spans += segments.len() as u64;
+        stats.peak_spans = stats.peak_spans.max(segments.len());
+        colors.fill(background);
+        depths.fill(D::CLEAR);
+        // The intervals between consecutive span ends.
+        crossings.clear();
+        crossings.extend(segments.iter().flat_map(|s| [s.start, s.end]));
+        crossings.sort_unstable();
+        crossings.dedup();
+        let plane_of = |position: usize| {
+            active
+                .iter()
+                .find(|(p, _)| *p == position)
+                .map(|(_, plane)| *plane)
+        };
+        for pair in crossings.windows(2) {
+            let (left, right) = (pair[0], pair[1]);
+            let covering: Vec<&Segment> = segments
+                .iter()
+                .filter(|s| s.start <= left && s.end >= right)
+                .collect();
+            if covering.is_empty() {
+                continue;
+            }
+            stats.intervals += 1;
+            // The nearest covering polygon at pixel x: smallest plane value,
+            // then smallest key.
+            let nearest = |x: i32| -> Option<(i64, u32, usize)> {
+                covering
+                    .iter()
+                    .filter_map(|s| {
+                        plane_of(s.position).map(|p| (p.value(x, row), s.key, s.position))
+                    })
+                    .min_by_key(|&(value, key, _)| (value, key))
+            };
+            let value_of =
+                |position: usize, x: i32| plane_of(position).map_or(i64::MAX, |p| p.value(x, row));
+            resolve(
+                left,
+                right,
+                &nearest,
+                &value_of,
+                &mut |x, position, value| {
+                    colors[x as usize] = tables.polygons[position].color;
+                    depths[x as usize] = D::quantize(value);
+                },
+            );
+        }
+        sink.write_row(row, &colors, &depths)
+            .map_err(crate::error::RenderError::Sink)?;
+    }
+    Ok(stats)
+}
+
+/// Gives each pixel of `[left, right)` its nearest polygon, splitting the
+/// interval where the nearest at its two ends differ.
+fn resolve(
+    left: i32,
+    right: i32,
+    nearest: &dyn Fn(i32) -> Option<(i64, u32, usize)>,
+    value_of: &dyn Fn(usize, i32) -> i64,
+    paint: &mut dyn FnMut(i32, usize, i64),
+) {
+    let (Some(a), Some(b)) = (nearest(left), nearest(right - 1)) else {
+        return;
+    };
+    if a.2 == b.2 {
+        // One polygon all the way: the lower envelope of planes is
+        // concave, so a plane on it at both ends is on it in between.
+        for x in left..right {
+            paint(x, a.2, value_of(a.2, x));
+        }
+        return;
+    }
+    let mid = left + (right - left) / 2;
+    resolve(left, mid, nearest, value_of, paint);
+    resolve(mid, right, nearest, value_of, paint);
+}

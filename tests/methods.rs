@@ -1,0 +1,118 @@
+//! Every method on the same scenes: the z-buffer and every band height give
+//! the scanline's frame bit for bit (face, colour and depth); the interval
+//! scanline has no hard mismatch against the float64 reference; the
+//! painter draws, and its memory has no depth at all.
+
+use zline::front::scene::{Camera, Cull, reference_model};
+use zline::front::shade::Shading;
+use zline::host::shapes;
+use zline::methods::{Method, MethodRenderer, ReferenceView, compare};
+use zline::{Depth16, Depth24, DepthFormat};
+
+const W: u16 = 160;
+const H: u16 = 120;
+
+fn frames<D: DepthFormat>(
+    name: &str,
+    yaw: f32,
+    pitch: f32,
+    cull: Cull,
+) -> Vec<(Method, zline::methods::MethodFrame)>
+where
+    D::Value: Into<u32>,
+{
+    let mesh = shapes::by_name(name).unwrap();
+    let model = reference_model(&mesh, yaw, pitch).unwrap();
+    let view = ReferenceView {
+        width: usize::from(W),
+        height: usize::from(H),
+        yaw_deg: f64::from(yaw),
+        pitch_deg: f64::from(pitch),
+        cull_back: cull == Cull::Back,
+    };
+    let mut r = MethodRenderer::<D>::new(W, H).unwrap();
+    Method::ALL
+        .iter()
+        .map(|&m| {
+            let f = r
+                .render(
+                    m,
+                    &mesh,
+                    &model,
+                    &Camera::reference(W, H),
+                    cull,
+                    &Shading::lambert(),
+                    &view,
+                )
+                .unwrap();
+            (m, f)
+        })
+        .collect()
+}
+
+#[test]
+fn methods_agree_where_they_should() {
+    for (name, yaw, pitch) in [
+        ("torus-knot", 30.0, 20.0),
+        ("boxes", 200.0, -35.0),
+        ("icosphere", 30.0, 20.0),
+    ] {
+        for cull in [Cull::None, Cull::Back] {
+            let all = frames::<Depth24>(name, yaw, pitch, cull);
+            let get = |m: Method| &all.iter().find(|(k, _)| *k == m).unwrap().1;
+            let scanline = get(Method::Scanline);
+            for m in [
+                Method::ZBuffer,
+                Method::Bands(1),
+                Method::Bands(8),
+                Method::Bands(32),
+            ] {
+                let f = get(m);
+                assert_eq!(f.faces, scanline.faces, "{name} {cull:?} {}", m.name());
+                assert_eq!(f.depths, scanline.depths, "{name} {cull:?} {}", m.name());
+                assert_eq!(f.colors, scanline.colors);
+            }
+            let reference = zline::methods::ReferenceFrame::render(
+                &shapes::by_name(name).unwrap(),
+                &ReferenceView {
+                    width: usize::from(W),
+                    height: usize::from(H),
+                    yaw_deg: f64::from(yaw),
+                    pitch_deg: f64::from(pitch),
+                    cull_back: cull == Cull::Back,
+                },
+            );
+            assert_eq!(get(Method::Reference).faces, reference.ids);
+            for m in [Method::Scanline, Method::Interval] {
+                let c = compare(&reference, &get(m).faces);
+                assert_eq!(c.hard, 0, "{name} {cull:?} {}: {c:?}", m.name());
+            }
+            // The painter runs; where it is wrong is the catalogue's business.
+            let painter = get(Method::Painter);
+            assert!(painter.faces.iter().any(|&f| f != u32::MAX));
+            assert_eq!(painter.memory.depth, 0);
+            assert_eq!(get(Method::Interval).memory.depth, 0);
+        }
+    }
+}
+
+#[test]
+fn memory_follows_the_method() {
+    let all = frames::<Depth16>("torus-knot", 30.0, 20.0, Cull::Back);
+    let get = |m: Method| all.iter().find(|(k, _)| *k == m).unwrap().1.memory;
+    assert_eq!(get(Method::ZBuffer).depth, 160 * 120 * 2, "a z16 frame");
+    assert_eq!(get(Method::Bands(8)).depth, 160 * 8 * 2);
+    assert_eq!(get(Method::Bands(1)).depth, 160 * 2);
+    assert_eq!(get(Method::Scanline).depth, 160 * 2, "one row");
+    assert!(get(Method::Scanline).total() < get(Method::ZBuffer).total());
+}
+
+#[test]
+fn methods_parse_and_print() {
+    for m in Method::ALL {
+        assert_eq!(Method::parse(&m.name()), Ok(m));
+    }
+    assert!(Method::parse("bands:0").is_err());
+    assert!(Method::parse("bands:x").is_err());
+    assert!(Method::parse("zbuf").is_err());
+}
