@@ -1,13 +1,17 @@
-//! Speed, measured side by side in one run: for each mesh, the scanline
-//! core with each depth format, with and without back-face culling, and
-//! the float64 reference, timed in interleaved rounds (every configuration
-//! once per round), so machine noise falls on all of them alike. Prints the
-//! median frame time of each and its ratio to the first, as a Markdown
-//! table.
+//! Speed, measured side by side in one run: for each mesh, every method
+//! asked for (each depth format of those that store depth), timed in
+//! interleaved rounds (every configuration once per round), so machine
+//! noise falls on all of them alike. Prints the median frame time of each,
+//! its ratio to the first, and its memory, as a Markdown table.
 //!
 //! ```sh
-//! cargo run --release --example bench -- [--size WxH] [--rounds N] MESH.obj...
+//! cargo run --release --example bench -- [--size WxH] [--rounds N] [--cull none|back]
+//!     [--method LIST] MESH.obj...
 //! ```
+//!
+//! `LIST` is comma-separated methods (`scanline`, `zbuffer`, `bands:K`,
+//! `interval`, `painter`, `reference`); all of them by default, bands at
+//! 1, 8 and 32 rows.
 //!
 //! A frame is the whole pipeline: clear, transform, cull, clip, project,
 //! shade (Lambert), build the tables, scan every row into a frame buffer
@@ -20,59 +24,8 @@ use std::time::Instant;
 use zline::front::scene::{Camera, Cull, reference_model};
 use zline::front::shade::Shading;
 use zline::host::{load_model, parse_size, run_tool};
-use zline::methods::{HostScanline, ReferenceFrame, ReferenceView};
+use zline::methods::{Method, MethodRenderer, ReferenceView};
 use zline::{Depth16, Depth24};
-
-/// One configuration to time.
-#[derive(Clone, Copy)]
-enum Config {
-    Scanline { z24: bool, cull: Cull },
-    Reference,
-}
-
-impl Config {
-    fn name(self) -> &'static str {
-        match self {
-            Config::Scanline {
-                z24: false,
-                cull: Cull::None,
-            } => "scanline z16",
-            Config::Scanline {
-                z24: true,
-                cull: Cull::None,
-            } => "scanline z24",
-            Config::Scanline {
-                z24: false,
-                cull: Cull::Back,
-            } => "scanline z16, back faces culled",
-            Config::Scanline {
-                z24: true,
-                cull: Cull::Back,
-            } => "scanline z24, back faces culled",
-            Config::Reference => "float64 reference",
-        }
-    }
-}
-
-const CONFIGS: [Config; 5] = [
-    Config::Scanline {
-        z24: false,
-        cull: Cull::None,
-    },
-    Config::Scanline {
-        z24: true,
-        cull: Cull::None,
-    },
-    Config::Scanline {
-        z24: false,
-        cull: Cull::Back,
-    },
-    Config::Scanline {
-        z24: true,
-        cull: Cull::Back,
-    },
-    Config::Reference,
-];
 
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
@@ -81,6 +34,7 @@ fn median(mut v: Vec<f64>) -> f64 {
 
 fn run(args: &[String]) -> Result<(), String> {
     let (mut size, mut rounds, mut paths) = ((320u16, 240u16), 15usize, Vec::new());
+    let (mut cull, mut methods) = (Cull::None, Method::ALL.to_vec());
     let mut it = args.iter();
     while let Some(a) = it.next() {
         match a.as_str() {
@@ -92,6 +46,21 @@ fn run(args: &[String]) -> Result<(), String> {
                     .filter(|&n| n > 0)
                     .ok_or("bad --rounds")?
             }
+            "--cull" => {
+                cull = match it.next().map(String::as_str) {
+                    Some("none") => Cull::None,
+                    Some("back") => Cull::Back,
+                    _ => return Err("--cull needs none or back".into()),
+                }
+            }
+            "--method" => {
+                methods = it
+                    .next()
+                    .ok_or("--method needs a list")?
+                    .split(',')
+                    .map(Method::parse)
+                    .collect::<Result<_, _>>()?
+            }
             "--frames" => {
                 return Err("unknown option --frames (the bench times rounds: --rounds N)".into());
             }
@@ -100,18 +69,35 @@ fn run(args: &[String]) -> Result<(), String> {
         }
     }
     if paths.is_empty() {
-        return Err("usage: bench [--size WxH] [--rounds N] MESH.obj... (or shape:NAME)".into());
+        return Err("usage: bench [--size WxH] [--rounds N] [--cull none|back] [--method LIST] MESH.obj... (or shape:NAME)".into());
     }
-    let mut z16 = HostScanline::<Depth16>::new(size.0, size.1).map_err(|e| e.to_string())?;
-    let mut z24 = HostScanline::<Depth24>::new(size.0, size.1).map_err(|e| e.to_string())?;
+    // Every method, and each depth format of those that store depth.
+    let configs: Vec<(Method, bool)> = methods
+        .iter()
+        .flat_map(|&m| {
+            if m.stores_depth() {
+                vec![(m, false), (m, true)]
+            } else {
+                vec![(m, false)]
+            }
+        })
+        .collect();
+    let mut z16 = MethodRenderer::<Depth16>::new(size.0, size.1)?;
+    let mut z24 = MethodRenderer::<Depth24>::new(size.0, size.1)?;
     let camera = Camera::reference(size.0, size.1);
     let shading = Shading::lambert();
     println!(
-        "{}x{}, median of {rounds} interleaved rounds (after one warm-up round)\n",
-        size.0, size.1
+        "{}x{}, {}, median of {rounds} interleaved rounds (after one warm-up round)\n",
+        size.0,
+        size.1,
+        if cull == Cull::Back {
+            "back faces culled"
+        } else {
+            "no culling"
+        }
     );
-    println!("| mesh | faces | configuration | median ms | ratio to scanline z16 |");
-    println!("|---|---|---|---|---|");
+    println!("| mesh | faces | method | median ms | ratio | memory bytes |");
+    println!("|---|---|---|---:|---:|---:|");
     for path in &paths {
         let mesh = load_model(path)?;
         let model = reference_model(&mesh, 30.0, 20.0).map_err(|e| format!("{path}: {e}"))?;
@@ -120,38 +106,38 @@ fn run(args: &[String]) -> Result<(), String> {
             height: usize::from(size.1),
             yaw_deg: 30.0,
             pitch_deg: 20.0,
-            cull_back: false,
+            cull_back: cull == Cull::Back,
         };
-        let mut times: Vec<Vec<f64>> = vec![Vec::new(); CONFIGS.len()];
+        let mut times: Vec<Vec<f64>> = vec![Vec::new(); configs.len()];
+        let mut memory = vec![0usize; configs.len()];
         for round in 0..=rounds {
-            for (k, config) in CONFIGS.iter().enumerate() {
+            for (k, &(method, deep)) in configs.iter().enumerate() {
                 let start = Instant::now();
-                match *config {
-                    Config::Scanline { z24: false, cull } => drop(
-                        z16.render(&mesh, &model, &camera, cull, &shading)
-                            .map_err(|e| e.to_string())?,
-                    ),
-                    Config::Scanline { z24: true, cull } => drop(
-                        z24.render(&mesh, &model, &camera, cull, &shading)
-                            .map_err(|e| e.to_string())?,
-                    ),
-                    Config::Reference => drop(ReferenceFrame::render(&mesh, &view)),
-                }
+                let frame = if deep {
+                    z24.render(method, &mesh, &model, &camera, cull, &shading, &view)?
+                } else {
+                    z16.render(method, &mesh, &model, &camera, cull, &shading, &view)?
+                };
                 if round > 0 {
                     times[k].push(start.elapsed().as_secs_f64() * 1e3);
                 }
+                memory[k] = frame.memory.total();
             }
         }
         let base = median(times[0].clone());
         let name = std::path::Path::new(path)
             .file_name()
             .map_or(path.clone(), |n| n.to_string_lossy().into_owned());
-        for (config, t) in CONFIGS.iter().zip(times) {
+        for ((&(method, deep), t), bytes) in configs.iter().zip(times).zip(memory) {
             let m = median(t);
+            let label = if method.stores_depth() {
+                format!("{} {}", method.name(), if deep { "z24" } else { "z16" })
+            } else {
+                method.name()
+            };
             println!(
-                "| {name} | {} | {} | {m:.2} | {:.2} |",
+                "| {name} | {} | {label} | {m:.2} | {:.2} | {bytes} |",
                 mesh.face_starts.len(),
-                config.name(),
                 m / base
             );
         }

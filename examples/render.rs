@@ -1,5 +1,6 @@
-//! Headless render of an OBJ mesh in the reference view, by the scanline
-//! core or by the float64 reference.
+//! Headless render of an OBJ mesh in the reference view, by any of the
+//! hidden-surface methods: the scanline core, the full-frame and banded
+//! z-buffers, the interval scanline, the painter, or the float64 reference.
 //!
 //! ```sh
 //! cargo run --release --example render -- MODEL.obj [options]
@@ -14,13 +15,15 @@
 //! * `--shade flat|lambert|depth|id` [lambert]
 //! * `--cull none|back` [none]
 //! * `--depth z16|z24` [z24]
-//! * `--method scanline|reference` [scanline]
+//! * `--method scanline|zbuffer|bands:K|interval|painter|reference`
+//!   [scanline]: `bands:K` keeps a z-buffer of K rows (1 to 4096)
 //! * `--out FILE.png`: the frame as PNG (through embedded-graphics-simulator,
 //!   no SDL)
 //! * `--ids FILE.bin`: W·H little-endian u32, row-major from the top: the
 //!   visible face id (0-based index among the `f` lines), or 0xFFFFFFFF
-//! * `--stats`: `key=value` lines: timing over repeated frames, table
-//!   counts, RAM
+//! * `--stats`: `key=value` lines: timing over repeated frames, the
+//!   method's memory and counts, what the front end did (listed in the
+//!   README)
 //! * `--frames N` [15]: timed frames after 3 warm-up frames
 //!
 //! The view: positions normalised to the unit sphere about their bounding
@@ -32,15 +35,15 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
 
-use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
+use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use embedded_graphics_simulator::{OutputSettings, SimulatorDisplay};
 use zline::front::scene::{Camera, Cull, reference_model};
 use zline::front::shade::Shading;
 use zline::host::{HostMesh, load_model, parse_size, run_tool};
-use zline::methods::{BACKGROUND, HostScanline, ReferenceFrame, ReferenceView};
-use zline::{Depth16, Depth24, DepthFormat, FrameStats};
+use zline::methods::{BACKGROUND, Method, MethodRenderer, ReferenceView};
+use zline::{Depth16, Depth24, DepthFormat};
 
 /// Parsed command line.
 #[derive(Debug)]
@@ -53,7 +56,7 @@ struct Options {
     shade: Shading,
     cull: Cull,
     depth: String,
-    reference: bool,
+    method: Method,
     out: Option<PathBuf>,
     ids: Option<PathBuf>,
     stats: bool,
@@ -70,7 +73,7 @@ fn parse_args(args: &[String]) -> Result<Options, String> {
         shade: Shading::lambert(),
         cull: Cull::None,
         depth: "z24".into(),
-        reference: false,
+        method: Method::Scanline,
         out: None,
         ids: None,
         stats: false,
@@ -110,11 +113,7 @@ fn parse_args(args: &[String]) -> Result<Options, String> {
                 }
             }
             "--method" => {
-                o.reference = match value()?.as_str() {
-                    "scanline" => false,
-                    "reference" => true,
-                    s => return Err(format!("--method: unknown '{s}' (scanline, reference)")),
-                }
+                o.method = Method::parse(value()?).map_err(|e| format!("--method: {e}"))?
             }
             "--out" => o.out = Some(value()?.into()),
             "--ids" => o.ids = Some(value()?.into()),
@@ -161,67 +160,13 @@ fn median(times: &mut [f64]) -> f64 {
     times.get(times.len() / 2).copied().unwrap_or(f64::NAN)
 }
 
-fn run_scanline<D: DepthFormat>(o: &Options, mesh: &HostMesh) -> Result<Output, String>
+fn run_method<D: DepthFormat>(o: &Options, mesh: &HostMesh) -> Result<Output, String>
 where
     D::Value: Into<u32>,
 {
-    let mut host = HostScanline::<D>::new(o.width, o.height).map_err(|e| e.to_string())?;
+    let mut r = MethodRenderer::<D>::new(o.width, o.height)?;
     let model = reference_model(mesh, o.yaw, o.pitch).map_err(|e| e.to_string())?;
     let camera = Camera::reference(o.width, o.height);
-    let mut times = Vec::new();
-    let mut last = None;
-    for k in 0..3 + o.frames {
-        let start = Instant::now();
-        let result = host
-            .render(mesh, &model, &camera, o.cull, &o.shade)
-            .map_err(|e| e.to_string())?;
-        if k >= 3 {
-            times.push(start.elapsed().as_secs_f64() * 1e3);
-        }
-        last = Some(result);
-    }
-    let (draw, frame) = last.ok_or("no frame rendered")?;
-    let cache_bytes = 2 * mesh.positions.len();
-    let ram = frame.ram_bytes::<Rgb565, D>(usize::from(o.width)) + cache_bytes;
-    let s = |k: &str, v: &dyn ToString| (k.to_string(), v.to_string());
-    let FrameStats {
-        vertices,
-        corners,
-        polygons,
-        edges,
-        peak_active_polygons,
-        peak_active_edges,
-        spans,
-        ..
-    } = frame;
-    let stats = vec![
-        s("depth", &D::NAME),
-        s("faces", &draw.faces),
-        s("polygons", &polygons),
-        s("edges", &edges),
-        s("vertices", &vertices),
-        s("corners", &corners),
-        s("peak_active_polygons", &peak_active_polygons),
-        s("peak_active_edges", &peak_active_edges),
-        s("spans", &spans),
-        s("back_faces", &draw.back_faces),
-        s("outside", &draw.outside),
-        s("clipped", &draw.clipped),
-        s("off_screen", &draw.off_screen),
-        s("degenerate", &draw.degenerate),
-        s("non_finite", &draw.non_finite),
-        s("ram_bytes", &ram),
-    ];
-    let f = host.frame();
-    Ok(Output {
-        faces: f.faces.clone(),
-        colors: f.colors.clone(),
-        times_ms: times,
-        stats,
-    })
-}
-
-fn run_reference(o: &Options, mesh: &HostMesh) -> Output {
     let view = ReferenceView {
         width: usize::from(o.width),
         height: usize::from(o.height),
@@ -229,41 +174,71 @@ fn run_reference(o: &Options, mesh: &HostMesh) -> Output {
         pitch_deg: f64::from(o.pitch),
         cull_back: o.cull == Cull::Back,
     };
+    // The reference is slow: fewer warm-up and timed frames.
+    let (warm_up, frames) = if o.method == Method::Reference {
+        (1, o.frames.min(3))
+    } else {
+        (3, o.frames)
+    };
     let mut times = Vec::new();
-    let mut frame = None;
-    for k in 0..1 + o.frames.min(3) {
+    let mut last = None;
+    for k in 0..warm_up + frames {
         let start = Instant::now();
-        frame = Some(ReferenceFrame::render(mesh, &view));
-        if k >= 1 {
+        let frame = r.render(o.method, mesh, &model, &camera, o.cull, &o.shade, &view)?;
+        if k >= warm_up {
             times.push(start.elapsed().as_secs_f64() * 1e3);
         }
+        last = Some(frame);
     }
-    let frame = frame.unwrap_or_else(|| ReferenceFrame::render(mesh, &view));
-    let colors = frame
-        .ids
-        .iter()
-        .map(|&id| {
-            frame
-                .face_info(id)
-                .map_or(Rgb888::BLACK, |f| o.shade.color(&f))
-        })
-        .collect();
-    let drawn: std::collections::HashSet<u32> = frame
-        .ids
-        .iter()
-        .copied()
-        .filter(|&i| i != BACKGROUND)
-        .collect();
-    let stats = vec![
-        ("method".into(), "reference".into()),
-        ("visible_faces".into(), drawn.len().to_string()),
+    let f = last.ok_or("no frame rendered")?;
+    let s = |k: &str, v: &dyn ToString| (k.to_string(), v.to_string());
+    let cache_bytes = 2 * mesh.positions.len();
+    let m = f.memory;
+    let mut stats = vec![
+        s(
+            "depth",
+            &if o.method.stores_depth() {
+                D::NAME
+            } else {
+                "none"
+            },
+        ),
+        s("memory_bytes", &m.total()),
+        s("depth_bytes", &m.depth),
+        s("color_bytes", &m.color),
+        s("table_bytes", &m.tables),
+        s("working_bytes", &m.working),
     ];
-    Output {
-        faces: frame.ids,
-        colors,
+    if o.method != Method::Reference {
+        let d = f.draw;
+        stats.extend([
+            s("ram_bytes", &(m.total() + cache_bytes)),
+            s("faces", &d.faces),
+            s("queued", &d.queued),
+            s("back_faces", &d.back_faces),
+            s("outside", &d.outside),
+            s("clipped", &d.clipped),
+            s("off_screen", &d.off_screen),
+            s("degenerate", &d.degenerate),
+            s("non_finite", &d.non_finite),
+            s("split", &d.split),
+        ]);
+    } else {
+        let drawn: std::collections::HashSet<u32> = f
+            .faces
+            .iter()
+            .copied()
+            .filter(|&i| i != BACKGROUND)
+            .collect();
+        stats.push(s("visible_faces", &drawn.len()));
+    }
+    stats.extend(f.counts.iter().cloned());
+    Ok(Output {
+        faces: f.faces,
+        colors: f.colors,
         times_ms: times,
         stats,
-    }
+    })
 }
 
 fn write_outputs(o: &Options, out: &Output) -> Result<(), String> {
@@ -291,17 +266,13 @@ fn write_outputs(o: &Options, out: &Output) -> Result<(), String> {
 fn run(args: &[String]) -> Result<(), String> {
     let o = parse_args(args)?;
     let mesh = load_model(&o.model.to_string_lossy())?;
-    let mut out = match (o.reference, o.depth.as_str()) {
-        (true, _) => run_reference(&o, &mesh),
-        (false, "z16") => run_scanline::<Depth16>(&o, &mesh)?,
-        (false, _) => run_scanline::<Depth24>(&o, &mesh)?,
+    let mut out = match o.depth.as_str() {
+        "z16" => run_method::<Depth16>(&o, &mesh)?,
+        _ => run_method::<Depth24>(&o, &mesh)?,
     };
     write_outputs(&o, &out)?;
     if o.stats {
-        println!(
-            "method={}",
-            if o.reference { "reference" } else { "scanline" }
-        );
+        println!("method={}", o.method.name());
         println!("width={}\nheight={}", o.width, o.height);
         println!("frames={}", out.times_ms.len());
         println!("frame_ms_median={:.3}", median(&mut out.times_ms));
@@ -323,4 +294,4 @@ fn main() -> ExitCode {
     run_tool("render", USAGE, move || run(&args))
 }
 
-const USAGE: &str = "usage: render MODEL.obj|shape:NAME [--size WxH] [--yaw DEG] [--pitch DEG] [--shade flat|lambert|depth|id] [--cull none|back] [--depth z16|z24] [--method scanline|reference] [--out FILE.png] [--ids FILE.bin] [--stats] [--frames N]";
+const USAGE: &str = "usage: render MODEL.obj|shape:NAME [--size WxH] [--yaw DEG] [--pitch DEG] [--shade flat|lambert|depth|id] [--cull none|back] [--depth z16|z24] [--method scanline|zbuffer|bands:K|interval|painter|reference] [--out FILE.png] [--ids FILE.bin] [--stats] [--frames N]";

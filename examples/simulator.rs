@@ -8,11 +8,13 @@
 //!
 //! This example is only a launcher. The window needs SDL2, and the root
 //! crate must not (so that `cargo test` never builds it), so the window is
-//! its own crate in `tools/simulator/`. This runs
-//! `cargo run --release --quiet --manifest-path tools/simulator/Cargo.toml
-//! -- ARGS` with every argument and the environment passed through, and
-//! exits with its exit code. See `tools/simulator/src/main.rs` for the
-//! options and keys; `-- --help` prints them.
+//! its own crate in `tools/simulator/`. This builds it first with cargo's
+//! progress shown (the first build compiles SDL2's bindings and takes a
+//! few minutes), then runs `cargo run --release --quiet --manifest-path
+//! tools/simulator/Cargo.toml -- ARGS` with every argument and the
+//! environment passed through, and exits with its exit code. See
+//! `tools/simulator/src/main.rs` for the options and keys; `-- --help`
+//! prints them.
 //!
 //! `EG_SIMULATOR_DUMP=frame.png` saves the first frame as PNG and exits
 //! without opening a window. With `--scale 1 --no-overlay` it equals
@@ -24,6 +26,20 @@ use std::process::{Command, ExitCode};
 fn main() -> ExitCode {
     let manifest = Path::new(env!("CARGO_MANIFEST_DIR")).join("tools/simulator/Cargo.toml");
     let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
+    eprintln!(
+        "simulator: building the window crate (tools/simulator); the first build takes a few minutes"
+    );
+    let built = Command::new(&cargo)
+        .args(["build", "--release", "--manifest-path"])
+        .arg(&manifest)
+        .status();
+    if !built.is_ok_and(|s| s.success()) {
+        eprintln!(
+            "simulator: building {} failed (is SDL2 installed? see the README)",
+            manifest.display()
+        );
+        return ExitCode::FAILURE;
+    }
     let status = Command::new(&cargo)
         .args(["run", "--release", "--quiet", "--manifest-path"])
         .arg(&manifest)

@@ -18,7 +18,7 @@ use zline::front::scene::{Camera, Cull, VertexCache, draw_mesh, reference_model}
 use zline::front::shade::Shading;
 use zline::host::HostMesh;
 use zline::host::{ScanVecs, TableVecs, host_renderer};
-use zline::methods::{BACKGROUND, ReferenceFrame, ReferenceView};
+use zline::methods::{BACKGROUND, MethodRenderer, ReferenceFrame, ReferenceView};
 use zline::{Depth16, Depth24, DepthFormat, DrawTargetSink, RenderError, Renderer};
 
 /// Most vertices a mesh may have (the vertex cache's capacity).
@@ -29,29 +29,62 @@ pub const MAX_MESH_VERTICES: usize = 65_536;
 /// polygons, 65,536 pooled edges, 32 corners per polygon.
 type WindowRenderer<D> = Renderer<TableVecs<Rgb888>, ScanVecs<Rgb888, D>>;
 
-/// Which renderer draws the frame.
+/// Which method draws the frame: the core straight to the window, or any
+/// of the comparison methods ([`zline::methods::Method`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Method {
     /// The fixed-point scanline core.
     Scanline,
+    /// A full-frame z-buffer.
+    ZBuffer,
+    /// A z-buffer of 8 rows at a time.
+    Bands8,
+    /// The interval scanline, no depth buffer.
+    Interval,
+    /// The painter's algorithm.
+    Painter,
     /// The float64 reference renderer (slow for big meshes).
     Reference,
 }
 
 impl Method {
+    /// Every method, in the order `m` cycles through them.
+    pub const ALL: [Method; 6] = [
+        Method::Scanline,
+        Method::ZBuffer,
+        Method::Bands8,
+        Method::Interval,
+        Method::Painter,
+        Method::Reference,
+    ];
+
     /// The next method (key `m`).
     pub fn next(self) -> Self {
-        match self {
-            Method::Scanline => Method::Reference,
-            Method::Reference => Method::Scanline,
-        }
+        let k = Self::ALL.iter().position(|&m| m == self).unwrap_or(0);
+        Self::ALL[(k + 1) % Self::ALL.len()]
     }
 
     /// Name for the overlay.
     pub fn name(self) -> &'static str {
         match self {
             Method::Scanline => "scanline",
+            Method::ZBuffer => "zbuffer",
+            Method::Bands8 => "bands:8",
+            Method::Interval => "interval",
+            Method::Painter => "painter",
             Method::Reference => "reference",
+        }
+    }
+
+    /// The comparison method, for those the library's method renderer draws.
+    fn comparison(self) -> Option<zline::methods::Method> {
+        use zline::methods::Method as M;
+        match self {
+            Method::ZBuffer => Some(M::ZBuffer),
+            Method::Bands8 => Some(M::Bands(8)),
+            Method::Interval => Some(M::Interval),
+            Method::Painter => Some(M::Painter),
+            Method::Scanline | Method::Reference => None,
         }
     }
 }
@@ -180,6 +213,9 @@ pub struct Renderers {
     z24: Box<WindowRenderer<Depth24>>,
     cache: Box<VertexCache<MAX_MESH_VERTICES>>,
     reference: Option<ReferenceCache>,
+    /// The comparison methods' renderers, made on first use.
+    methods16: Option<Box<MethodRenderer<Depth16>>>,
+    methods24: Option<Box<MethodRenderer<Depth24>>>,
 }
 
 impl Renderers {
@@ -198,6 +234,8 @@ impl Renderers {
             z24,
             cache: Box::new(VertexCache::new()),
             reference: None,
+            methods16: None,
+            methods24: None,
         })
     }
 
@@ -216,6 +254,26 @@ impl Renderers {
                 scanline(&mut self.z24, &mut self.cache, mesh, view, display)
             }
             (Method::Reference, _) => Ok(self.reference(mesh, view, display)),
+            (method, depth) => {
+                let comparison = method.comparison().ok_or("no such method")?;
+                let (w, h) = (self.width, self.height);
+                match depth {
+                    DepthChoice::Z16 => {
+                        let r = match &mut self.methods16 {
+                            Some(r) => r,
+                            slot => slot.insert(Box::new(MethodRenderer::new(w, h)?)),
+                        };
+                        compared(r, comparison, mesh, view, display)
+                    }
+                    DepthChoice::Z24 => {
+                        let r = match &mut self.methods24 {
+                            Some(r) => r,
+                            slot => slot.insert(Box::new(MethodRenderer::new(w, h)?)),
+                        };
+                        compared(r, comparison, mesh, view, display)
+                    }
+                }
+            }
         }
     }
 
@@ -280,6 +338,50 @@ impl Renderers {
     }
 }
 
+/// One frame by a comparison method, copied into the window.
+fn compared<D: DepthFormat>(
+    renderer: &mut MethodRenderer<D>,
+    method: zline::methods::Method,
+    mesh: &HostMesh,
+    view: &View,
+    display: &mut SimulatorDisplay<Rgb888>,
+) -> Result<FrameReport, String>
+where
+    D::Value: Into<u32>,
+{
+    let size = display.size();
+    let (w, h) = (size.width as u16, size.height as u16);
+    let camera = Camera::reference(w, h);
+    let model = view.model(mesh)?;
+    let reference = ReferenceView {
+        width: usize::from(w),
+        height: usize::from(h),
+        yaw_deg: f64::from(view.yaw),
+        pitch_deg: f64::from(view.pitch),
+        cull_back: view.cull == Cull::Back,
+    };
+    let start = Instant::now();
+    let frame = renderer.render(
+        method,
+        mesh,
+        &model,
+        &camera,
+        view.cull,
+        &shading(view.shading),
+        &reference,
+    )?;
+    let ms = start.elapsed().as_secs_f64() * 1e3;
+    for (y, row) in frame.colors.chunks(usize::from(w)).enumerate() {
+        let area = Rectangle::new(Point::new(0, y as i32), Size::new(u32::from(w), 1));
+        let Ok(()) = display.fill_contiguous(&area, row.iter().copied());
+    }
+    Ok(FrameReport {
+        ms,
+        polygons: frame.draw.queued,
+        ram_bytes: Some(frame.memory.total() + 2 * mesh.positions.len()),
+    })
+}
+
 /// One frame by the scanline core: clear, [`draw_mesh`], render through a
 /// [`DrawTargetSink`] (one `fill_contiguous` per row).
 fn scanline<D: DepthFormat>(
@@ -327,7 +429,7 @@ mod tests {
             let mut r = Renderers::new(w, h).unwrap();
             let size = Size::new(u32::from(w), u32::from(h));
             let mut frames = Vec::new();
-            for method in [Method::Scanline, Method::Reference] {
+            for method in Method::ALL {
                 for depth in [DepthChoice::Z16, DepthChoice::Z24] {
                     for shading in 0..SHADINGS.len() {
                         for cull in [Cull::None, Cull::Back] {
@@ -343,7 +445,7 @@ mod tests {
                                 let mut display = SimulatorDisplay::<Rgb888>::new(size);
                                 let report = r.draw(&mesh, &view, &mut display).unwrap();
                                 assert!(report.polygons > 0);
-                                assert_eq!(report.ram_bytes.is_some(), method == Method::Scanline);
+                                assert_eq!(report.ram_bytes.is_some(), method != Method::Reference);
                                 frames.push((view, display));
                             }
                         }

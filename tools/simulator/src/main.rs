@@ -19,10 +19,11 @@
 //! * `--no-overlay`: no text on top of the frame
 //!
 //! Keys: arrows rotate (left/right yaw, up/down pitch, 5° steps), `+`/`-`
-//! zoom (×1.1 per step), space toggles auto-spin, `s` cycles shading
-//! (lambert, flat, depth, id), `c` toggles back-face culling, `d` cycles the
-//! depth format (z16, z24), `m` cycles the method (scanline, the float64
-//! reference), `q` or Esc quits.
+//! zoom (×1.1 per step), space toggles auto-spin (on at start), `s` cycles
+//! shading (lambert, flat, depth, id), `c` toggles back-face culling, `d`
+//! cycles the depth format (z16, z24), `m` cycles the method (scanline,
+//! zbuffer, bands:8, interval, painter, the float64 reference), `q` or Esc
+//! quits.
 //!
 //! The overlay shows the method and depth format, the frame time (around
 //! `draw_mesh` and `render`), the polygons drawn, the RAM a renderer sized
@@ -108,7 +109,8 @@ fn show(o: &Options, mesh: &zline::host::HostMesh, mut renderers: Renderers) -> 
         pitch: o.pitch,
         ..View::default()
     };
-    let mut spin = false;
+    // The mesh spins from the start; space stops it.
+    let mut spin = true;
     // Smoothed scanline frame time, restarted when the renderer changes.
     let mut smoothed_ms: Option<f64> = None;
     loop {
@@ -213,7 +215,7 @@ mod tests {
         assert_eq!(view.shading, 2);
         assert_eq!(view.cull, Cull::Back);
         assert_eq!(view.depth, DepthChoice::Z16);
-        assert_eq!(view.method, Method::Reference);
+        assert_eq!(view.method, Method::ZBuffer);
         assert!(spin);
         for _ in 0..8 {
             handle_key(Keycode::LEFT, &mut view, &mut spin);

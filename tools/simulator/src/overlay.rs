@@ -18,13 +18,18 @@ const LINE: i32 = 10;
 pub fn lines(view: &View, report: &FrameReport) -> Vec<String> {
     let mut lines = Vec::new();
     match view.method {
-        Method::Scanline => {
+        Method::Scanline | Method::ZBuffer | Method::Bands8 => {
             lines.push(format!(
                 "{} {}  {:.2} ms",
                 view.method.name(),
                 view.depth.name(),
                 report.ms
             ));
+            let ram = report.ram_bytes.unwrap_or(0) as f64 / 1024.0;
+            lines.push(format!("polygons {}  RAM {ram:.1} KiB", report.polygons));
+        }
+        Method::Interval | Method::Painter => {
+            lines.push(format!("{}  {:.2} ms", view.method.name(), report.ms));
             let ram = report.ram_bytes.unwrap_or(0) as f64 / 1024.0;
             lines.push(format!("polygons {}  RAM {ram:.1} KiB", report.polygons));
         }
@@ -42,7 +47,7 @@ pub fn lines(view: &View, report: &FrameReport) -> Vec<String> {
         SHADINGS[view.shading % SHADINGS.len()]
     ));
     let zoom = if view.zoom != 0 && view.method == Method::Reference {
-        " (scanline only)"
+        " (not the reference)"
     } else {
         ""
     };
