@@ -40,10 +40,11 @@ fn signed_volume(mesh: &HostMesh) -> f32 {
 
 fn assert_closed(mesh: &HostMesh) {
     assert!(signed_volume(mesh) > 0.0, "faces wind inwards");
-    for (&(a, b), &n) in &directed_edges(mesh) {
+    let edges = directed_edges(mesh);
+    for (&(a, b), &n) in &edges {
         assert_eq!(n, 1, "edge {a}->{b} used {n} times");
         assert_eq!(
-            directed_edges(mesh).get(&(b, a)),
+            edges.get(&(b, a)),
             Some(&1),
             "edge {a}->{b} has no twin"
         );
@@ -107,4 +108,19 @@ fn compare_culled_and_unculled() {
         );
         assert!(all.iter().filter(|&&f| f != u32::MAX).count() > 2000);
     }
+}
+
+#[test]
+fn spheres_of_the_classic_counts_are_exact_and_closed() {
+    for n in [100, 2500, 60000] {
+        let mesh = shapes::by_name(&format!("sphere-{n}")).expect("a sphere of n triangles");
+        assert_eq!(mesh.face_count(), n);
+        assert_closed(&mesh);
+    }
+    assert_eq!(shapes::uv_sphere(10, 6).map(|m| m.face_count()), Some(100));
+    // Odd counts, counts beyond u16 indices and degenerate grids are refused.
+    for bad in ["sphere-101", "sphere-200000", "sphere-0", "sphere-x"] {
+        assert!(shapes::by_name(bad).is_none(), "{bad}");
+    }
+    assert!(shapes::uv_sphere(2, 6).is_none() && shapes::uv_sphere(10, 1).is_none());
 }

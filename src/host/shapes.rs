@@ -130,6 +130,68 @@ pub fn icosphere(subdivisions: u32) -> HostMesh {
     mesh
 }
 
+/// A UV sphere of radius 1: `slices` meridians and `stacks` bands between
+/// the poles; a triangle fan at each pole and two triangles per quad
+/// between, so exactly `2 · slices · (stacks − 1)` triangles. `None` when
+/// `slices < 3`, `stacks < 2` or the vertices overflow `u16` indices.
+pub fn uv_sphere(slices: usize, stacks: usize) -> Option<HostMesh> {
+    let rings = stacks.checked_sub(1)?;
+    let vertices = slices.checked_mul(rings)?.checked_add(2)?;
+    if slices < 3 || rings == 0 || vertices > usize::from(u16::MAX) + 1 {
+        return None;
+    }
+    let mut mesh = HostMesh::default();
+    let north = mesh.vertex([0.0, 1.0, 0.0]);
+    for ring in 1..stacks {
+        let polar = core::f32::consts::PI * ring as f32 / stacks as f32;
+        for k in 0..slices {
+            let azimuth = TAU * k as f32 / slices as f32;
+            mesh.vertex([
+                libm::sinf(polar) * libm::cosf(azimuth),
+                libm::cosf(polar),
+                -libm::sinf(polar) * libm::sinf(azimuth),
+            ]);
+        }
+    }
+    let south = mesh.vertex([0.0, -1.0, 0.0]);
+    // Vertex `k` of ring `r` (1-based rings, from the north pole).
+    let at = |r: usize, k: usize| (1 + (r - 1) * slices + k % slices) as u16;
+    for k in 0..slices {
+        mesh.face(&[north, at(1, k), at(1, k + 1)]);
+    }
+    for r in 1..rings {
+        for k in 0..slices {
+            let (a, b, c, d) = (at(r, k), at(r + 1, k), at(r + 1, k + 1), at(r, k + 1));
+            mesh.face(&[a, b, c]);
+            mesh.face(&[a, c, d]);
+        }
+    }
+    for k in 0..slices {
+        mesh.face(&[south, at(rings, k + 1), at(rings, k)]);
+    }
+    Some(mesh)
+}
+
+/// The UV sphere with exactly `triangles` triangles, for the classic
+/// polygon counts (100, 2,500, 60,000): the most nearly square grid of
+/// slices and stacks with `2 · slices · (stacks − 1) = triangles`, more
+/// slices than stacks. `None` when no such grid fits `u16` indices.
+pub fn sphere_with_triangles(triangles: usize) -> Option<HostMesh> {
+    let half = triangles / 2;
+    // A UV sphere has `half + 2` vertices.
+    if triangles % 2 != 0 || half + 2 > usize::from(u16::MAX) + 1 {
+        return None;
+    }
+    // slices · rings = half; pick the divisor pair nearest slices = 2 · rings
+    // (a sphere's meridians are twice as long as its half-circles).
+    let (slices, rings) = (1..=half)
+        .filter(|r| half % r == 0)
+        .map(|r| (half / r, r))
+        .filter(|&(s, r)| s >= 3 && s >= r)
+        .min_by_key(|&(s, r)| s.abs_diff(2 * r))?;
+    uv_sphere(slices, rings + 1)
+}
+
 /// An `n` x `n` field of boxes of varying heights on a floor, as quads:
 /// coplanar and touching faces, and plenty of occlusion.
 pub fn box_field(n: usize) -> HostMesh {
@@ -233,7 +295,8 @@ fn normalize(a: [f32; 3]) -> [f32; 3] {
 
 /// The named built-in meshes, as the tools accept them (`shape:NAME`):
 /// `torus-knot` (1,024 triangles), `icosphere` (5,120), `boxes` (217
-/// quads), `terrain` (3,200 triangles).
+/// quads), `terrain` (3,200 triangles); besides these, `sphere-N` is a UV
+/// sphere of exactly `N` triangles ([`sphere_with_triangles`]).
 pub const NAMES: [&str; 4] = ["torus-knot", "icosphere", "boxes", "terrain"];
 
 /// A built-in mesh by name (see [`NAMES`]).
@@ -243,6 +306,9 @@ pub fn by_name(name: &str) -> Option<HostMesh> {
         "icosphere" => Some(icosphere(4)),
         "boxes" => Some(box_field(6)),
         "terrain" => Some(terrain(40)),
-        _ => None,
+        _ => name
+            .strip_prefix("sphere-")
+            .and_then(|n| n.parse().ok())
+            .and_then(sphere_with_triangles),
     }
 }
