@@ -115,8 +115,10 @@ fn run(args: &[String]) -> Result<(), String> {
     }
 
     report::write_csv(&options.out, &rows)?;
+    let wrong_out = report::wrong_faces_path(&options.out);
+    report::write_wrong_csv(&wrong_out, &rows)?;
     say(&report::markdown(&rows))?;
-    eprintln!("wrote {}", options.out.display());
+    eprintln!("wrote {} and {}", options.out.display(), wrong_out.display());
     Ok(())
 }
 

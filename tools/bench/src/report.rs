@@ -61,6 +61,40 @@ pub fn write_csv(path: &Path, rows: &[Row]) -> Result<(), String> {
     std::fs::write(path, text).map_err(|e| format!("{}: {e}", path.display()))
 }
 
+/// The wrong-face CSV's header, exactly.
+pub const WRONG_CSV_HEADER: &str = "mesh,size,cull,renderer,wrong_fraction";
+
+/// Where the wrong-face rates go: next to the timing CSV `path`, named
+/// `STEM_wrong_faces.csv` (`target/bench/peers_wrong_faces.csv` by default).
+pub fn wrong_faces_path(path: &Path) -> std::path::PathBuf {
+    let stem = path
+        .file_stem()
+        .map_or_else(|| "peers".into(), |s| s.to_string_lossy().into_owned());
+    path.with_file_name(format!("{stem}_wrong_faces.csv"))
+}
+
+/// Writes the wrong-face rate of every row that has one (renderers that
+/// colour by face id) as CSV to `path`: the sweep's accuracy chart reads it.
+pub fn write_wrong_csv(path: &Path, rows: &[Row]) -> Result<(), String> {
+    prepare_output(path)?;
+    let mut text = String::from(WRONG_CSV_HEADER);
+    text.push('\n');
+    for r in rows {
+        if let Some(wrong) = r.wrong {
+            let _ = writeln!(
+                text,
+                "{},{},{},{},{:.6}",
+                csv_field(&r.mesh),
+                r.size,
+                r.cull,
+                csv_field(&r.renderer),
+                wrong
+            );
+        }
+    }
+    std::fs::write(path, text).map_err(|e| format!("{}: {e}", path.display()))
+}
+
 fn csv_field(s: &str) -> String {
     if s.contains([',', '"', '\n']) {
         format!("\"{}\"", s.replace('"', "\"\""))
