@@ -23,13 +23,14 @@ use crate::raster::scan::{RowPlane, entry_corners, for_each_edge, row_plane};
 use crate::raster::tables::Prepared;
 use crate::sink::RowSink;
 
-/// One polygon's span on the current row.
+/// One polygon's span on the current row, with its plane on that row.
 #[derive(Debug, Clone, Copy)]
 struct Segment {
     start: i32,
     end: i32,
     key: u32,
     position: usize,
+    plane: RowPlane,
 }
 
 /// Counts and sizes of one [`render_intervals`] frame.
@@ -68,6 +69,7 @@ pub fn render_intervals<C: Copy, D: DepthFormat, K: RowSink<C, D::Value>>(
     let mut next = 0usize;
     let mut segments: Vec<Segment> = Vec::new();
     let mut crossings: Vec<i32> = Vec::new();
+    let mut open: Vec<usize> = Vec::new();
     let mut colors = std::vec![background; width as usize];
     let mut depths = std::vec![D::CLEAR; width as usize];
     for row in 0..height {
@@ -114,6 +116,7 @@ pub fn render_intervals<C: Copy, D: DepthFormat, K: RowSink<C, D::Value>>(
                         end,
                         key: polygon.id + 1,
                         position,
+                        plane: entry.1,
                     });
                 }
             }
@@ -122,49 +125,42 @@ pub fn render_intervals<C: Copy, D: DepthFormat, K: RowSink<C, D::Value>>(
         stats.peak_spans = stats.peak_spans.max(segments.len());
         colors.fill(background);
         depths.fill(D::CLEAR);
-        // The intervals between consecutive span ends.
+        // The intervals between consecutive span ends, swept left to
+        // right: `open` holds the spans covering the current interval
+        // (every span end is a crossing, so a span open at an interval's
+        // left end covers all of it).
         crossings.clear();
         crossings.extend(segments.iter().flat_map(|s| [s.start, s.end]));
         crossings.sort_unstable();
         crossings.dedup();
-        let plane_of = |position: usize| {
-            active
-                .iter()
-                .find(|(p, _)| *p == position)
-                .map(|(_, plane)| *plane)
-        };
+        segments.sort_unstable_by_key(|s| s.start);
+        open.clear();
+        let mut entering = 0usize;
         for pair in crossings.windows(2) {
             let (left, right) = (pair[0], pair[1]);
-            let covering: Vec<&Segment> = segments
-                .iter()
-                .filter(|s| s.start <= left && s.end >= right)
-                .collect();
-            if covering.is_empty() {
+            open.retain(|&k| segments[k].end > left);
+            while let Some(s) = segments.get(entering).filter(|s| s.start <= left) {
+                if s.end > left {
+                    open.push(entering);
+                }
+                entering += 1;
+            }
+            if open.is_empty() {
                 continue;
             }
             stats.intervals += 1;
-            // The nearest covering polygon at pixel x: smallest plane value,
+            // The nearest covering span at pixel x: smallest plane value,
             // then smallest key.
             let nearest = |x: i32| -> Option<(i64, u32, usize)> {
-                covering
-                    .iter()
-                    .filter_map(|s| {
-                        plane_of(s.position).map(|p| (p.value(x, row), s.key, s.position))
-                    })
+                open.iter()
+                    .map(|&k| (segments[k].plane.value(x, row), segments[k].key, k))
                     .min_by_key(|&(value, key, _)| (value, key))
             };
-            let value_of =
-                |position: usize, x: i32| plane_of(position).map_or(i64::MAX, |p| p.value(x, row));
-            resolve(
-                left,
-                right,
-                &nearest,
-                &value_of,
-                &mut |x, position, value| {
-                    colors[x as usize] = tables.polygons[position].color;
-                    depths[x as usize] = D::quantize(value);
-                },
-            );
+            let value_of = |k: usize, x: i32| segments[k].plane.value(x, row);
+            resolve(left, right, &nearest, &value_of, &mut |x, k, value| {
+                colors[x as usize] = tables.polygons[segments[k].position].color;
+                depths[x as usize] = D::quantize(value);
+            });
         }
         sink.write_row(row, &colors, &depths)
             .map_err(crate::error::RenderError::Sink)?;
@@ -172,7 +168,7 @@ pub fn render_intervals<C: Copy, D: DepthFormat, K: RowSink<C, D::Value>>(
     Ok(stats)
 }
 
-/// Gives each pixel of `[left, right)` its nearest polygon, splitting the
+/// Gives each pixel of `[left, right)` its nearest span, splitting the
 /// interval where the nearest at its two ends differ.
 fn resolve(
     left: i32,
