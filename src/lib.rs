@@ -24,11 +24,12 @@
 //! | | [`raster::tables`] | the scene-sized tables (vertices, polygons, corners, edge table), sorted by first row in O(n) |
 //! | | [`raster::scan`](mod@raster::scan) | the row-sized [`Scanner`] (active polygon table, active edge pool, the rows) and [`scan()`] |
 //! | | [`raster::depth`] | the depth formats a row stores ([`Depth16`], [`Depth24`]) |
+//! | | [`raster::zbuffer`] | the z-buffer of K rows (a band, or the whole frame) on the same tables, formats and fill rule |
 //! | | [`raster::capacities`] | [`Capacities`] by name, and the [`Renderer`] bundle of tables and scanner |
 //! | | `raster::plane`, `raster::edge`, `raster::active`, `raster::slots` (internal) | the plane set-up, the exact edge DDA, the active tables, the capacity-erased list they live in |
 //! | blitter | [`sink`] | finished rows to a `DrawTarget` ([`DrawTargetSink`]), a closure ([`FnSink`]) or a checksum ([`Crc32Sink`]) |
 //! | | [`error`] | what can go wrong, by name |
-//! | comparison (feature `std`) | [`methods`] | the renderers and checks zline is measured against |
+//! | comparison (feature `std`) | [`methods`] | the renderers and checks zline is measured against: every method behind one input and output ([`methods::Method`], [`methods::MethodRenderer`]), the interval scanline, the painter's algorithm, the float64 reference, the exact oracle |
 //! | | `methods::reference` | the float64 ray-cast reference ([`methods::ReferenceFrame`]) |
 //! | | [`methods::exact`] | the exact rational oracle for the core |
 //! | | `methods::accuracy` | face-id comparison with the reference, mismatches excused or hard |

@@ -43,11 +43,7 @@ fn assert_closed(mesh: &HostMesh) {
     let edges = directed_edges(mesh);
     for (&(a, b), &n) in &edges {
         assert_eq!(n, 1, "edge {a}->{b} used {n} times");
-        assert_eq!(
-            edges.get(&(b, a)),
-            Some(&1),
-            "edge {a}->{b} has no twin"
-        );
+        assert_eq!(edges.get(&(b, a)), Some(&1), "edge {a}->{b} has no twin");
     }
 }
 

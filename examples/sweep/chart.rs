@@ -92,7 +92,12 @@ fn log_range(values: impl Iterator<Item = f64>, floor: f64) -> std::ops::Range<f
     if !lo.is_finite() {
         return floor..floor * 10.0;
     }
-    lo / 1.5..hi * 1.5
+    // Whole decades, so the axis has labelled ticks at both ends.
+    let decade = |v: f64, up: bool| {
+        let e = v.log10();
+        10f64.powf(if up { e.ceil() } else { e.floor() })
+    };
+    decade(lo, false)..decade(hi * 1.01, true)
 }
 
 /// A tick label: `1.5M`, `264k`, `12`, `0.25`.
@@ -135,7 +140,7 @@ pub fn scatter(path: &Path, title: &str, caption: &str, panels: &[Panel]) -> Res
     for (area, panel) in body.split_evenly((1, panels.len())).iter().zip(panels) {
         let xs = log_range(panel.points.iter().map(|p| p.x), 1e-3);
         let ys = log_range(panel.points.iter().map(|p| p.y), panel.floor);
-        let ys = panel.floor / 2.0..ys.end.max(panel.floor * 1e4);
+        let ys = panel.floor..ys.end.max(panel.floor * 1e4);
         let mut chart = ChartBuilder::on(area)
             .caption(&panel.title, ("sans-serif", 14))
             .margin(12)
