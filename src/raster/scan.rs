@@ -336,25 +336,11 @@ impl<C: Copy, D: DepthFormat> RowBuffers<'_, C, D> {
         // |dz_dx| < 2^40, start < 2^12: the product is below 2^52.
         let (mut acc, step) =
             D::accumulator(row_value + dz_dx * i64::from(start), accumulator_step);
-        match self.write {
-            PixelWrite::NearerOrFirstAdded => {}
-            PixelWrite::Overwrite => {
-                for (stored, pixel) in depths.iter_mut().zip(colors) {
-                    (*stored, *pixel) = (D::value(acc), color);
-                    acc = D::advance(acc, step);
-                }
-                return true;
-            }
-            PixelWrite::Nearer => {
-                for (stored, pixel) in depths.iter_mut().zip(colors) {
-                    let depth = D::value(acc);
-                    if depth < *stored {
-                        (*stored, *pixel) = (depth, color);
-                    }
-                    acc = D::advance(acc, step);
-                }
-                return true;
-            }
+        if self.write != PixelWrite::NearerOrFirstAdded {
+            // The other methods' rules, out of line: the scanline's span
+            // loop stays as it was.
+            other_rule_in_range::<C, D>(depths, colors, color, (acc, step), self.write);
+            return true;
         }
         for ((stored, stored_key), pixel) in depths.iter_mut().zip(keys).zip(colors) {
             let depth = D::value(acc);
@@ -380,14 +366,34 @@ impl<C: Copy, D: DepthFormat> RowBuffers<'_, C, D> {
             return false;
         }
         let range = start as usize..end as usize;
-        fill_span::<C, D>(
+        let (depths, colors, keys) = (
             &mut self.depth[range.clone()],
             &mut self.color[range.clone()],
             &mut self.key[range],
-            start,
-            (key, color, self.write),
-            source,
         );
+        if self.write == PixelWrite::NearerOrFirstAdded {
+            fill_span::<C, D, NEARER_OR_FIRST_ADDED>(
+                depths,
+                colors,
+                keys,
+                start,
+                (key, color),
+                source,
+            );
+        } else {
+            // The other methods' rules, out of line: one copy of the span
+            // loops per rule, so no pixel tests it, and the scanline's
+            // stays as it was.
+            other_rule_span::<C, D>(
+                depths,
+                colors,
+                keys,
+                start,
+                (key, color),
+                source,
+                self.write,
+            );
+        }
         true
     }
 }
@@ -457,6 +463,55 @@ pub(crate) enum PixelWrite {
     /// Always: the painter's pass.
     Overwrite,
 }
+
+/// [`RowBuffers::fill_in_range`] for [`PixelWrite::Nearer`] and
+/// [`PixelWrite::Overwrite`] (the z-buffer and the painter's pass).
+#[inline(never)]
+fn other_rule_in_range<C: Copy, D: DepthFormat>(
+    depths: &mut [D::Value],
+    colors: &mut [C],
+    color: C,
+    (mut acc, step): (D::Accum, D::Accum),
+    write: PixelWrite,
+) {
+    if write == PixelWrite::Overwrite {
+        for (stored, pixel) in depths.iter_mut().zip(colors) {
+            (*stored, *pixel) = (D::value(acc), color);
+            acc = D::advance(acc, step);
+        }
+    } else {
+        for (stored, pixel) in depths.iter_mut().zip(colors) {
+            let depth = D::value(acc);
+            if depth < *stored {
+                (*stored, *pixel) = (depth, color);
+            }
+            acc = D::advance(acc, step);
+        }
+    }
+}
+
+/// `fill_span` for [`PixelWrite::Nearer`] and [`PixelWrite::Overwrite`].
+#[inline(never)]
+fn other_rule_span<C: Copy, D: DepthFormat>(
+    depths: &mut [D::Value],
+    colors: &mut [C],
+    keys: &mut [u32],
+    x0: i32,
+    pixel: (u32, C),
+    source: &SpanSource,
+    write: PixelWrite,
+) {
+    if write == PixelWrite::Overwrite {
+        fill_span::<C, D, OVERWRITE>(depths, colors, keys, x0, pixel, source);
+    } else {
+        fill_span::<C, D, NEARER>(depths, colors, keys, x0, pixel, source);
+    }
+}
+
+/// [`PixelWrite`]s as `fill_span`'s constant parameter.
+const NEARER_OR_FIRST_ADDED: u8 = 0;
+const NEARER: u8 = 1;
+const OVERWRITE: u8 = 2;
 
 /// The state of one scan.
 pub(crate) struct ScanState<'t, 'a, C> {
@@ -903,21 +958,21 @@ enum SpanSource {
 /// pixel is written when its depth is nearer than the row holds, or equal
 /// with a smaller key (the polygon added first).
 #[inline(always)]
-fn fill_span<C: Copy, D: DepthFormat>(
+fn fill_span<C: Copy, D: DepthFormat, const MODE: u8>(
     depths: &mut [D::Value],
     colors: &mut [C],
     keys: &mut [u32],
     x0: i32,
-    (key, color, mode): (u32, C, PixelWrite),
+    (key, color): (u32, C),
     source: &SpanSource,
 ) {
     let write = |depth: D::Value, stored: &mut D::Value, stored_key: &mut u32, pixel: &mut C| {
-        let wins = match mode {
-            PixelWrite::NearerOrFirstAdded => {
+        let wins = match MODE {
+            NEARER_OR_FIRST_ADDED => {
                 depth < *stored || (depth == *stored && depth != D::CLEAR && key < *stored_key)
             }
-            PixelWrite::Nearer => depth < *stored,
-            PixelWrite::Overwrite => true,
+            NEARER => depth < *stored,
+            _ => true,
         };
         if wins {
             *stored = depth;

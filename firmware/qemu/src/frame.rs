@@ -44,3 +44,45 @@ where
     let frame = renderer.render(sink)?;
     Ok((draw, frame))
 }
+
+/// [`render_frame`] by the full-frame z-buffer instead of the scanline
+/// (`zline::raster::zbuffer`, with the same tables, formats and fill rule):
+/// the frame must be the scanline's, bit for bit. `buffers` holds the
+/// frame's depth and colour.
+#[allow(dead_code)] // The build script includes this file but only needs `render_frame`.
+pub fn render_frame_zbuffer<T, D, K, M, const VM: usize>(
+    tables: &mut zline::raster::Tables<T>,
+    cache: &mut VertexCache<VM>,
+    mesh: &M,
+    (centre, radius): (Vec3, f32),
+    (yaw, pitch): (f32, f32),
+    buffers: zline::raster::zbuffer::BandBuffers<'_, Rgb565, D>,
+    sink: &mut K,
+) -> Result<(DrawStats, zline::raster::zbuffer::BandStats), RenderError<K::Error>>
+where
+    T: TableStorage<Color = Rgb565>,
+    D: DepthFormat,
+    K: RowSink<Rgb565, D::Value>,
+    M: Mesh,
+{
+    use embedded_graphics_core::pixelcolor::RgbColor;
+    use zline::raster::zbuffer::{DepthTest, render_bands};
+    tables.clear();
+    let model = reference_model_around(centre, radius, yaw, pitch);
+    let camera = Camera::reference(SIZE, SIZE);
+    let shading = Shading::lambert();
+    let draw = draw_mesh(tables, cache, mesh, &model, &camera, Cull::Back, |f| {
+        Rgb565::from(shading.color(f))
+    })?;
+    let prepared = tables.in_drawing_order();
+    let stats = render_bands(
+        &prepared,
+        buffers,
+        SIZE,
+        Rgb565::BLACK,
+        DepthTest::Nearer,
+        None,
+        sink,
+    )?;
+    Ok((draw, stats))
+}

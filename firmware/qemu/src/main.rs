@@ -25,7 +25,8 @@ use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use static_cell::ConstStaticCell;
 use zline::front::quantized::QuantizedMesh;
 use zline::front::scene::VertexCache;
-use zline::raster::{ScanArrays, ScanStorage, TableArrays};
+use zline::raster::zbuffer::BandBuffers;
+use zline::raster::{ActiveEdge, ActivePolygon, ScanArrays, ScanStorage, TableArrays};
 use zline::{Crc32Sink, Depth16, Depth24, DepthFormat, FnSink, FrameStats, Renderer};
 
 /// Which depth format a scene uses.
@@ -69,6 +70,84 @@ static RENDERER24: ConstStaticCell<Renderer24> = ConstStaticCell::new(Renderer24
     Rgb565::BLACK,
 ));
 static CACHE: ConstStaticCell<VertexCache<VM>> = ConstStaticCell::new(VertexCache::new());
+
+/// Pixels of a frame.
+const FRAME_PIXELS: usize = frame::SIZE as usize * frame::SIZE as usize;
+/// Edges a concave polygon may keep beyond its first two, for the
+/// z-buffer (the built-in meshes are triangles and convex quads).
+const ZBUFFER_POOL: usize = 32;
+
+/// The full-frame z-buffer's depth (z16: 115,200 bytes) and colour
+/// (Rgb565: 115,200 bytes), its row of scratch, its one active polygon and
+/// its edge pool.
+static Z_DEPTH: ConstStaticCell<[u16; FRAME_PIXELS]> =
+    ConstStaticCell::new([u16::MAX; FRAME_PIXELS]);
+static Z_COLOR: ConstStaticCell<[Rgb565; FRAME_PIXELS]> =
+    ConstStaticCell::new([Rgb565::BLACK; FRAME_PIXELS]);
+static Z_SCRATCH: ConstStaticCell<[u32; frame::SIZE as usize]> =
+    ConstStaticCell::new([0; frame::SIZE as usize]);
+static Z_ACTIVE: ConstStaticCell<[ActivePolygon<Rgb565>; 1]> =
+    ConstStaticCell::new([ActivePolygon::filler(Rgb565::BLACK)]);
+static Z_POOL: ConstStaticCell<[ActiveEdge; ZBUFFER_POOL]> =
+    ConstStaticCell::new([ActiveEdge::EMPTY; ZBUFFER_POOL]);
+
+/// The z-buffer's lent buffers, borrowed for one frame at a time.
+struct ZBuffer {
+    depth: &'static mut [u16; FRAME_PIXELS],
+    color: &'static mut [Rgb565; FRAME_PIXELS],
+    scratch: &'static mut [u32; frame::SIZE as usize],
+    active: &'static mut [ActivePolygon<Rgb565>; 1],
+    pool: &'static mut [ActiveEdge; ZBUFFER_POOL],
+}
+
+impl ZBuffer {
+    fn buffers(&mut self) -> BandBuffers<'_, Rgb565, Depth16> {
+        BandBuffers {
+            depth: &mut self.depth[..],
+            color: &mut self.color[..],
+            scratch: &mut self.scratch[..],
+            active: &mut self.active[..],
+            pool: &mut self.pool[..],
+        }
+    }
+}
+
+/// A z16 scene by the full-frame z-buffer: its CRC (which must be the
+/// scanline's) and the instructions of a second, discarded frame.
+fn run_zbuffer<S: ScanStorage<Color = Rgb565>>(
+    renderer: &mut Renderer<Tables, S>,
+    z: &mut ZBuffer,
+    cache: &mut VertexCache<VM>,
+    scene: &Scene,
+    syst: &mut SYST,
+) -> Result<(u32, u32), zline::RenderError<Infallible>> {
+    let sphere = zline::front::scene::bounding_sphere(scene.mesh)?;
+    let view = (scene.yaw, scene.pitch);
+    let mut crc = Crc32Sink::new();
+    frame::render_frame_zbuffer(
+        &mut renderer.tables,
+        cache,
+        scene.mesh,
+        sphere,
+        view,
+        z.buffers(),
+        &mut crc,
+    )?;
+    let mut discard = FnSink(|_: u16, _: &[Rgb565], _: &[u16]| Ok::<(), Infallible>(()));
+    let (result, ticks) = ticks(syst, || {
+        frame::render_frame_zbuffer(
+            &mut renderer.tables,
+            cache,
+            scene.mesh,
+            sphere,
+            view,
+            z.buffers(),
+            &mut discard,
+        )
+    });
+    result?;
+    Ok((crc.value(), ticks))
+}
 
 /// SysTick ticks elapsed while running `f`; the counter runs down from
 /// 2^24 - 1 and frames stay well below one wrap.
@@ -190,6 +269,38 @@ fn main() -> ! {
             Err(e) => {
                 all_ok = false;
                 hprintln!("scene={} depth={} error: {}", scene.name, depth, e);
+            }
+        }
+    }
+    // The same z16 scenes by the full-frame z-buffer: the same frames (the
+    // CRCs the scanline must match), 230 KB of depth and colour.
+    let mut z = ZBuffer {
+        depth: Z_DEPTH.take(),
+        color: Z_COLOR.take(),
+        scratch: Z_SCRATCH.take(),
+        active: Z_ACTIVE.take(),
+        pool: Z_POOL.take(),
+    };
+    for scene in SCENES.iter().filter(|s| matches!(s.depth, DepthKind::Z16)) {
+        match run_zbuffer(z16, &mut z, cache, scene, syst) {
+            Ok((crc, ticks)) => {
+                let ok = crc == scene.expected_crc;
+                all_ok &= ok;
+                hprintln!(
+                    "method=zbuffer scene={} yaw={} pitch={} depth=z16 crc32={:08X} expected={:08X} {} instructions={} buffer_bytes={}",
+                    scene.name,
+                    scene.yaw,
+                    scene.pitch,
+                    crc,
+                    scene.expected_crc,
+                    if ok { "ok" } else { "MISMATCH" },
+                    u64::from(ticks) * u64::from(per_tick),
+                    FRAME_PIXELS * 4
+                );
+            }
+            Err(e) => {
+                all_ok = false;
+                hprintln!("method=zbuffer scene={} error: {}", scene.name, e);
             }
         }
     }
