@@ -19,6 +19,12 @@ use zline::{Admission, Depth16, Depth24, DepthFormat, Renderer, ScreenVertex};
 const W: usize = 40;
 const H: u16 = 32;
 const S: i32 = SUBPIXEL_STEPS;
+/// Most polygons in a scene, and most corners of one.
+const MAX_POLYGONS: usize = 12;
+const MAX_CORNERS: usize = 6;
+/// Vertices and corners (edges) of the largest scene: the tables hold any
+/// scene the strategies make.
+const MAX_VERTICES: usize = MAX_POLYGONS * MAX_CORNERS;
 
 fn polygon() -> impl Strategy<Value = Vec<ScreenVertex>> {
     // 3..=6 corners anywhere from well off-screen to inside, any depth.
@@ -28,7 +34,7 @@ fn polygon() -> impl Strategy<Value = Vec<ScreenVertex>> {
             -20 * S..(i32::from(H) + 20) * S,
             0..=DEPTH_MAX,
         ),
-        3..=6,
+        3..=MAX_CORNERS,
     )
     .prop_map(|corners| {
         corners
@@ -42,8 +48,10 @@ fn check<D: DepthFormat>(scene: &[Vec<ScreenVertex>])
 where
     D::Value: Into<u64>,
 {
-    let mut renderer: Renderer<TableArrays<u32, 64, 12, 64>, ScanArrays<u32, D, W, 12, 64>> =
-        Renderer::new(H, 0).unwrap();
+    let mut renderer: Renderer<
+        TableArrays<u32, MAX_VERTICES, MAX_POLYGONS, MAX_VERTICES>,
+        ScanArrays<u32, D, W, MAX_POLYGONS, MAX_VERTICES>,
+    > = Renderer::new(H, 0).unwrap();
     let polygons: Vec<(Vec<ScreenVertex>, bool)> = scene
         .iter()
         .enumerate()
@@ -77,13 +85,13 @@ proptest! {
     #![proptest_config(ProptestConfig::with_cases(128))]
 
     #[test]
-    fn tiny_triangles_match_the_exact_z_buffer(scene in prop::collection::vec(tiny_triangle(), 1..=12)) {
+    fn tiny_triangles_match_the_exact_z_buffer(scene in prop::collection::vec(tiny_triangle(), 1..=MAX_POLYGONS)) {
         check::<Depth16>(&scene);
         check::<Depth24>(&scene);
     }
 
     #[test]
-    fn matches_brute_force_exact_z_buffer(scene in prop::collection::vec(polygon(), 1..=12)) {
+    fn matches_brute_force_exact_z_buffer(scene in prop::collection::vec(polygon(), 1..=MAX_POLYGONS)) {
         check::<Depth16>(&scene);
         check::<Depth24>(&scene);
     }
