@@ -51,6 +51,11 @@ pub enum Error {
     /// The frame width is zero or above the row capacity `W`, or the height
     /// is zero or above [`MAX_FRAME_SIZE`](crate::raster::fixed::MAX_FRAME_SIZE).
     BadFrameSize,
+    /// The buffers lent to a z-buffer method
+    /// ([`BandBuffers`](crate::raster::zbuffer::BandBuffers)) hold fewer
+    /// rows than the band, a shorter scratch row than the frame, or no
+    /// active polygon.
+    BandBuffersTooSmall,
 }
 
 impl fmt::Display for Error {
@@ -81,6 +86,9 @@ impl fmt::Display for Error {
                 "mesh size cannot be normalised: its radius must be 0 or between 2^-126 and 2^126",
             ),
             Error::BadFrameSize => f.write_str("frame width or height is zero or too large"),
+            Error::BandBuffersTooSmall => {
+                f.write_str("the z-buffer's buffers are smaller than the band or the frame's rows")
+            }
         }
     }
 }

@@ -3,10 +3,12 @@
 //! accuracy comparison against the reference, the scanline core over `Vec`
 //! storage with a whole-frame output, the interval (span) scanline and the
 //! painter's algorithm, and [`MethodRenderer`], which runs any [`Method`]
-//! (these, and the core's z-buffer and bands) on the same scene. None of
+//! (these, and the core's z-buffer and bands) on the same scene, and the
+//! catalogue of adversarial scenes where methods break. None of
 //! this is needed by the core.
 
 mod accuracy;
+pub mod catalogue;
 pub mod exact;
 pub mod interval;
 pub mod painter;
@@ -15,6 +17,6 @@ mod run;
 mod scanline_host;
 
 pub use accuracy::{Comparison, compare};
-pub use reference::{BACKGROUND, ReferenceFrame, ReferenceView};
+pub use reference::{BACKGROUND, ReferenceCamera, ReferenceFrame, ReferenceView};
 pub use run::{Memory, Method, MethodFrame, MethodRenderer};
 pub use scanline_host::{HOST_CAPACITIES, HostFrame, HostPixel, HostRenderer, HostScanline};

@@ -6,7 +6,8 @@
 //! * positions are normalised (bounding-box centre `c`, largest distance
 //!   `r`: `p' = (p - c) / r`), rotated `p'' = Rx(pitch) · Ry(yaw) · p'`, and
 //!   seen from the eye at (0, 0, 3) looking down -Z, 45° vertical field of
-//!   view, near 0.1, far 10;
+//!   view, near 0.1, far 10 ([`ReferenceCamera::STANDARD`]; another
+//!   [`ReferenceCamera`] moves the eye and the clip planes);
 //! * each face is clipped to the near and far planes in view space and
 //!   projected; pixel `(i, j)` is covered when its sample `(i + 0.5, j + 0.5)`
 //!   is inside the projected face by the even-odd rule (top-left on ties),
@@ -27,10 +28,46 @@ use crate::front::scene::FaceInfo;
 /// Face id of pixels no face covers.
 pub const BACKGROUND: u32 = u32::MAX;
 
-const NEAR: f64 = 0.1;
-const FAR: f64 = 10.0;
-const EYE_DISTANCE: f64 = 3.0;
-const FOV_Y_DEG: f64 = 45.0;
+/// Where the reference view's eye is and what it sees: the reference view
+/// has [`ReferenceCamera::STANDARD`]; the adversarial catalogue and the
+/// depth-precision study move the eye and the clip planes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ReferenceCamera {
+    /// The eye at (0, 0, `eye_distance`) of the normalised mesh, looking
+    /// down -Z with +Y up.
+    pub eye_distance: f64,
+    /// Vertical field of view, degrees.
+    pub fov_y_deg: f64,
+    /// Near clip plane, view-axis distance.
+    pub near: f64,
+    /// Far clip plane, view-axis distance.
+    pub far: f64,
+}
+
+impl ReferenceCamera {
+    /// The reference view's camera: eye at distance 3, 45 degrees, near 0.1,
+    /// far 10 (the same as [`Camera::reference`](crate::front::scene::Camera::reference)).
+    pub const STANDARD: Self = Self {
+        eye_distance: 3.0,
+        fov_y_deg: 45.0,
+        near: 0.1,
+        far: 10.0,
+    };
+
+    /// The same camera for the `f32` pipeline, at `width` x `height`.
+    pub fn camera(&self, width: u16, height: u16) -> crate::front::scene::Camera {
+        use crate::front::geometry::{Mat4, Vec3};
+        let view = Mat4::translation(Vec3::new(0.0, 0.0, -(self.eye_distance as f32)));
+        crate::front::scene::Camera::perspective(
+            view,
+            self.fov_y_deg as f32,
+            width,
+            height,
+            self.near as f32,
+            self.far as f32,
+        )
+    }
+}
 
 /// The reference view of a mesh.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -82,6 +119,8 @@ pub struct ReferenceFrame {
     faces: Vec<Vec<Face>>,
     tan_half: f64,
     aspect: f64,
+    /// Near and far clip distances.
+    clip: (f64, f64),
 }
 
 fn sub(a: V3, b: V3) -> V3 {
@@ -95,14 +134,24 @@ fn dot(a: V3, b: V3) -> f64 {
 impl ReferenceFrame {
     /// Renders `mesh` in the reference view.
     pub fn render<M: Mesh + ?Sized>(mesh: &M, view: &ReferenceView) -> Self {
-        let positions = view_positions(mesh, view);
+        Self::render_with(mesh, view, &ReferenceCamera::STANDARD)
+    }
+
+    /// Renders `mesh` in the reference view's orientation seen by `camera`.
+    pub fn render_with<M: Mesh + ?Sized>(
+        mesh: &M,
+        view: &ReferenceView,
+        camera: &ReferenceCamera,
+    ) -> Self {
+        let positions = view_positions(mesh, view, camera.eye_distance);
         let mut frame = Self {
             width: view.width,
             height: view.height,
             ids: vec![BACKGROUND; view.width * view.height],
             depths: vec![f64::INFINITY; view.width * view.height],
             faces: Vec::with_capacity(mesh.face_count()),
-            tan_half: (FOV_Y_DEG / 2.0).to_radians().tan(),
+            tan_half: (camera.fov_y_deg / 2.0).to_radians().tan(),
+            clip: (camera.near, camera.far),
             aspect: view.width as f64 / view.height as f64,
         };
         for f in 0..mesh.face_count() {
@@ -139,7 +188,7 @@ impl ReferenceFrame {
             normal[1] += (p[2] - q[2]) * (p[0] + q[0]);
             normal[2] += (p[0] - q[0]) * (p[1] + q[1]);
         }
-        let clipped = clip_depth(corners);
+        let clipped = clip_depth(corners, self.clip);
         if clipped.len() < 3 {
             return None;
         }
@@ -267,7 +316,7 @@ fn part_distance(face: &Face, x: f64, y: f64) -> f64 {
 }
 
 /// Normalised, rotated, view-space positions of every vertex.
-fn view_positions<M: Mesh + ?Sized>(mesh: &M, view: &ReferenceView) -> Vec<V3> {
+fn view_positions<M: Mesh + ?Sized>(mesh: &M, view: &ReferenceView, eye: f64) -> Vec<V3> {
     let p = |i: usize| mesh.position(i).map(f64::from);
     let n = mesh.vertex_count();
     let (mut lo, mut hi) = ([f64::MAX; 3], [f64::MIN; 3]);
@@ -295,16 +344,16 @@ fn view_positions<M: Mesh + ?Sized>(mesh: &M, view: &ReferenceView) -> Vec<V3> {
             // Ry(yaw), then Rx(pitch), then the eye at (0, 0, 3).
             let y = [cy * q[0] + sy * q[2], q[1], -sy * q[0] + cy * q[2]];
             let x = [y[0], cx * y[1] - sx * y[2], sx * y[1] + cx * y[2]];
-            [x[0], x[1], x[2] - EYE_DISTANCE]
+            [x[0], x[1], x[2] - eye]
         })
         .collect()
 }
 
-/// Sutherland-Hodgman against the near (`-z >= NEAR`) and far (`-z <= FAR`)
+/// Sutherland-Hodgman against the near (`-z >= near`) and far (`-z <= far`)
 /// planes in view space.
-fn clip_depth(corners: &[V3]) -> Vec<V3> {
-    let near = |p: V3| -p[2] - NEAR;
-    let far = |p: V3| FAR + p[2];
+fn clip_depth(corners: &[V3], (near, far): (f64, f64)) -> Vec<V3> {
+    let near = |p: V3| -p[2] - near;
+    let far = |p: V3| far + p[2];
     let mut poly = corners.to_vec();
     for plane in [&near as &dyn Fn(V3) -> f64, &far] {
         let mut out = Vec::with_capacity(poly.len() + 1);

@@ -14,7 +14,7 @@ use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
 
 use super::interval::render_intervals;
 use super::painter::painter_order;
-use super::reference::{BACKGROUND, ReferenceFrame, ReferenceView};
+use super::reference::{BACKGROUND, ReferenceCamera, ReferenceFrame, ReferenceView};
 use super::scanline_host::{HOST_CAPACITIES, HostPixel};
 use crate::error::RenderError;
 use crate::front::geometry::Mat4;
@@ -150,6 +150,7 @@ pub struct MethodRenderer<D: DepthFormat> {
     scratch: Vec<u32>,
     active: Vec<ActivePolygon<HostPixel>>,
     pool: Vec<ActiveEdge>,
+    reference_camera: ReferenceCamera,
 }
 
 /// The pixel no polygon covers.
@@ -180,11 +181,20 @@ where
             scratch: vec![0; usize::from(width)],
             active: vec![ActivePolygon::filler(EMPTY); 1],
             pool: vec![ActiveEdge::EMPTY; crate::raster::fixed::MAX_POLYGON_CORNERS],
+            reference_camera: ReferenceCamera::STANDARD,
         })
     }
 
+    /// The camera the reference renders with ([`ReferenceCamera::STANDARD`]
+    /// unless set): give the other methods the same camera
+    /// ([`ReferenceCamera::camera`]) to compare them.
+    pub fn set_reference_camera(&mut self, camera: ReferenceCamera) {
+        self.reference_camera = camera;
+    }
+
     /// One frame of `mesh` by `method`. The reference ignores `model`,
-    /// `camera` and `cull` and renders `view` (the reference view) instead.
+    /// `camera` and `cull` and renders `view` (the reference view) with its
+    /// own camera ([`Self::set_reference_camera`]) instead.
     #[allow(clippy::too_many_arguments)]
     pub fn render<M: Mesh>(
         &mut self,
@@ -198,7 +208,7 @@ where
     ) -> Result<MethodFrame, String> {
         let (w, h) = (usize::from(self.width), usize::from(self.height));
         if method == Method::Reference {
-            let frame = ReferenceFrame::render(mesh, view);
+            let frame = ReferenceFrame::render_with(mesh, view, &self.reference_camera);
             let colors = frame
                 .ids
                 .iter()

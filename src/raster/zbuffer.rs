@@ -92,7 +92,7 @@ pub fn render_bands<C: Copy, D: DepthFormat, K: RowSink<C, D::Value>>(
         || buffers.scratch.len() < width
         || buffers.active.is_empty()
     {
-        return Err(RenderError::Table(Error::BadFrameSize));
+        return Err(RenderError::Table(Error::BandBuffersTooSmall));
     }
     let (mut active_len, mut pool_len) = (0usize, 0usize);
     let mut state = ScanState {
