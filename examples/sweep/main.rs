@@ -457,6 +457,100 @@ fn resolution_charts(o: &Options, caption: &str, progress: &mut Progress) -> Res
     )
 }
 
+/// Chart 5: wrong faces against the far/near ratio, for each depth format
+/// and method: the plates (gaps from 0.001 to 0.1 of the mesh radius) and
+/// real meshes, far plane at 10, near at 10 / ratio.
+fn precision_chart(o: &Options, caption: &str, progress: &mut Progress) -> Result<(), String> {
+    let configs = [
+        Config::new(Method::Scanline, false, false),
+        Config::new(Method::Scanline, true, false),
+        Config::new(Method::Scanline, false, true),
+        Config::new(Method::Scanline, true, true),
+        // The z-buffer and the bands draw the scanline's frames bit for bit
+        // (tests/methods.rs): their lines would hide under its.
+        Config::new(Method::Interval, false, false),
+        Config::new(Method::Painter, false, false),
+    ];
+    let ratios: &[f64] = if o.quick {
+        &[10.0, 1e5]
+    } else {
+        &[10.0, 100.0, 1e3, 1e4, 1e5]
+    };
+    let mut scenes: Vec<(String, zline::host::HostMesh)> =
+        vec![("plates".into(), zline::methods::catalogue::plates())];
+    let real = if o.quick {
+        &["suzanne"][..]
+    } else {
+        &["spot", "teapot", "cow"][..]
+    };
+    for name in real {
+        let path = o.meshes.join(format!("{name}.obj"));
+        scenes.push((format!("{name}"), load_model(&path.to_string_lossy())?));
+    }
+    let (w, h) = (320u16, 240u16);
+    let mut csv = String::from(
+        "scene,far_over_near,near,far,method,pixels,mismatches,excused_at_edges,excused_as_ties,hard\n",
+    );
+    // Panel 0: the plates; panel 1: the real meshes, summed.
+    let mut panels: Vec<Vec<Series>> = (0..2)
+        .map(|_| configs.iter().map(|c| Series::new(&c.label())).collect())
+        .collect();
+    for &ratio in ratios {
+        let camera = zline::methods::ReferenceCamera {
+            near: 10.0 / ratio,
+            far: 10.0,
+            ..zline::methods::ReferenceCamera::STANDARD
+        };
+        let mut real_wrong = vec![0usize; configs.len()];
+        for (k, (name, mesh)) in scenes.iter().enumerate() {
+            progress.step(&format!("precision: {name}, far/near {ratio}"));
+            let scene = Scene::with_camera(name, mesh.clone(), w, h, camera)?;
+            for (c, (config, s)) in configs
+                .iter()
+                .zip(scene.run(&configs, 0, true)?)
+                .enumerate()
+            {
+                csv += &format!(
+                    "{name},{ratio},{},{},{},{},{},{},{},{}\n",
+                    camera.near,
+                    camera.far,
+                    config.label(),
+                    s.pixels,
+                    s.mismatches,
+                    s.excused_at_edges,
+                    s.excused_as_ties,
+                    s.hard
+                );
+                let wrong = s.mismatches - s.excused_at_edges;
+                if k == 0 {
+                    panels[0][c].points.push((ratio, wrong.max(1) as f64));
+                } else {
+                    real_wrong[c] += wrong;
+                }
+            }
+        }
+        for (c, wrong) in real_wrong.into_iter().enumerate() {
+            panels[1][c].points.push((ratio, wrong.max(1) as f64));
+        }
+    }
+    write(&o.out.join("precision.csv"), &csv)?;
+    let mut named = panels.into_iter();
+    let plates = named.next().unwrap_or_default();
+    let real_panel = named.next().unwrap_or_default();
+    chart::lines(
+        &o.out.join("precision.svg"),
+        "Depth precision: wrong faces (not at edges; 0 drawn at 1) against far/near, far 10, eye 3 from a mesh of radius 1",
+        caption,
+        "far / near",
+        "wrong-face pixels not at an edge",
+        &[
+            ("plates: gaps 0.001 to 0.1 of the radius".into(), plates),
+            (format!("{}, summed", real.join(", ")), real_panel),
+        ],
+        None,
+    )
+}
+
 /// Numbered progress lines on stderr.
 struct Progress {
     done: usize,
@@ -501,13 +595,19 @@ fn run(args: &[String]) -> Result<(), String> {
     };
     let mut progress = Progress {
         done: 0,
-        total: accuracy_scenes + if o.quick { 2 + 2 } else { 8 + 6 },
+        total: accuracy_scenes
+            + if o.quick {
+                2 + 2 + 2 * 2
+            } else {
+                8 + 6 + 5 * 4
+            },
     };
     accuracy_chart(&o, &caption, &mut progress)?;
     polygon_chart(&o, &caption, &mut progress)?;
     resolution_charts(&o, &caption, &mut progress)?;
+    precision_chart(&o, &caption, &mut progress)?;
     println!(
-        "wrote {}/{{accuracy,polygons,resolution,memory}}.{{svg,csv}} and machine.txt",
+        "wrote {}/{{accuracy,polygons,resolution,memory,precision}}.{{svg,csv}} and machine.txt",
         o.out.display()
     );
     Ok(())

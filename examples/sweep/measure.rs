@@ -10,7 +10,8 @@ use zline::front::scene::{Camera, Cull, reference_model};
 use zline::front::shade::Shading;
 use zline::host::{HostMesh, QuantizedHostMesh};
 use zline::methods::{
-    BACKGROUND, Memory, Method, MethodFrame, MethodRenderer, ReferenceFrame, ReferenceView, compare,
+    BACKGROUND, Memory, Method, MethodFrame, MethodRenderer, ReferenceCamera, ReferenceFrame,
+    ReferenceView, compare,
 };
 use zline::{Depth16, Depth24};
 
@@ -91,18 +92,31 @@ pub struct Scene {
     mesh: HostMesh,
     quantized: QuantizedHostMesh,
     camera: Camera,
+    reference_camera: ReferenceCamera,
     view: ReferenceView,
 }
 
 impl Scene {
     /// The scene of `mesh` at `width` x `height`.
     pub fn new(name: &str, mesh: HostMesh, width: u16, height: u16) -> Result<Self, String> {
+        Self::with_camera(name, mesh, width, height, ReferenceCamera::STANDARD)
+    }
+
+    /// The scene seen by `camera` (both the methods and the reference).
+    pub fn with_camera(
+        name: &str,
+        mesh: HostMesh,
+        width: u16,
+        height: u16,
+        camera: ReferenceCamera,
+    ) -> Result<Self, String> {
         let quantized = QuantizedHostMesh::new(&mesh).map_err(|e| format!("{name}: {e}"))?;
         Ok(Self {
             name: name.into(),
             mesh,
             quantized,
-            camera: Camera::reference(width, height),
+            camera: camera.camera(width, height),
+            reference_camera: camera,
             view: ReferenceView {
                 width: usize::from(width),
                 height: usize::from(height),
@@ -125,13 +139,16 @@ impl Scene {
         let (w, h) = (self.camera.width, self.camera.height);
         let mut z16 = MethodRenderer::<Depth16>::new(w, h)?;
         let mut z24 = MethodRenderer::<Depth24>::new(w, h)?;
+        z16.set_reference_camera(self.reference_camera);
+        z24.set_reference_camera(self.reference_camera);
         let model =
             reference_model(&self.mesh, 30.0, 20.0).map_err(|e| format!("{}: {e}", self.name))?;
         let quantized = self
             .quantized
             .mesh()
             .map_err(|e| format!("{}: {e:?}", self.name))?;
-        let reference = accuracy.then(|| ReferenceFrame::render(&self.mesh, &self.view));
+        let reference = accuracy
+            .then(|| ReferenceFrame::render_with(&self.mesh, &self.view, &self.reference_camera));
         let mut times = vec![Vec::with_capacity(rounds); configs.len()];
         let mut samples = vec![Sample::default(); configs.len()];
         for round in 0..=rounds {

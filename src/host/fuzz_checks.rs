@@ -12,7 +12,12 @@
 //!   exact, depth within 1 LSB, or a documented `Err`.
 //! * [`pipeline`]: OBJ bytes and a camera through [`draw_mesh`] to rows:
 //!   every face accounted for exactly once, only capacity errors, every
-//!   row delivered once, in order.
+//!   row delivered once, in order; then every other method on the same
+//!   scene ([`crate::methods::MethodRenderer`]): the z-buffer and the bands
+//!   draw the scanline's frame exactly, the interval and the painter's
+//!   methods and the reference finish with valid face ids (a wrong
+//!   picture from the painter is no finding; a panic or an overflow in any
+//!   method is).
 
 use std::boxed::Box;
 use std::format;
@@ -292,6 +297,25 @@ pub fn pipeline(data: &[u8]) {
             Camera::perspective(view, fov, width, height, near, far),
         )
     };
+    // Flags 16..: the band height of the bands method.
+    let band_rows = 1 + u16::from(flags >> 4);
+    let reference_camera = reference_view.then_some(crate::methods::ReferenceCamera {
+        eye_distance: 3.0,
+        fov_y_deg: f64::from(fov),
+        near: f64::from(near),
+        far: f64::from(far),
+    });
+    let view = crate::methods::ReferenceView {
+        width: usize::from(width),
+        height: usize::from(height),
+        yaw_deg: f64::from(yaw),
+        pitch_deg: f64::from(pitch),
+        cull_back: cull == Cull::Back,
+    };
+    let methods = OtherMethods {
+        band_rows,
+        reference: reference_camera.map(|c| (c, view)),
+    };
     // Flag 8: the same mesh quantized, through the integer front end.
     if flags & 8 != 0 {
         let Ok(quantized) = QuantizedHostMesh::new(&mesh) else {
@@ -299,14 +323,86 @@ pub fn pipeline(data: &[u8]) {
         };
         let quantized = quantized.mesh().expect("a quantized host mesh is valid");
         if z24 {
-            pipeline_check::<Depth24, _>(&quantized, &model, &camera, cull);
+            pipeline_check::<Depth24, _>(&quantized, &model, &camera, cull, &methods);
         } else {
-            pipeline_check::<Depth16, _>(&quantized, &model, &camera, cull);
+            pipeline_check::<Depth16, _>(&quantized, &model, &camera, cull, &methods);
         }
     } else if z24 {
-        pipeline_check::<Depth24, _>(&mesh, &model, &camera, cull);
+        pipeline_check::<Depth24, _>(&mesh, &model, &camera, cull, &methods);
     } else {
-        pipeline_check::<Depth16, _>(&mesh, &model, &camera, cull);
+        pipeline_check::<Depth16, _>(&mesh, &model, &camera, cull, &methods);
+    }
+}
+
+/// What [`pipeline`] asks of the methods beyond the scanline core.
+struct OtherMethods {
+    /// Rows of the bands method.
+    band_rows: u16,
+    /// The reference's camera and view, when the view is the reference
+    /// view's (the reference knows no other).
+    reference: Option<(
+        crate::methods::ReferenceCamera,
+        crate::methods::ReferenceView,
+    )>,
+}
+
+/// Every method on the scene: the z-buffer and the bands give the
+/// scanline's frame exactly; the interval and painter's methods and the
+/// reference give valid face ids.
+fn other_methods_check<D: DepthFormat, M: Mesh>(
+    mesh: &M,
+    model: &Mat4,
+    camera: &Camera,
+    cull: Cull,
+    other: &OtherMethods,
+) where
+    D::Value: Into<u32>,
+{
+    use crate::methods::{BACKGROUND, Method, MethodRenderer};
+    let mut renderer = MethodRenderer::<D>::new(camera.width, camera.height).expect("frame size");
+    if let Some((c, _)) = other.reference {
+        renderer.set_reference_camera(c);
+    }
+    let shading = Shading::lambert();
+    let (view, reference) = match other.reference {
+        Some((c, v)) => (v, Some(c)),
+        None => (
+            crate::methods::ReferenceView {
+                width: usize::from(camera.width),
+                height: usize::from(camera.height),
+                yaw_deg: 0.0,
+                pitch_deg: 0.0,
+                cull_back: false,
+            },
+            None,
+        ),
+    };
+    let mut frame = |method: Method| {
+        renderer
+            .render(method, mesh, model, camera, cull, &shading, &view)
+            .unwrap_or_else(|e| panic!("{}: {e}", method.name()))
+            .faces
+    };
+    let scanline = frame(Method::Scanline);
+    for method in [Method::ZBuffer, Method::Bands(other.band_rows)] {
+        assert!(
+            frame(method) == scanline,
+            "{} differs from the scanline",
+            method.name()
+        );
+    }
+    let faces = mesh.face_count() as u32;
+    for method in [Method::Interval, Method::Painter] {
+        let ids = frame(method);
+        assert!(
+            ids.iter().all(|&id| id == BACKGROUND || id < faces),
+            "{} names no face",
+            method.name()
+        );
+    }
+    if reference.is_some() {
+        let ids = frame(Method::Reference);
+        assert!(ids.iter().all(|&id| id == BACKGROUND || id < faces));
     }
 }
 
@@ -320,7 +416,15 @@ const PIPELINE_CAPACITIES: Capacities = Capacities {
     pooled_edges: 256,
 };
 
-fn pipeline_check<D: DepthFormat, M: Mesh>(mesh: &M, model: &Mat4, camera: &Camera, cull: Cull) {
+fn pipeline_check<D: DepthFormat, M: Mesh>(
+    mesh: &M,
+    model: &Mat4,
+    camera: &Camera,
+    cull: Cull,
+    other: &OtherMethods,
+) where
+    D::Value: Into<u32>,
+{
     let mut renderer =
         host_renderer::<u32, D>(&PIPELINE_CAPACITIES, camera.width, camera.height, 0)
             .expect("frame size");
@@ -379,6 +483,7 @@ fn pipeline_check<D: DepthFormat, M: Mesh>(mesh: &M, model: &Mat4, camera: &Came
         Ok(frame) => {
             assert_eq!(next_row, camera.height);
             assert_eq!(frame.polygons, stats.queued);
+            other_methods_check::<D, M>(mesh, model, camera, cull, other);
         }
         Err(RenderError::Table(e)) => assert!(
             matches!(

@@ -772,3 +772,33 @@ pub fn coplanar_losses(method: Method, z24: bool) -> Result<Vec<(usize, usize)>,
         })
         .collect()
 }
+
+/// Gaps between the plates of [`plates`], in units of the normalised
+/// mesh (its radius is 1, the eye 3 away).
+pub const PLATE_GAPS: [f32; 5] = [0.001, 0.003, 0.01, 0.03, 0.1];
+
+/// The depth-precision scene: five pairs of parallel plates, the front
+/// plate of pair `k` covering the left part of its back plate at a gap of
+/// [`PLATE_GAPS`]`[k]`, so that a depth format too coarse for the gap
+/// shows the back plate through the front one.
+pub fn plates() -> HostMesh {
+    let mut b = Builder::new();
+    for (k, &gap) in PLATE_GAPS.iter().enumerate() {
+        let top = 0.8 - 0.34 * k as f32;
+        let bottom = top - 0.28;
+        b = b
+            .face(&[
+                [-0.8, bottom, 0.0],
+                [0.8, bottom, 0.0],
+                [0.8, top, 0.0],
+                [-0.8, top, 0.0],
+            ])
+            .face(&[
+                [-0.8, bottom, gap],
+                [0.2, bottom, gap],
+                [0.2, top, gap],
+                [-0.8, top, gap],
+            ]);
+    }
+    b.0
+}
