@@ -485,7 +485,7 @@ fn precision_chart(o: &Options, caption: &str, progress: &mut Progress) -> Resul
     };
     for name in real {
         let path = o.meshes.join(format!("{name}.obj"));
-        scenes.push((format!("{name}"), load_model(&path.to_string_lossy())?));
+        scenes.push((name.to_string(), load_model(&path.to_string_lossy())?));
     }
     let (w, h) = (320u16, 240u16);
     let mut csv = String::from(
