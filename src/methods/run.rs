@@ -163,9 +163,15 @@ impl<D: DepthFormat> MethodRenderer<D>
 where
     D::Value: Into<u32>,
 {
-    /// Buffers for `width` x `height` frames (each 1 to 4096).
+    /// Buffers for `width` x `height` frames (each 1 to 4096), tables of
+    /// [`HOST_CAPACITIES`].
     pub fn new(width: u16, height: u16) -> Result<Self, String> {
-        let caps = &HOST_CAPACITIES;
+        Self::with_capacities(width, height, &HOST_CAPACITIES)
+    }
+
+    /// Buffers for `width` x `height` frames, tables of `caps` (smaller
+    /// ones set up faster: the fuzzer makes one per input).
+    pub fn with_capacities(width: u16, height: u16, caps: &Capacities) -> Result<Self, String> {
         let tables =
             Tables::new(TableVecs::new(caps, EMPTY), width, height).map_err(|e| e.to_string())?;
         let scanner = Scanner::new(ScanVecs::<HostPixel, D>::new(caps, EMPTY), EMPTY);
