@@ -118,7 +118,11 @@ fn run(args: &[String]) -> Result<(), String> {
     let wrong_out = report::wrong_faces_path(&options.out);
     report::write_wrong_csv(&wrong_out, &rows)?;
     say(&report::markdown(&rows))?;
-    eprintln!("wrote {} and {}", options.out.display(), wrong_out.display());
+    eprintln!(
+        "wrote {} and {}",
+        options.out.display(),
+        wrong_out.display()
+    );
     Ok(())
 }
 
