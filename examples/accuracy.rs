@@ -19,14 +19,14 @@
 //! (`z16 int`, `z24 int`), the path a microcontroller without an FPU
 //! takes. Both are compared with the reference of the original mesh.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::ExitCode;
 
 use zline::front::geometry::Mat4;
 use zline::front::mesh::Mesh;
 use zline::front::scene::{Camera, Cull, reference_model};
 use zline::front::shade::Shading;
-use zline::host::{HostMesh, QuantizedHostMesh, parse_size, run_tool};
+use zline::host::{HostMesh, QuantizedHostMesh, obj_files, parse_size, run_tool};
 use zline::methods::{Comparison, Method, MethodRenderer, ReferenceFrame, ReferenceView, compare};
 use zline::{Depth16, Depth24, DepthFormat};
 
@@ -162,19 +162,6 @@ fn row(name: &str, view: (f32, f32), format: &str, c: &Comparison) {
     );
 }
 
-fn meshes(dir: &Path) -> Result<Vec<PathBuf>, String> {
-    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
-        .map_err(|e| format!("{}: {e}", dir.display()))?
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.extension().is_some_and(|x| x == "obj"))
-        .collect();
-    files.sort();
-    if files.is_empty() {
-        return Err(format!("{}: no .obj files", dir.display()));
-    }
-    Ok(files)
-}
-
 fn run(args: &[String]) -> Result<bool, String> {
     let o = parse(args)?;
     let mut z16 = MethodRenderer::<Depth16>::new(o.width, o.height)?;
@@ -184,7 +171,7 @@ fn run(args: &[String]) -> Result<bool, String> {
     );
     println!("|---|---|---|---|---|---|---|---|");
     let mut totals = [(); CONFIGS.len()].map(|()| Comparison::default());
-    for path in meshes(&o.dir)? {
+    for path in obj_files(&o.dir)? {
         let bytes = std::fs::read(&path).map_err(|e| format!("{}: {e}", path.display()))?;
         let mesh = HostMesh::from_obj(&bytes).map_err(|e| format!("{}: {e}", path.display()))?;
         let quantized =

@@ -91,41 +91,13 @@ fn parse(args: &[String]) -> Result<Options, String> {
 
 /// The machine and the date, for `machine.txt` and the charts' captions.
 fn machine() -> String {
-    let cpu = std::fs::read_to_string("/proc/cpuinfo")
-        .ok()
-        .and_then(|s| {
-            s.lines()
-                .find(|l| l.starts_with("model name"))
-                .and_then(|l| l.split(':').nth(1))
-                .map(|m| m.trim().to_string())
-        })
-        .unwrap_or_else(|| "unknown CPU".into());
-    let threads = std::thread::available_parallelism().map_or(0, |n| n.get());
-    let secs = std::time::SystemTime::now()
-        .duration_since(std::time::UNIX_EPOCH)
-        .map_or(0, |d| d.as_secs());
+    let (cpu, threads) = zline::host::cpu();
     format!(
-        "{cpu}, {threads} threads, {}-{}; {} UTC",
+        "{cpu}, {threads} threads, {}-{}; {}",
         std::env::consts::OS,
         std::env::consts::ARCH,
-        utc_date(secs)
+        zline::host::now_utc()
     )
-}
-
-/// `YYYY-MM-DD HH:MM` of a Unix time (the civil calendar from days).
-fn utc_date(secs: u64) -> String {
-    let days = (secs / 86_400) as i64;
-    let (hh, mm) = ((secs % 86_400) / 3600, (secs % 3600) / 60);
-    let z = days + 719_468;
-    let era = z.div_euclid(146_097);
-    let doe = z - era * 146_097;
-    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
-    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
-    let mp = (5 * doy + 2) / 153;
-    let d = doy - (153 * mp + 2) / 5 + 1;
-    let m = if mp < 10 { mp + 3 } else { mp - 9 };
-    let y = yoe + era * 400 + i64::from(m <= 2);
-    format!("{y:04}-{m:02}-{d:02} {hh:02}:{mm:02}")
 }
 
 fn write(path: &Path, text: &str) -> Result<(), String> {
@@ -164,7 +136,7 @@ fn accuracy_chart(o: &Options, caption: &str, progress: &mut Progress) -> Result
         Config::new(Method::Reference, false, false),
     ];
     let (w, h) = (320u16, 240u16);
-    let mut files = measure::meshes(&o.meshes)?;
+    let mut files = zline::host::obj_files(&o.meshes)?;
     if o.quick {
         files.retain(|f| {
             let n = f.file_stem().map(|s| s.to_string_lossy().into_owned());
@@ -591,7 +563,7 @@ fn run(args: &[String]) -> Result<(), String> {
     let accuracy_scenes = if o.quick {
         3
     } else {
-        measure::meshes(&o.meshes)?.len()
+        zline::host::obj_files(&o.meshes)?.len()
     };
     let mut progress = Progress {
         done: 0,

@@ -2,7 +2,7 @@
 //! reference view), every configuration timed in interleaved rounds,
 //! compared with the float64 reference, its memory read off.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::time::Instant;
 
 use zline::front::mesh::Mesh;
@@ -230,20 +230,6 @@ impl Scene {
         }
         s.max_depth_error_lsb = Some(worst);
     }
-}
-
-/// The `.obj` files of a folder, sorted.
-pub fn meshes(dir: &Path) -> Result<Vec<PathBuf>, String> {
-    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
-        .map_err(|e| format!("{}: {e}", dir.display()))?
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.extension().is_some_and(|x| x == "obj"))
-        .collect();
-    files.sort();
-    if files.is_empty() {
-        return Err(format!("{}: no .obj files", dir.display()));
-    }
-    Ok(files)
 }
 
 /// A file's name without its extension.

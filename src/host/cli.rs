@@ -1,5 +1,5 @@
 //! What the host tools (`examples/`, the simulator) share: loading a model
-//! named on the command line, reading a frame size, and running on a thread
+//! named on the command line or the meshes of a folder, reading a frame size, and running on a thread
 //! with a stack large enough for a host-sized renderer.
 
 use std::format;
@@ -27,6 +27,21 @@ pub fn load_model(spec: &str) -> Result<HostMesh, String> {
         return Err(format!("{spec}: no vertices"));
     }
     Ok(mesh)
+}
+
+/// The `.obj` files of a folder, sorted by name; an error when there are
+/// none.
+pub fn obj_files(dir: &std::path::Path) -> Result<std::vec::Vec<std::path::PathBuf>, String> {
+    let mut files: std::vec::Vec<std::path::PathBuf> = std::fs::read_dir(dir)
+        .map_err(|e| format!("{}: {e}", dir.display()))?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "obj"))
+        .collect();
+    files.sort();
+    if files.is_empty() {
+        return Err(format!("{}: no .obj files", dir.display()));
+    }
+    Ok(files)
 }
 
 /// An angle in degrees for option `name`: any finite number.

@@ -22,7 +22,7 @@ use super::run::{Method, MethodFrame, MethodRenderer};
 use crate::front::scene::{Cull, reference_model};
 use crate::front::shade::Shading;
 use crate::host::HostMesh;
-use crate::{Depth16, Depth24};
+use crate::{Depth16, Depth24, DepthFormat};
 
 /// What a method is expected to do with a case.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -487,6 +487,60 @@ pub fn label(method: Method, z24: bool) -> String {
     }
 }
 
+/// The reference view of the catalogue's frame at `yaw`/`pitch`.
+fn view_at((yaw, pitch): (f32, f32)) -> ReferenceView {
+    ReferenceView {
+        width: usize::from(SIZE.0),
+        height: usize::from(SIZE.1),
+        yaw_deg: f64::from(yaw),
+        pitch_deg: f64::from(pitch),
+        cull_back: false,
+    }
+}
+
+/// `mesh` by `method` at `yaw`/`pitch`, seen by `camera` (the reference
+/// too), no culling, in the depth format `D`.
+fn render_in<D: DepthFormat>(
+    method: Method,
+    mesh: &HostMesh,
+    at: (f32, f32),
+    camera: &ReferenceCamera,
+    shading: &Shading,
+) -> Result<MethodFrame, String>
+where
+    D::Value: Into<u32>,
+{
+    let (w, h) = SIZE;
+    let model = reference_model(mesh, at.0, at.1).map_err(|e| e.to_string())?;
+    let mut renderer = MethodRenderer::<D>::new(w, h)?;
+    renderer.set_reference_camera(*camera);
+    renderer.render(
+        method,
+        mesh,
+        &model,
+        &camera.camera(w, h),
+        Cull::None,
+        shading,
+        &view_at(at),
+    )
+}
+
+/// [`render_in`] with z24 or z16.
+fn render_at(
+    method: Method,
+    z24: bool,
+    mesh: &HostMesh,
+    at: (f32, f32),
+    camera: &ReferenceCamera,
+    shading: &Shading,
+) -> Result<MethodFrame, String> {
+    if z24 {
+        render_in::<Depth24>(method, mesh, at, camera, shading)
+    } else {
+        render_in::<Depth16>(method, mesh, at, camera, shading)
+    }
+}
+
 /// Renders `case` by `method` (z24 or z16) and compares the frame with the
 /// reference; the frame too, for the gallery.
 pub fn run(case: &Case, method: Method, z24: bool) -> (Outcome, Option<MethodFrame>) {
@@ -494,52 +548,23 @@ pub fn run(case: &Case, method: Method, z24: bool) -> (Outcome, Option<MethodFra
         Ok(mesh) => mesh,
         Err(e) => return (Outcome::Error(e.clone()), None),
     };
-    let (w, h) = SIZE;
-    let view = ReferenceView {
-        width: usize::from(w),
-        height: usize::from(h),
-        yaw_deg: f64::from(case.yaw_pitch.0),
-        pitch_deg: f64::from(case.yaw_pitch.1),
-        cull_back: false,
-    };
-    let model = match reference_model(mesh, case.yaw_pitch.0, case.yaw_pitch.1) {
-        Ok(m) => m,
-        Err(e) => return (Outcome::Error(e.to_string()), None),
-    };
-    let camera = case.camera.camera(w, h);
-    let reference = ReferenceFrame::render_with(mesh, &view, &case.camera);
-    let frame = if z24 {
-        MethodRenderer::<Depth24>::new(w, h).and_then(|mut r| {
-            r.set_reference_camera(case.camera);
-            r.render(
-                method,
-                mesh,
-                &model,
-                &camera,
-                Cull::None,
-                &Shading::lambert(),
-                &view,
-            )
-        })
-    } else {
-        MethodRenderer::<Depth16>::new(w, h).and_then(|mut r| {
-            r.set_reference_camera(case.camera);
-            r.render(
-                method,
-                mesh,
-                &model,
-                &camera,
-                Cull::None,
-                &Shading::lambert(),
-                &view,
-            )
-        })
-    };
+    let frame = render_at(
+        method,
+        z24,
+        mesh,
+        case.yaw_pitch,
+        &case.camera,
+        &Shading::lambert(),
+    );
     match frame {
-        Ok(frame) => (
-            Outcome::Frame(compare(&reference, &frame.faces)),
-            Some(frame),
-        ),
+        Ok(frame) => {
+            let reference =
+                ReferenceFrame::render_with(mesh, &view_at(case.yaw_pitch), &case.camera);
+            (
+                Outcome::Frame(compare(&reference, &frame.faces)),
+                Some(frame),
+            )
+        }
         Err(e) => (Outcome::Error(e), None),
     }
 }
@@ -699,40 +724,17 @@ pub fn faces_at(
     method: Method,
     z24: bool,
     mesh: &HostMesh,
-    (yaw, pitch): (f32, f32),
+    at: (f32, f32),
 ) -> Result<Vec<u32>, String> {
-    let (w, h) = SIZE;
-    let view = ReferenceView {
-        width: usize::from(w),
-        height: usize::from(h),
-        yaw_deg: f64::from(yaw),
-        pitch_deg: f64::from(pitch),
-        cull_back: false,
-    };
-    let model = reference_model(mesh, yaw, pitch).map_err(|e| e.to_string())?;
-    let camera = ReferenceCamera::STANDARD.camera(w, h);
-    let frame = if z24 {
-        MethodRenderer::<Depth24>::new(w, h)?.render(
-            method,
-            mesh,
-            &model,
-            &camera,
-            Cull::None,
-            &Shading::FaceId,
-            &view,
-        )?
-    } else {
-        MethodRenderer::<Depth16>::new(w, h)?.render(
-            method,
-            mesh,
-            &model,
-            &camera,
-            Cull::None,
-            &Shading::FaceId,
-            &view,
-        )?
-    };
-    Ok(frame.faces)
+    render_at(
+        method,
+        z24,
+        mesh,
+        at,
+        &ReferenceCamera::STANDARD,
+        &Shading::FaceId,
+    )
+    .map(|frame| frame.faces)
 }
 
 /// The views of the coplanar sequence: 21 frames, the camera turning a

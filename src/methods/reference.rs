@@ -21,6 +21,8 @@
 use std::vec;
 use std::vec::Vec;
 
+use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
+
 use crate::front::geometry::Vec3;
 use crate::front::mesh::Mesh;
 use crate::front::scene::FaceInfo;
@@ -265,6 +267,17 @@ impl ReferenceFrame {
                 .iter()
                 .min_by(|a, b| part_distance(a, x, y).total_cmp(&part_distance(b, x, y)))
         })
+    }
+
+    /// Each pixel's colour: `shading` of its face, black where none.
+    pub fn colors(&self, shading: &crate::front::shade::Shading) -> Vec<Rgb888> {
+        self.ids
+            .iter()
+            .map(|&id| {
+                self.face_info(id)
+                    .map_or(Rgb888::BLACK, |f| shading.color(&f))
+            })
+            .collect()
     }
 
     /// Depth of face `id`'s plane (of the part at the pixel) along pixel

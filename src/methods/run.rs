@@ -215,15 +215,7 @@ where
         let (w, h) = (usize::from(self.width), usize::from(self.height));
         if method == Method::Reference {
             let frame = ReferenceFrame::render_with(mesh, view, &self.reference_camera);
-            let colors = frame
-                .ids
-                .iter()
-                .map(|&id| {
-                    frame
-                        .face_info(id)
-                        .map_or(Rgb888::BLACK, |f| shading.color(&f))
-                })
-                .collect();
+            let colors = frame.colors(shading);
             return Ok(MethodFrame {
                 faces: frame.ids,
                 colors,

@@ -150,6 +150,22 @@ pub fn render_bands<C: Copy, D: DepthFormat, K: RowSink<C, D::Value>>(
     Ok(stats)
 }
 
+/// The band's row starting at `at`, `width` pixels, as the scanline's row
+/// buffers (the scratch row serves as the key row).
+fn band_row<'r, C, D: DepthFormat>(
+    (depth, color, scratch): (&'r mut [D::Value], &'r mut [C], &'r mut [u32]),
+    at: usize,
+    width: usize,
+    write: PixelWrite,
+) -> RowBuffers<'r, C, D> {
+    RowBuffers {
+        depth: &mut depth[at..at + width],
+        color: &mut color[at..at + width],
+        key: &mut scratch[..width],
+        write,
+    }
+}
+
 /// Draws rows `rows` of the polygon at `position` into the band starting at
 /// row `y0`, with the scanline's own activation and stepping.
 fn draw_rows<C: Copy, D: DepthFormat>(
@@ -167,30 +183,21 @@ fn draw_rows<C: Copy, D: DepthFormat>(
         DepthTest::Nearer => PixelWrite::Nearer,
         DepthTest::Overwrite => PixelWrite::Overwrite,
     };
+    // Row `y` of the band, as the scanline's row buffers.
+    let at = |y: u16| usize::from(y - y0) * width;
     let mut y = rows.start;
-    {
-        let at = usize::from(y - y0) * width;
-        let mut buffers = RowBuffers::<C, D> {
-            depth: &mut depth[at..at + width],
-            color: &mut color[at..at + width],
-            key: &mut scratch[..width],
-            write,
-        };
-        state.activate_polygon(position, y, &mut buffers)?;
-    }
+    state.activate_polygon(
+        position,
+        y,
+        &mut band_row::<C, D>((depth, color, scratch), at(y), width, write),
+    )?;
     if state.active.len() == 0 {
         // A triangle covering one row was drawn at activation.
         return Ok(());
     }
     let is_triangle = state.active.as_slice()[0].is_triangle();
     while y < rows.end {
-        let at = usize::from(y - y0) * width;
-        let mut buffers = RowBuffers::<C, D> {
-            depth: &mut depth[at..at + width],
-            color: &mut color[at..at + width],
-            key: &mut scratch[..width],
-            write,
-        };
+        let mut buffers = band_row::<C, D>((depth, color, scratch), at(y), width, write);
         let next = y + 1;
         let (tables, pool, stats) = (state.tables, &mut state.pool, &mut state.stats);
         let alive = fill_and_step(

@@ -82,7 +82,7 @@ fn run(args: &[String]) -> Result<(), String> {
          - date: {}\n\
          - view: yaw {}°, pitch {}°; {} timed rounds per configuration; thread CPU time\n",
         report::machine(),
-        report::now_utc(),
+        zline::host::now_utc(),
         options.yaw,
         options.pitch,
         options.rounds

@@ -298,15 +298,7 @@ impl Renderers {
             );
             let ms = start.elapsed().as_secs_f64() * 1e3;
             let shade = shading(view.shading);
-            let colors = frame
-                .ids
-                .iter()
-                .map(|&id| {
-                    frame
-                        .face_info(id)
-                        .map_or(Rgb888::BLACK, |f| shade.color(&f))
-                })
-                .collect();
+            let colors = frame.colors(&shade);
             let mut seen: Vec<u32> = frame
                 .ids
                 .iter()
