@@ -80,13 +80,20 @@ fn run(args: &[String]) -> Result<bool, String> {
         println!();
     }
     println!(
-        "\n| coplanar over 21 frames of a turning camera | frames where a later face wins a pixel of face 0 | most pixels lost in a frame | share of face 0 |\n|---|---|---|---|"
+        "\n| coplanar over 21 frames of a turning camera | planes | frames where a later face wins a pixel of face 0 | most pixels lost in a frame | share of face 0 |\n|---|---|---|---|---|"
     );
-    for (method, z24) in METHODS {
-        if method == Method::Reference {
-            continue;
-        }
-        let losses = catalogue::coplanar_losses(method, z24)?;
+    let own_planes = [
+        (Method::Scanline, false),
+        (Method::Scanline, true),
+        (Method::Interval, true),
+    ];
+    let runs = METHODS
+        .into_iter()
+        .filter(|&(method, _)| method != Method::Reference)
+        .map(|run| (run, true))
+        .chain(own_planes.into_iter().map(|run| (run, false)));
+    for ((method, z24), shared) in runs {
+        let losses = catalogue::coplanar_losses(method, z24, shared)?;
         let frames = losses.iter().filter(|&&(lost, _)| lost > 0).count();
         let (lost, own) = losses
             .iter()
@@ -94,8 +101,9 @@ fn run(args: &[String]) -> Result<bool, String> {
             .max_by(|a, b| (a.0 * b.1).cmp(&(b.0 * a.1)))
             .unwrap_or((0, 1));
         println!(
-            "| {} | {frames} of {} | {lost} | {:.2} % |",
+            "| {} | {} | {frames} of {} | {lost} | {:.2} % |",
             label(method, z24),
+            if shared { "shared" } else { "each face's own" },
             losses.len(),
             100.0 * lost as f64 / own as f64
         );

@@ -222,6 +222,8 @@ where
             s("degenerate", &d.degenerate),
             s("non_finite", &d.non_finite),
             s("split", &d.split),
+            s("shared_planes", &d.shared_planes),
+            s("unshared_planes", &d.unshared_planes),
         ]);
     } else {
         let drawn: std::collections::HashSet<u32> = f

@@ -56,6 +56,9 @@ pub enum Error {
     /// rows than the band, a shorter scratch row than the frame, or no
     /// active polygon.
     BandBuffersTooSmall,
+    /// [`Tables::share_plane`](crate::raster::Tables::share_plane) was
+    /// called when no polygon had just been queued.
+    NoPolygonToShare,
 }
 
 impl fmt::Display for Error {
@@ -88,6 +91,9 @@ impl fmt::Display for Error {
             Error::BadFrameSize => f.write_str("frame width or height is zero or too large"),
             Error::BandBuffersTooSmall => {
                 f.write_str("the z-buffer's buffers are smaller than the band or the frame's rows")
+            }
+            Error::NoPolygonToShare => {
+                f.write_str("a shared plane was given with no polygon queued just before it")
             }
         }
     }

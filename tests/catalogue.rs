@@ -60,32 +60,38 @@ fn case(name: &str) -> HostMesh {
 }
 
 #[test]
-fn coplanar_faces_tie_break_is_deterministic_and_z16_keeps_it() {
-    // Exactly equal depths go to the face added first, and every frame is
-    // the same when drawn again. z16 keeps face 0 on all but a few pixels
-    // of every frame (its steps are coarser than the rounding that makes
-    // the coplanar faces' planes differ); z24 and the interval method see
-    // that rounding and z-fight (README: "Where methods fail").
+fn coplanar_faces_keep_the_first_added_on_every_frame() {
+    // The three faces share one plane (the mesh's shared planes), so they
+    // hold exactly equal depths: the face added first wins every pixel it
+    // covers, on each of the 21 frames of a moving camera, in every method
+    // that tests depth and in both formats, and every frame is the same
+    // when drawn again. The painter's order decides for it instead.
+    let mesh = case("coplanar");
+    assert_eq!(mesh.shared_planes.len(), 3, "all three faces share a plane");
     for (method, z24) in METHODS {
-        if method == Method::Reference {
+        if matches!(method, Method::Reference | Method::Painter) {
             continue;
         }
-        let losses = catalogue::coplanar_losses(method, z24).unwrap();
-        let worst = losses
-            .iter()
-            .map(|&(lost, own)| lost as f64 / own as f64)
-            .fold(0.0, f64::max);
+        let losses = catalogue::coplanar_losses(method, z24, true).unwrap();
         assert!(losses.iter().all(|&(_, own)| own > 1000));
-        match (method, z24) {
-            (Method::Painter, _) => {}
-            (_, false) if method != Method::Interval => {
-                assert!(worst < 0.01, "{}: {worst}", label(method, z24))
-            }
-            // The known limitation, measured: if this starts to fail, the
-            // z-fighting is fixed and the README should say so.
-            _ => assert!(worst > 0.05, "{}: {worst}", label(method, z24)),
-        }
+        let lost: Vec<usize> = losses.iter().map(|&(lost, _)| lost).collect();
+        assert!(
+            lost.iter().all(|&l| l == 0),
+            "{}: pixels of face 0 lost per frame {lost:?}",
+            label(method, z24)
+        );
     }
+}
+
+#[test]
+fn coplanar_faces_without_a_shared_plane_z_fight() {
+    // The same faces with their planes computed from each face's own
+    // rounded corners: z24 resolves the rounding and the winner changes
+    // from frame to frame. This is what the shared plane fixes; if it
+    // stops failing, the README's account of it is out of date.
+    let losses = catalogue::coplanar_losses(Method::Scanline, true, false).unwrap();
+    let frames = losses.iter().filter(|&&(lost, _)| lost > 0).count();
+    assert!(frames >= 5, "{losses:?}");
 }
 
 #[test]

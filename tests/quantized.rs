@@ -65,6 +65,7 @@ fn dequantized(q: &QuantizedMesh<'_>) -> HostMesh {
         positions: (0..q.vertex_count()).map(|i| q.position(i)).collect(),
         corners: q.corners().to_vec(),
         face_starts: q.face_starts().to_vec(),
+        ..HostMesh::default()
     }
 }
 

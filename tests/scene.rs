@@ -5,9 +5,10 @@ mod common;
 
 use common::capture;
 use zline::front::geometry::{Mat4, Vec3};
-use zline::front::mesh::StaticMesh;
+use zline::front::mesh::{SharedPlane, StaticMesh};
 use zline::front::scene::{
     Camera, Cull, DrawError, DrawStats, VertexCache, draw_mesh, reference_model,
+    reference_model_around,
 };
 use zline::raster::fixed::DEPTH_ONE;
 use zline::raster::{ScanArrays, TableArrays};
@@ -218,4 +219,67 @@ fn a_cache_smaller_than_the_mesh_is_an_error() {
             error: zline::Error::VertexCacheTooSmall
         })
     );
+}
+
+/// A square in z = 0 with two overlapping faces of the same plane on it
+/// (decals), all three sharing the square's plane; vertex 10, far up the
+/// plane, spans a plane that cannot be projected.
+static DECALS: StaticMesh<'static> = {
+    const PLANE: [u16; 3] = [0, 1, 2];
+    static SHARED: [SharedPlane; 3] = [
+        SharedPlane {
+            face: 0,
+            vertices: PLANE,
+        },
+        SharedPlane {
+            face: 1,
+            vertices: PLANE,
+        },
+        SharedPlane {
+            face: 2,
+            vertices: [0, 1, 10],
+        },
+    ];
+    match StaticMesh::new(
+        &[
+            [-1.0, -1.0, 0.0],
+            [1.0, -1.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [-1.0, 1.0, 0.0],
+            [-0.8, -0.7, 0.0],
+            [0.6, -0.5, 0.0],
+            [0.1, 0.9, 0.0],
+            [-0.5, 0.3, 0.0],
+            [0.9, -0.9, 0.0],
+            [0.7, 0.6, 0.0],
+            [0.0, 1.0e6, 0.0],
+        ],
+        &[0, 1, 2, 3, 4, 5, 6, 7, 8, 9],
+        &[0, 4, 7],
+    ) {
+        Ok(m) => match m.with_shared_planes(&SHARED) {
+            Ok(m) => m,
+            Err(_) => panic!("bad shared planes"),
+        },
+        Err(_) => panic!("bad decals"),
+    }
+};
+
+#[test]
+fn faces_sharing_a_plane_keep_the_first_on_every_view() {
+    let camera = Camera::reference(96, 72);
+    for step in 0..12 {
+        let (yaw, pitch) = (-40.0 + 7.3 * step as f32, 25.0 - 4.1 * step as f32);
+        // Framed on the square (vertex 10 would make the mesh's sphere
+        // huge).
+        let model = reference_model_around(Vec3::default(), 1.5, yaw, pitch);
+        let (frame, stats) = draw(&DECALS, &model, &camera, Cull::None);
+        // Faces 0 and 1 take the square's plane; face 2's plane needs a
+        // vertex a million units up, which is clipped: it keeps its own.
+        assert_eq!((stats.shared_planes, stats.unshared_planes), (2, 1));
+        let drawn: Vec<u32> = frame.colors.iter().copied().filter(|&c| c != 0).collect();
+        assert!(drawn.len() > 1000);
+        // Face 1 (the decal added second) never shows through the square.
+        assert!(drawn.iter().all(|&c| c != 2), "view {yaw}/{pitch}");
+    }
 }

@@ -38,6 +38,29 @@ pub trait Mesh {
     fn quantized(&self) -> Option<QuantizedView<'_>> {
         None
     }
+
+    /// Faces that take their depth from a plane shared with other faces
+    /// ([`SharedPlane`]), sorted by face, each face at most once. Empty
+    /// (the default) when the mesh has none or does not know.
+    fn shared_planes(&self) -> &[SharedPlane] {
+        &[]
+    }
+}
+
+/// A face whose depth comes from a plane it shares with other faces of
+/// its mesh: the plane through three of the mesh's vertices. Faces of one
+/// plane that overlap (decals, double-sided cards, stacked coplanar
+/// faces) share one, so they hold exactly equal depths and the face
+/// listed first wins wherever they overlap, on every frame and from every
+/// camera ([`Tables::share_plane`](crate::raster::Tables::share_plane)).
+/// The host finds them (`zline::host::coplanar`); `obj2rust` writes them
+/// into flash meshes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SharedPlane {
+    /// The face.
+    pub face: u32,
+    /// Three vertices of the mesh that span the plane.
+    pub vertices: [u16; 3],
 }
 
 /// Why a mesh's arrays do not describe a valid mesh.
@@ -73,6 +96,12 @@ pub enum MeshError {
     /// A quantized mesh's sphere: its centre is not finite, or its radius
     /// is not finite and positive.
     BadSphere,
+    /// Shared plane `index` names a face or vertex beyond the mesh, or the
+    /// list is not sorted by face with each face once.
+    BadSharedPlane {
+        /// The offending entry.
+        index: usize,
+    },
 }
 
 /// A mesh over borrowed slices: `'static` ones live in flash.
@@ -83,6 +112,8 @@ pub struct StaticMesh<'a> {
     face_starts: &'a [u32],
     /// Bit `f` set when face `f` is planar; empty when not precomputed.
     planar: &'a [u32],
+    /// Faces with a shared plane, sorted by face.
+    shared: &'a [SharedPlane],
 }
 
 impl<'a> StaticMesh<'a> {
@@ -137,7 +168,17 @@ impl<'a> StaticMesh<'a> {
             corners,
             face_starts,
             planar: &[],
+            shared: &[],
         })
+    }
+
+    /// The same mesh with faces that share planes ([`SharedPlane`]),
+    /// sorted by face. `const`, so the list is checked at compile time.
+    pub const fn with_shared_planes(self, shared: &'a [SharedPlane]) -> Result<Self, MeshError> {
+        if let Err(e) = check_shared_planes(shared, self.face_starts.len(), self.positions.len()) {
+            return Err(e);
+        }
+        Ok(Self { shared, ..self })
     }
 
     /// The same mesh with its faces' planarity precomputed: bit `f % 32`
@@ -169,6 +210,29 @@ impl<'a> StaticMesh<'a> {
     }
 }
 
+/// Checks a mesh's shared planes: sorted by face, each face once, every
+/// face and vertex in the mesh (`faces` faces, `vertices` vertices).
+pub(crate) const fn check_shared_planes(
+    shared: &[SharedPlane],
+    faces: usize,
+    vertices: usize,
+) -> Result<(), MeshError> {
+    let mut k = 0;
+    while k < shared.len() {
+        let entry = shared[k];
+        let sorted = k == 0 || shared[k - 1].face < entry.face;
+        let in_mesh = (entry.face as usize) < faces
+            && (entry.vertices[0] as usize) < vertices
+            && (entry.vertices[1] as usize) < vertices
+            && (entry.vertices[2] as usize) < vertices;
+        if !sorted || !in_mesh {
+            return Err(MeshError::BadSharedPlane { index: k });
+        }
+        k += 1;
+    }
+    Ok(())
+}
+
 /// Face `index` of a mesh in the shared layout.
 pub(crate) fn face_of<'c>(corners: &'c [u16], face_starts: &[u32], index: usize) -> &'c [u16] {
     let start = face_starts[index] as usize;
@@ -196,6 +260,10 @@ pub trait MeshArrays {
     fn planar_bits(&self) -> &[u32] {
         &[]
     }
+    /// Faces with a shared plane ([`Mesh::shared_planes`]).
+    fn shared_planes(&self) -> &[SharedPlane] {
+        &[]
+    }
 }
 
 impl<T: MeshArrays + ?Sized> Mesh for T {
@@ -221,6 +289,10 @@ impl<T: MeshArrays + ?Sized> Mesh for T {
             None => is_planar(self, index),
         }
     }
+
+    fn shared_planes(&self) -> &[SharedPlane] {
+        MeshArrays::shared_planes(self)
+    }
 }
 
 impl MeshArrays for StaticMesh<'_> {
@@ -238,6 +310,10 @@ impl MeshArrays for StaticMesh<'_> {
 
     fn planar_bits(&self) -> &[u32] {
         self.planar
+    }
+
+    fn shared_planes(&self) -> &[SharedPlane] {
+        self.shared
     }
 }
 
@@ -312,6 +388,27 @@ mod tests {
         let m = StaticMesh::new(&P, &[0, 1, 2, 0, 2, 3], &[0, 3]).unwrap();
         assert_eq!((m.face(0), m.face(1)), (&[0, 1, 2][..], &[0, 2, 3][..]));
         assert_eq!(m.face_count(), 2);
+    }
+
+    #[test]
+    fn shared_planes_are_checked() {
+        let m = StaticMesh::new(&P, &[0, 1, 2, 0, 2, 3], &[0, 3]).unwrap();
+        let plane = |face: u32, v: u16| SharedPlane {
+            face,
+            vertices: [0, 1, v],
+        };
+        let good = [plane(0, 2), plane(1, 3)];
+        assert_eq!(
+            Mesh::shared_planes(&m.with_shared_planes(&good).unwrap()),
+            &good
+        );
+        let bad = |list: &[SharedPlane]| m.with_shared_planes(list).err();
+        let index = |index| Some(MeshError::BadSharedPlane { index });
+        assert_eq!(bad(&[plane(1, 2), plane(0, 3)]), index(1));
+        assert_eq!(bad(&[plane(0, 2), plane(0, 3)]), index(1));
+        assert_eq!(bad(&[plane(2, 2)]), index(0));
+        assert_eq!(bad(&[plane(0, 2), plane(1, 4)]), index(1));
+        assert!(Mesh::shared_planes(&m).is_empty());
     }
 
     #[test]

@@ -15,7 +15,7 @@
 //! every target computes the same frame bit for bit.
 
 use crate::front::geometry::Vec3;
-use crate::front::mesh::{Mesh, MeshError, face_of, is_planar};
+use crate::front::mesh::{Mesh, MeshError, SharedPlane, check_shared_planes, face_of, is_planar};
 use crate::front::scene::MAX_FACE_CORNERS;
 
 /// A quantized coordinate `q` is `q / POSITION_SCALE` bounding-sphere
@@ -74,6 +74,8 @@ pub struct QuantizedMesh<'a> {
     face_starts: &'a [u32],
     /// Bit `f` set when face `f` is planar.
     planar: &'a [u32],
+    /// Faces with a shared plane, sorted by face.
+    shared: &'a [SharedPlane],
 }
 
 impl<'a> QuantizedMesh<'a> {
@@ -149,7 +151,18 @@ impl<'a> QuantizedMesh<'a> {
             corners,
             face_starts,
             planar,
+            shared: &[],
         })
+    }
+
+    /// The same mesh with faces that share planes ([`SharedPlane`]),
+    /// sorted by face. `const`, so the list is checked at compile time.
+    pub const fn with_shared_planes(self, shared: &'a [SharedPlane]) -> Result<Self, MeshError> {
+        let vertices = self.view.positions.len();
+        if let Err(e) = check_shared_planes(shared, self.face_starts.len(), vertices) {
+            return Err(e);
+        }
+        Ok(Self { shared, ..self })
     }
 
     /// The integer data.
@@ -194,6 +207,10 @@ impl Mesh for QuantizedMesh<'_> {
 
     fn quantized(&self) -> Option<QuantizedView<'_>> {
         Some(self.view)
+    }
+
+    fn shared_planes(&self) -> &[SharedPlane] {
+        self.shared
     }
 }
 

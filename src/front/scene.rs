@@ -43,7 +43,7 @@ use crate::error::Error;
 use crate::front::clip::{self, ClipPoint, ClipVertex, Clipper};
 use crate::front::fixed_point::FixedFrame;
 use crate::front::geometry::{Mat4, Vec3, Vec4, newell_normal, radians};
-use crate::front::mesh::Mesh;
+use crate::front::mesh::{Mesh, SharedPlane};
 use crate::front::quantized::{NORMAL_SCALE, QuantizedView};
 use crate::raster::fixed::MAX_POLYGON_CORNERS;
 use crate::raster::vertex::{Outline, OutlineBuilder, ScreenVertex};
@@ -349,6 +349,13 @@ pub struct DrawStats {
     /// Non-planar faces drawn as fans of triangles
     /// ([`is_planar`](crate::front::mesh::is_planar)).
     pub split: u32,
+    /// Queued polygons given the plane their face shares with others
+    /// ([`SharedPlane`]).
+    pub shared_planes: u32,
+    /// Queued polygons whose face has a shared plane they could not take
+    /// because a vertex of that plane needs clipping (behind the camera or
+    /// beyond the clipping band): they keep their own plane this frame.
+    pub unshared_planes: u32,
 }
 
 /// Where each mesh vertex went in the vertex table during one
@@ -618,6 +625,8 @@ where
         frame: &frame,
         stats: &mut stats,
         shade: &mut shade,
+        planes: mesh.shared_planes(),
+        plane: None,
     };
     for face in 0..mesh.face_count() {
         draw.face(face).map_err(|error| DrawError {
@@ -639,6 +648,10 @@ struct Draw<'a, T: ?Sized, M: ?Sized, S, const VM: usize> {
     frame: &'a Frame,
     stats: &'a mut DrawStats,
     shade: &'a mut S,
+    /// The mesh's shared planes not yet reached (sorted by face).
+    planes: &'a [SharedPlane],
+    /// The shared plane of the face being drawn, if it has one.
+    plane: Option<[u16; 3]>,
 }
 
 impl<C, T, M, S, const VM: usize> Draw<'_, T, M, S, VM>
@@ -649,6 +662,18 @@ where
     S: FnMut(&FaceInfo) -> C,
 {
     fn face(&mut self, face: usize) -> Result<(), Error> {
+        self.plane = None;
+        while let Some((first, rest)) = self.planes.split_first() {
+            match (first.face as usize).cmp(&face) {
+                core::cmp::Ordering::Less => self.planes = rest,
+                core::cmp::Ordering::Equal => {
+                    self.plane = Some(first.vertices);
+                    self.planes = rest;
+                    break;
+                }
+                core::cmp::Ordering::Greater => break,
+            }
+        }
         let corners = self.mesh.face(face);
         if corners.len() > MAX_FACE_CORNERS {
             return Err(Error::TooManyCorners);
@@ -680,7 +705,7 @@ where
                 let admission = self.tables.offer_triangle(ids, |outline| {
                     shade_front_face(frame, mesh, face, corners, outline, stats, shade)
                 })?;
-                self.count(admission);
+                self.count(admission)?;
                 return Ok(());
             }
         }
@@ -706,17 +731,33 @@ where
         let admission = self.tables.offer_polygon(ids, |outline| {
             shade_front_face(frame, mesh, face, corners, outline, stats, shade)
         })?;
-        self.count(admission);
-        Ok(())
+        self.count(admission)
     }
 
-    fn count(&mut self, admission: Admission) {
+    /// Counts what became of a polygon; a queued one whose face shares a
+    /// plane takes that plane, when its three vertices are projected.
+    fn count(&mut self, admission: Admission) -> Result<(), Error> {
+        if let (Admission::Queued(_), Some(plane)) = (admission, self.plane) {
+            let ids = [
+                self.slot(plane[0])?,
+                self.slot(plane[1])?,
+                self.slot(plane[2])?,
+            ];
+            if ids.iter().all(|&id| id < NON_FINITE) {
+                if self.tables.share_plane(ids)? {
+                    self.stats.shared_planes += 1;
+                }
+            } else {
+                self.stats.unshared_planes += 1;
+            }
+        }
         match admission {
             Admission::Queued(_) => self.stats.queued += 1,
             Admission::OffScreen => self.stats.off_screen += 1,
             Admission::Degenerate => self.stats.degenerate += 1,
             Admission::Declined => {}
         }
+        Ok(())
     }
 
     /// Looks a mesh vertex up in the cache, or transforms and classifies
@@ -892,8 +933,7 @@ where
             return Err(e);
         }
         let admission = self.tables.finish_polygon(|_| Some(color))?;
-        self.count(admission);
-        Ok(())
+        self.count(admission)
     }
 }
 

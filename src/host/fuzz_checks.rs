@@ -33,7 +33,7 @@ use crate::front::scene::{Camera, Cull, DrawError, VertexCache, draw_mesh, refer
 use crate::front::shade::Shading;
 use crate::host::host_renderer;
 use crate::host::{HostMesh, QuantizedHostMesh};
-use crate::methods::exact::check_frame;
+use crate::methods::exact::{Offered, check_frame_shared};
 use crate::raster::depth::{Depth16, Depth24, DepthFormat};
 use crate::raster::fixed::{DEPTH_MAX, GUARD_BAND, SUBPIXEL_STEPS};
 use crate::raster::vertex::ScreenVertex;
@@ -177,7 +177,10 @@ pub fn core_scene(data: &[u8]) {
     let mut bytes = Bytes(data);
     let width = 1 + u16::from(bytes.u8()) % CORE_WIDTH as u16;
     let height = 1 + u16::from(bytes.u8()) % 40;
-    let z24 = bytes.u8() % 2 == 0;
+    // Bit 0: the depth format; bit k (1 to 7): polygon k takes the plane
+    // of polygon k - 1's first three corners (a shared plane).
+    let flags = bytes.u8();
+    let z24 = flags % 2 == 0;
     let mut polygons = Vec::new();
     while !bytes.is_empty() && polygons.len() < CORE_POLYGONS {
         let corners = 3 + usize::from(bytes.u8() % 6);
@@ -190,35 +193,54 @@ pub fn core_scene(data: &[u8]) {
             .collect();
         polygons.push(poly);
     }
+    let shares = |k: usize| (1..8).contains(&k) && flags & (1 << k) != 0;
     if z24 {
-        core_check::<Depth24>(&polygons, width, height);
+        core_check::<Depth24>(&polygons, shares, width, height);
     } else {
-        core_check::<Depth16>(&polygons, width, height);
+        core_check::<Depth16>(&polygons, shares, width, height);
     }
 }
 
-fn core_check<D: DepthFormat>(polygons: &[Vec<ScreenVertex>], width: u16, height: u16)
-where
+fn core_check<D: DepthFormat>(
+    polygons: &[Vec<ScreenVertex>],
+    shares: impl Fn(usize) -> bool,
+    width: u16,
+    height: u16,
+) where
     D::Value: Into<u64>,
 {
-    // Room for every polygon: no capacity error is possible.
+    // Room for every polygon and shared plane: no capacity error is
+    // possible.
     let caps = Capacities {
         width: CORE_WIDTH,
-        vertices: 96,
+        vertices: 128,
         polygons: 12,
-        corners: 96,
+        corners: 128,
         active_polygons: 12,
         pooled_edges: 96,
     };
     let mut renderer = host_renderer::<u32, D>(&caps, width, height, 0).expect("frame size");
-    let offered: Vec<(Vec<ScreenVertex>, bool)> = polygons
+    let offered: Vec<Offered> = polygons
         .iter()
         .enumerate()
         .map(|(k, poly)| {
             let admission = renderer
                 .push_polygon_vertices(poly, k as u32 + 1)
                 .expect("the tables have room");
-            (poly.clone(), matches!(admission, Admission::Queued(_)))
+            let queued = matches!(admission, Admission::Queued(_));
+            let mut plane = None;
+            if queued && shares(k) {
+                let corners = [0, 1, 2].map(|c| polygons[k - 1][c]);
+                let ids = corners.map(|v| renderer.push_vertex(v).expect("room"));
+                if renderer.share_plane(ids).expect("just queued") {
+                    plane = Some(corners);
+                }
+            }
+            Offered {
+                corners: poly.clone(),
+                plane,
+                queued,
+            }
         })
         .collect();
     let (w, h) = (usize::from(width), usize::from(height));
@@ -237,8 +259,8 @@ where
         }))
         .expect("render");
     assert_eq!(next_row, height);
-    if let Err(e) = check_frame::<D>(&offered, w, h, &colors, &depths) {
-        panic!("{}: {e}\npolygons: {polygons:?}", D::NAME);
+    if let Err(e) = check_frame_shared::<D>(&offered, w, h, &colors, &depths) {
+        panic!("{}: {e}\npolygons: {offered:?}", D::NAME);
     }
 }
 

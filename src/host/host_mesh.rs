@@ -2,7 +2,7 @@
 
 use std::vec::Vec;
 
-use crate::front::mesh::MeshArrays;
+use crate::front::mesh::{MeshArrays, SharedPlane};
 use crate::front::obj::{ObjError, ObjReader, Statement};
 use crate::front::scene::MAX_FACE_CORNERS;
 
@@ -16,11 +16,15 @@ pub struct HostMesh {
     pub corners: Vec<u16>,
     /// Where each face starts in `corners`.
     pub face_starts: Vec<u32>,
+    /// Faces that share a plane with overlapping coplanar faces, sorted by
+    /// face ([`crate::host::coplanar`]); [`Self::from_obj`] finds them.
+    pub shared_planes: Vec<SharedPlane>,
 }
 
 impl HostMesh {
     /// Reads an OBJ file with the no_std reader (faces of up to
-    /// [`MAX_FACE_CORNERS`] corners, all the pipeline draws).
+    /// [`MAX_FACE_CORNERS`] corners, all the pipeline draws), and finds
+    /// its overlapping coplanar faces ([`Self::with_shared_planes`]).
     pub fn from_obj(bytes: &[u8]) -> Result<Self, ObjError> {
         let mut mesh = Self::default();
         for statement in ObjReader::<MAX_FACE_CORNERS>::new(bytes) {
@@ -33,7 +37,15 @@ impl HostMesh {
                 Statement::Other(_) => {}
             }
         }
-        Ok(mesh)
+        Ok(mesh.with_shared_planes())
+    }
+
+    /// The mesh with its overlapping coplanar faces found again
+    /// ([`crate::host::coplanar::shared_planes`]): call it after changing
+    /// positions or faces.
+    pub fn with_shared_planes(mut self) -> Self {
+        self.shared_planes = crate::host::coplanar::shared_planes(&self);
+        self
     }
 }
 
@@ -48,5 +60,9 @@ impl MeshArrays for HostMesh {
 
     fn face_starts(&self) -> &[u32] {
         &self.face_starts
+    }
+
+    fn shared_planes(&self) -> &[SharedPlane] {
+        &self.shared_planes
     }
 }

@@ -4,6 +4,7 @@
 //! rendering method and none is needed on a microcontroller.
 
 mod cli;
+pub mod coplanar;
 pub mod fuzz_checks;
 mod host_mesh;
 mod machine;

@@ -3,7 +3,7 @@
 //! `Vec`s and lent out as a [`QuantizedMesh`].
 
 use crate::error::Error;
-use crate::front::mesh::{Mesh, MeshError, planar_face_bits};
+use crate::front::mesh::{Mesh, MeshError, SharedPlane, planar_face_bits};
 use crate::front::quantized::{QuantizedMesh, quantize_normal, quantize_position};
 use crate::front::scene::bounding_sphere;
 use crate::host::HostMesh;
@@ -26,6 +26,8 @@ pub struct QuantizedHostMesh {
     pub centre: [f32; 3],
     /// Its radius (1 for a mesh of one point).
     pub radius: f32,
+    /// The original mesh's shared planes (quantizing keeps the vertices).
+    pub shared_planes: Vec<SharedPlane>,
 }
 
 impl QuantizedHostMesh {
@@ -62,6 +64,7 @@ impl QuantizedHostMesh {
             planar: planar_face_bits(mesh).collect(),
             centre: [centre.x, centre.y, centre.z],
             radius,
+            shared_planes: mesh.shared_planes.clone(),
         })
     }
 
@@ -75,6 +78,7 @@ impl QuantizedHostMesh {
             &self.planar,
             self.centre,
             self.radius,
-        )
+        )?
+        .with_shared_planes(&self.shared_planes)
     }
 }

@@ -6,7 +6,7 @@ use std::format;
 use std::string::{String, ToString};
 use std::vec::Vec;
 
-use crate::front::mesh::planar_face_bits;
+use crate::front::mesh::{SharedPlane, planar_face_bits};
 use crate::host::{HostMesh, QuantizedHostMesh};
 
 /// Rust source defining `pub static NAME: zline::front::mesh::StaticMesh<'static>`
@@ -22,6 +22,7 @@ pub fn static_mesh_source(mesh: &HostMesh, name: &str, origin: &str) -> Result<S
         positions,
         corners,
         face_starts,
+        shared_planes,
     } = mesh;
     let mut out = String::new();
     let _ = writeln!(
@@ -60,13 +61,16 @@ pub fn static_mesh_source(mesh: &HostMesh, name: &str, origin: &str) -> Result<S
         planar.len(),
         rows(&planar, 8, |b| format!("0x{b:08X}"))
     );
+    shared_planes_source(&mut out, name, shared_planes);
     let _ = writeln!(
         out,
         "/// Mesh from {origin}, checked at compile time.\n\
          pub static {name}: zline::front::mesh::StaticMesh<'static> = match zline::front::mesh::StaticMesh::new(\n    \
          &{name}_POSITIONS,\n    &{name}_CORNERS,\n    &{name}_FACE_STARTS,\n) {{\n    \
          Ok(mesh) => match mesh.with_planar_faces(&{name}_PLANAR) {{\n        \
-         Ok(mesh) => mesh,\n        Err(_) => panic!(\"{name}: invalid planarity bits\"),\n    }},\n    \
+         Ok(mesh) => match mesh.with_shared_planes(&{name}_SHARED) {{\n            \
+         Ok(mesh) => mesh,\n            Err(_) => panic!(\"{name}: invalid shared planes\"),\n        }},\n        \
+         Err(_) => panic!(\"{name}: invalid planarity bits\"),\n    }},\n    \
          Err(_) => panic!(\"{name}: invalid mesh\"),\n}};"
     );
     Ok(out)
@@ -123,16 +127,33 @@ pub fn quantized_mesh_source(mesh: &HostMesh, name: &str, origin: &str) -> Resul
         q.planar.len(),
         rows(&q.planar, 8, |b| format!("0x{b:08X}"))
     );
+    shared_planes_source(&mut out, name, &q.shared_planes);
     let _ = writeln!(
         out,
         "/// Mesh from {origin}, quantized, checked at compile time.\n\
          pub static {name}: zline::front::quantized::QuantizedMesh<'static> = match zline::front::quantized::QuantizedMesh::new(\n    \
          &{name}_POSITIONS,\n    &{name}_NORMALS,\n    &{name}_CORNERS,\n    &{name}_FACE_STARTS,\n    &{name}_PLANAR,\n    \
          [{:?}, {:?}, {:?}],\n    {:?},\n) {{\n    \
-         Ok(mesh) => mesh,\n    Err(_) => panic!(\"{name}: invalid mesh\"),\n}};",
+         Ok(mesh) => match mesh.with_shared_planes(&{name}_SHARED) {{\n        \
+         Ok(mesh) => mesh,\n        Err(_) => panic!(\"{name}: invalid shared planes\"),\n    }},\n    \
+         Err(_) => panic!(\"{name}: invalid mesh\"),\n}};",
         q.centre[0], q.centre[1], q.centre[2], q.radius
     );
     Ok(out)
+}
+
+/// The static `NAME_SHARED`: the mesh's shared planes.
+fn shared_planes_source(out: &mut String, name: &str, shared: &[SharedPlane]) {
+    let _ = writeln!(
+        out,
+        "// Faces that share one plane with overlapping coplanar faces.\n\
+         static {name}_SHARED: [zline::front::mesh::SharedPlane; {}] = [\n{}];\n",
+        shared.len(),
+        rows(shared, 1, |p| format!(
+            "zline::front::mesh::SharedPlane {{ face: {}, vertices: [{}, {}, {}] }}",
+            p.face, p.vertices[0], p.vertices[1], p.vertices[2]
+        ))
+    );
 }
 
 /// Rust's strict and reserved keywords (edition 2024): none can name a

@@ -125,7 +125,7 @@ impl Builder {
     }
 
     fn done(self) -> Result<HostMesh, String> {
-        Ok(self.0)
+        Ok(self.0.with_shared_planes())
     }
 }
 
@@ -746,13 +746,22 @@ pub fn coplanar_views() -> impl Iterator<Item = (f32, f32)> {
 /// How a method keeps the coplanar case's tie over the sequence: per
 /// frame, the pixels where face 0 (added first) covers the sample but a
 /// later coplanar face is drawn, and face 0's pixels. Each frame is drawn
-/// twice and must come out the same (`Err` otherwise).
-pub fn coplanar_losses(method: Method, z24: bool) -> Result<Vec<(usize, usize)>, String> {
+/// twice and must come out the same (`Err` otherwise). With `shared`, the
+/// faces share their plane (as the mesh finds them); without, each face's
+/// plane comes from its own rounded corners.
+pub fn coplanar_losses(
+    method: Method,
+    z24: bool,
+    shared: bool,
+) -> Result<Vec<(usize, usize)>, String> {
     let case = cases()
         .into_iter()
         .find(|c| c.name == "coplanar")
         .ok_or("no coplanar case")?;
-    let mesh = case.mesh?;
+    let mut mesh = case.mesh?;
+    if !shared {
+        mesh.shared_planes.clear();
+    }
     let first = only_faces(&mesh, &[0]);
     coplanar_views()
         .map(|view| {

@@ -93,6 +93,29 @@ pub fn format_scale<D: DepthFormat>() -> (i128, i128) {
     }
 }
 
+/// A polygon offered to the tables, as the oracle sees it.
+#[derive(Debug, Clone)]
+pub struct Offered {
+    /// Its corners.
+    pub corners: Vec<ScreenVertex>,
+    /// The three corners of the plane it shares, if it was given one
+    /// ([`Tables::share_plane`](crate::raster::Tables::share_plane)).
+    pub plane: Option<[ScreenVertex; 3]>,
+    /// Whether it was queued.
+    pub queued: bool,
+}
+
+impl Offered {
+    /// The exact depth of its plane (the shared one, if any) at pixel
+    /// `(i, j)`, as [`exact_depth`].
+    pub fn depth(&self, i: i32, j: i32) -> (i128, i128) {
+        match &self.plane {
+            Some(plane) => exact_depth(plane, i, j),
+            None => exact_depth(&self.corners, i, j),
+        }
+    }
+}
+
 /// Checks a rendered frame against a brute-force exact z-buffer.
 ///
 /// `polygons` are the scene's polygons in the order they were offered, with
@@ -111,8 +134,38 @@ pub fn check_frame<D: DepthFormat>(
     colors: &[u32],
     depths: &[u64],
 ) -> Result<(), String> {
+    let offered: Vec<Offered> = polygons
+        .iter()
+        .map(|(corners, queued)| Offered {
+            corners: corners.clone(),
+            plane: None,
+            queued: *queued,
+        })
+        .collect();
+    check_frame_shared::<D>(&offered, width, height, colors, depths)
+}
+
+/// [`check_frame`] for polygons that may share planes: a polygon's depth
+/// is its shared plane's, and where polygons of one shared plane cover a
+/// pixel, a later one of them is never drawn over the first (their depths
+/// are equal exactly, so the first added wins unless another is nearer).
+pub fn check_frame_shared<D: DepthFormat>(
+    polygons: &[Offered],
+    width: usize,
+    height: usize,
+    colors: &[u32],
+    depths: &[u64],
+) -> Result<(), String> {
     let (lsb, max) = format_scale::<D>();
-    for (k, (poly, queued)) in polygons.iter().enumerate() {
+    for (
+        k,
+        Offered {
+            corners: poly,
+            queued,
+            ..
+        },
+    ) in polygons.iter().enumerate()
+    {
         if *queued {
             continue;
         }
@@ -133,9 +186,9 @@ pub fn check_frame<D: DepthFormat>(
             let candidates: Vec<(i128, u32)> = polygons
                 .iter()
                 .enumerate()
-                .filter(|(_, (poly, queued))| *queued && covers(poly, i, j))
-                .map(|(k, (poly, _))| {
-                    let (num, den) = exact_depth(poly, i, j);
+                .filter(|(_, p)| p.queued && covers(&p.corners, i, j))
+                .map(|(k, p)| {
+                    let (num, den) = p.depth(i, j);
                     (exactly_rounded(num, den, lsb, max), k as u32 + 1)
                 })
                 .collect();
@@ -159,6 +212,18 @@ pub fn check_frame<D: DepthFormat>(
                 return Err(format!(
                     "({i}, {j}) drew {drawn} at depth {}, but the nearest is at {best}: {candidates:?}",
                     hit.0
+                ));
+            }
+            let drawn_plane = polygons[drawn as usize - 1].plane;
+            let earlier_same_plane = candidates.iter().find(|c| {
+                c.1 < drawn
+                    && drawn_plane.is_some()
+                    && polygons[c.1 as usize - 1].plane == drawn_plane
+            });
+            if let Some(first) = earlier_same_plane {
+                return Err(format!(
+                    "({i}, {j}) drew {drawn} over {}, added earlier on the same shared plane",
+                    first.1
                 ));
             }
             if (stored - hit.0).abs() > 1 {

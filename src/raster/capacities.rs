@@ -192,6 +192,12 @@ impl<T: TableStorage, S: ScanStorage<Color = T::Color>> Renderer<T, S> {
         self.tables.push_polygon_vertices(corners, color)
     }
 
+    /// Gives the polygon queued by the call just before a plane shared
+    /// with other polygons; see [`Tables::share_plane`].
+    pub fn share_plane(&mut self, plane: [u16; 3]) -> Result<bool, Error> {
+        self.tables.share_plane(plane)
+    }
+
     /// Prepares the tables and scans every row into `sink`, one call per
     /// row. The tables are kept, so the same scene can be rendered again.
     pub fn render<K>(&mut self, sink: &mut K) -> Result<FrameStats, RenderError<K::Error>>
@@ -281,6 +287,10 @@ impl<T: TableStorage, S: ScanStorage<Color = T::Color>> PolygonTables<T::Color> 
         decide: impl FnOnce(&Outline) -> Option<T::Color>,
     ) -> Result<Admission, Error> {
         self.tables.offer_triangle(corners, decide)
+    }
+
+    fn share_plane(&mut self, plane: [u16; 3]) -> Result<bool, Error> {
+        self.tables.share_plane(plane)
     }
 
     fn begin_polygon(&mut self) {

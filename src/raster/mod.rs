@@ -88,6 +88,9 @@ pub trait PolygonTables<C> {
     ) -> Result<Admission, Error> {
         self.offer_polygon(corners, decide)
     }
+    /// Gives the polygon queued by the call just before the depth plane
+    /// through three vertices; see [`Tables::share_plane`].
+    fn share_plane(&mut self, plane: [u16; 3]) -> Result<bool, Error>;
     /// Opens a new polygon, dropping any polygon left open.
     fn begin_polygon(&mut self);
     /// Drops the open polygon, if any: its corners and the vertices added

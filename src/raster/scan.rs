@@ -22,7 +22,7 @@
 use core::ops::Range;
 
 use crate::error::{Error, RenderError};
-use crate::raster::active::{ActivePolygon, EdgePool, NO_EDGE, NO_ROW, SpanDepth};
+use crate::raster::active::{ActivePolygon, EdgePool, NO_EDGE, NO_ROW, SpanDepth, Stepping};
 use crate::raster::depth::{DepthFormat, IN_RANGE};
 use crate::raster::edge::ActiveEdge;
 use crate::raster::fixed::first_sample_at_or_after;
@@ -430,8 +430,18 @@ pub(crate) fn row_plane<C>(
     row: u16,
 ) -> Option<RowPlane> {
     let polygon = &tables.polygons[position];
+    if let Some(plane) = shared_plane_of(polygon, tables.corners, tables.vertices) {
+        return Some(
+            match shared_depth(&plane, tables.width, tables.height, row) {
+                SpanDepth::Stepped {
+                    dz_dx, row_value, ..
+                } => RowPlane::Stepped { dz_dx, row_value },
+                SpanDepth::Exact => RowPlane::Exact(plane),
+            },
+        );
+    }
     let corners = || entry_corners(polygon, tables.corners, tables.vertices);
-    if polygon.corner_count == 3 {
+    if polygon.corner_count() == 3 {
         let mut c = corners();
         let (a, b, cc) = (c.next()?, c.next()?, c.next()?);
         if let Some(plane) = TrianglePlane::new(a, b, cc) {
@@ -449,6 +459,47 @@ pub(crate) fn row_plane<C>(
         },
         None => RowPlane::Exact(plane),
     })
+}
+
+/// The plane of a polygon that shares one
+/// ([`Tables::share_plane`](crate::raster::Tables::share_plane)): the
+/// triangle of the three corners after its own.
+#[inline]
+fn shared_plane_of<C>(
+    polygon: &PolygonEntry<C>,
+    corners: &[u16],
+    vertices: &[ScreenVertex],
+) -> Option<Plane> {
+    let start = polygon.shared_plane()?;
+    let corner = |k: usize| vertices[usize::from(corners[start + k])];
+    Plane::triangle(corner(0), corner(1), corner(2))
+}
+
+/// The exact plane a polygon's depth comes from: the shared one, or
+/// Newell's over its own corners.
+fn polygon_plane<C>(
+    polygon: &PolygonEntry<C>,
+    corners: &[u16],
+    vertices: &[ScreenVertex],
+) -> Option<Plane> {
+    shared_plane_of(polygon, corners, vertices)
+        .or_else(|| Plane::new(entry_corners(polygon, corners, vertices)))
+}
+
+/// The depth set-up of a shared plane on `row`: stepped from the plane's
+/// own anchor ([`Plane::anchor_row`]) and rounded pixel by pixel, so that
+/// every polygon sharing the plane stores the same depth at a pixel,
+/// whatever its corners and spans; exact per pixel when steep.
+fn shared_depth(plane: &Plane, width: u16, height: u16, row: u16) -> SpanDepth {
+    match plane.gradients() {
+        Some(gradients) => SpanDepth::Stepped {
+            dz_dx: gradients.0,
+            dz_dy: gradients.1,
+            row_value: plane.row_start(gradients, width, plane.anchor_row(height), row),
+            stepping: Stepping::RoundEachPixel,
+        },
+        None => SpanDepth::Exact,
+    }
 }
 
 /// How a covered pixel is written.
@@ -541,25 +592,14 @@ impl<C: Copy> ScanState<'_, '_, C> {
         rows: &mut RowBuffers<'_, C, D>,
     ) -> Result<(), Error> {
         let polygon = self.tables.polygons[position];
-        if polygon.corner_count == 3 {
+        if polygon.corner_count() == 3 {
             return self.activate_triangle(position, row, rows);
         }
-        let depth = match Plane::new(self.corners(position)).map(|p| (p, p.gradients())) {
-            Some((plane, Some((dz_dx, dz_dy)))) => SpanDepth::Stepped {
-                dz_dx,
-                dz_dy,
-                row_value: plane.row_start(
-                    (dz_dx, dz_dy),
-                    self.tables.width,
-                    polygon.first_row,
-                    row,
-                ),
-                // A polygon's plane is Newell's fit: its corners may lie
-                // off it, so its range is checked span by span.
-                accumulator: None,
-            },
-            // Non-zero area was checked when the polygon entered the table.
-            Some((_, None)) | None => SpanDepth::Exact,
+        let (corners, vertices) = (self.tables.corners, self.tables.vertices);
+        let shared = shared_plane_of(&polygon, corners, vertices);
+        let depth = match shared.map(|p| (p, p.gradients())) {
+            Some((plane, _)) => shared_depth(&plane, self.tables.width, self.tables.height, row),
+            None => self.own_depth(position, row),
         };
         let entry = ActivePolygon::new(
             position as u32,
@@ -573,6 +613,29 @@ impl<C: Copy> ScanState<'_, '_, C> {
             .map_err(|_| Error::ActivePolygonsFull { row })?;
         let slot = self.active.len() - 1;
         self.activate_edges(slot, row, true)
+    }
+
+    /// The depth set-up of a polygon of four or more corners on its own
+    /// plane (Newell's).
+    fn own_depth(&self, position: usize, row: u16) -> SpanDepth {
+        let polygon = &self.tables.polygons[position];
+        match Plane::new(self.corners(position)).map(|p| (p, p.gradients())) {
+            Some((plane, Some((dz_dx, dz_dy)))) => SpanDepth::Stepped {
+                dz_dx,
+                dz_dy,
+                row_value: plane.row_start(
+                    (dz_dx, dz_dy),
+                    self.tables.width,
+                    polygon.first_row,
+                    row,
+                ),
+                // A polygon's plane is Newell's fit: its corners may lie
+                // off it, so its range is checked span by span.
+                stepping: Stepping::CheckEachSpan,
+            },
+            // Non-zero area was checked when the polygon entered the table.
+            Some((_, None)) | None => SpanDepth::Exact,
+        }
     }
 
     /// [`Self::activate_polygon`] for a triangle: its corners sorted by y,
@@ -591,7 +654,11 @@ impl<C: Copy> ScanState<'_, '_, C> {
         let (corners, vertices) = (self.tables.corners, self.tables.vertices);
         let ids = [corners[start], corners[start + 1], corners[start + 2]];
         let [a, b, c] = ids.map(|id| vertices[usize::from(id)]);
-        if polygon.end_row == row + 1 && self.draw_tiny_row(a, b, c, &polygon, row, rows) {
+        let shared = shared_plane_of(&polygon, corners, vertices);
+        if shared.is_none()
+            && polygon.end_row == row + 1
+            && self.draw_tiny_row(a, b, c, &polygon, row, rows)
+        {
             return Ok(());
         }
         // The plane passes through the corners: in range when they are
@@ -601,22 +668,34 @@ impl<C: Copy> ScanState<'_, '_, C> {
             dz_dx,
             dz_dy,
             row_value,
-            accumulator: in_range.then(|| D::accumulator_step(dz_dx)).flatten(),
+            stepping: match in_range.then(|| D::accumulator_step(dz_dx)).flatten() {
+                Some(step) => Stepping::Accumulate(step),
+                None => Stepping::CheckEachSpan,
+            },
         };
-        let depth = match TrianglePlane::new(a, b, c) {
-            // The common case: two exact divisions per gradient.
-            Some(plane) => stepped(plane.dz_dx, plane.dz_dy, plane.row_start(row)),
-            // Large (256 px or more) or steep: the general plane.
-            None => match Plane::triangle(a, b, c) {
-                Some(plane) => match plane.gradients() {
-                    Some((dz_dx, dz_dy)) => stepped(
-                        dz_dx,
-                        dz_dy,
-                        plane.row_start((dz_dx, dz_dy), self.tables.width, polygon.first_row, row),
-                    ),
-                    None => SpanDepth::Exact,
+        let own = || TrianglePlane::new(a, b, c);
+        let depth = match shared {
+            Some(plane) => shared_depth(&plane, self.tables.width, self.tables.height, row),
+            None => match own() {
+                // The common case: two exact divisions per gradient.
+                Some(plane) => stepped(plane.dz_dx, plane.dz_dy, plane.row_start(row)),
+                // Large (256 px or more) or steep: the general plane.
+                None => match Plane::triangle(a, b, c) {
+                    Some(plane) => match plane.gradients() {
+                        Some((dz_dx, dz_dy)) => stepped(
+                            dz_dx,
+                            dz_dy,
+                            plane.row_start(
+                                (dz_dx, dz_dy),
+                                self.tables.width,
+                                polygon.first_row,
+                                row,
+                            ),
+                        ),
+                        None => SpanDepth::Exact,
+                    },
+                    None => return Ok(()), // Zero area was left out when it was queued.
                 },
-                None => return Ok(()), // Zero area was left out when it was queued.
             },
         };
         let [(_, top), (mid_id, mid), (bot_id, bot)] =
@@ -832,17 +911,17 @@ pub(crate) fn fill_and_step<C: Copy, D: DepthFormat>(
         SpanDepth::Stepped {
             dz_dx,
             row_value,
-            accumulator,
+            stepping,
             ..
         } => SpanSource::Stepped {
             dz_dx,
             row_value,
-            accumulator,
+            stepping,
         },
         SpanDepth::Exact => {
             // Edge-on: the plane, exactly, at each pixel (rare).
             let entry = &tables.polygons[polygon.position as usize];
-            match Plane::new(entry_corners(entry, tables.corners, tables.vertices)) {
+            match polygon_plane(entry, tables.corners, tables.vertices) {
                 Some(plane) => SpanSource::Exact(plane, row),
                 None => return false,
             }
@@ -856,7 +935,7 @@ pub(crate) fn fill_and_step<C: Copy, D: DepthFormat>(
             SpanSource::Stepped {
                 dz_dx,
                 row_value,
-                accumulator: Some(step),
+                stepping: Stepping::Accumulate(step),
             } => rows.fill_in_range(start, end, key, color, row_value, dz_dx, step),
             _ => rows.fill(start, end, key, color, &source),
         };
@@ -928,7 +1007,7 @@ pub(crate) fn entry_corners<'a, C>(
     vertices: &'a [ScreenVertex],
 ) -> impl Iterator<Item = ScreenVertex> + Clone + 'a {
     let start = polygon.corner_start as usize;
-    corners[start..start + usize::from(polygon.corner_count)]
+    corners[start..start + polygon.corner_count()]
         .iter()
         .map(move |&i| vertices[usize::from(i)])
 }
@@ -943,12 +1022,12 @@ const SHORT_SPAN: u32 = 4;
 
 /// Where a span's depths come from.
 enum SpanSource {
-    /// From the row's plane value at column 0 and the gradient; with the
-    /// accumulator step when the polygon is known to stay in range.
+    /// From the row's plane value at column 0 and the gradient, turned
+    /// into stored depths as `stepping` says.
     Stepped {
         dz_dx: i64,
         row_value: i64,
-        accumulator: Option<i64>,
+        stepping: Stepping,
     },
     /// Exactly from the plane, at each pixel of the row.
     Exact(Plane, u16),
@@ -989,7 +1068,7 @@ fn fill_span<C: Copy, D: DepthFormat, const MODE: u8>(
         SpanSource::Stepped {
             dz_dx,
             row_value,
-            accumulator: Some(step),
+            stepping: Stepping::Accumulate(step),
         } => {
             // In range (checked once per polygon): the accumulator, with
             // no range check and no rounding per pixel.
@@ -997,6 +1076,20 @@ fn fill_span<C: Copy, D: DepthFormat, const MODE: u8>(
             for ((stored, stored_key), pixel) in pixels {
                 write(D::value(acc), stored, stored_key, pixel);
                 acc = D::advance(acc, step);
+            }
+        }
+        SpanSource::Stepped {
+            dz_dx,
+            row_value,
+            stepping: Stepping::RoundEachPixel,
+        } => {
+            // A shared plane: every pixel's value rounded on its own, so
+            // the depth never depends on where the span starts. |dz_dx| <
+            // 2^40, x0 < 2^12, |row_value| < 2^57: no overflow.
+            let mut value = row_value + dz_dx * i64::from(x0);
+            for ((stored, stored_key), pixel) in pixels {
+                write(D::quantize(value), stored, stored_key, pixel);
+                value += dz_dx;
             }
         }
         SpanSource::Stepped {

@@ -29,8 +29,9 @@ use crate::raster::vertex::{Outline, OutlineBuilder, ScreenRect, ScreenVertex, T
 pub struct PolygonEntry<C> {
     /// First corner in the corner list.
     pub(crate) corner_start: u32,
-    /// Number of corners.
-    pub(crate) corner_count: u16,
+    /// Number of corners, and [`SHARED_PLANE`] when three more corners
+    /// after them name the plane the polygon's depth comes from.
+    pub(crate) corner_field: u16,
     /// First visible row (the bucket).
     pub(crate) first_row: u16,
     /// One past the last visible row.
@@ -45,7 +46,7 @@ impl<C: Copy> PolygonEntry<C> {
     pub const fn filler(color: C) -> Self {
         Self {
             corner_start: 0,
-            corner_count: 0,
+            corner_field: 0,
             first_row: 0,
             end_row: 0,
             id: 0,
@@ -53,6 +54,29 @@ impl<C: Copy> PolygonEntry<C> {
         }
     }
 }
+
+impl<C> PolygonEntry<C> {
+    /// Number of the polygon's own corners.
+    #[inline(always)]
+    pub(crate) fn corner_count(&self) -> usize {
+        usize::from(self.corner_field & !SHARED_PLANE)
+    }
+
+    /// Where the three corners of the plane the polygon shares start in
+    /// the corner list (right after its own corners), if it shares one
+    /// ([`Tables::share_plane`]).
+    #[inline(always)]
+    pub(crate) fn shared_plane(&self) -> Option<usize> {
+        (self.corner_field & SHARED_PLANE != 0)
+            .then(|| self.corner_start as usize + self.corner_count())
+    }
+}
+
+/// Bit of [`PolygonEntry::corner_field`] set when the polygon's depth
+/// comes from a shared plane (polygons have at most
+/// [`MAX_POLYGON_CORNERS`] `< 2^15` corners, so the bit is free).
+const SHARED_PLANE: u16 = 1 << 15;
+const _: () = assert!(MAX_POLYGON_CORNERS < SHARED_PLANE as usize);
 
 /// An edge-table entry (opaque): 4 bytes holding a row and a polygon's
 /// position.
@@ -175,6 +199,9 @@ struct Counts {
     /// The PT is sorted and the ET built for the polygons now queued.
     prepared: bool,
     next_id: u32,
+    /// The polygon queued last was the last thing offered: it may still
+    /// be given a shared plane.
+    shareable: bool,
     off_screen: u32,
     degenerate: u32,
 }
@@ -253,6 +280,7 @@ impl<S: TableStorage> Tables<S> {
                     open_polygon: None,
                     prepared: false,
                     next_id: 0,
+                    shareable: false,
                     off_screen: 0,
                     degenerate: 0,
                 },
@@ -298,6 +326,7 @@ impl<S: TableStorage> Tables<S> {
         counts.committed_corners = 0;
         counts.open_polygon = None;
         counts.prepared = false;
+        counts.shareable = false;
         (counts.next_id, counts.off_screen, counts.degenerate) = (0, 0, 0);
     }
 
@@ -396,6 +425,23 @@ impl<S: TableStorage> Tables<S> {
         t.finish_polygon(|_| Some(color))
     }
 
+    /// Gives the polygon queued last (by the call just before: nothing
+    /// offered since) the depth plane through the vertices `plane` instead
+    /// of its own. Polygons given one plane hold exactly the same depth at
+    /// every pixel, in every method and depth format, so where they overlap
+    /// the one added first wins, on every frame and from every camera:
+    /// this is how coplanar faces (decals, double-sided cards, overlapping
+    /// faces of one plane) keep a steady winner, which planes computed from
+    /// each face's own rounded corners cannot promise. The three corners
+    /// take room in the corner list.
+    ///
+    /// `Ok(false)`, with nothing changed, when the three vertices have no
+    /// projected area (the plane is edge-on): the polygon keeps its own.
+    /// `Err(NoPolygonToShare)` when the last thing offered was not queued.
+    pub fn share_plane(&mut self, plane: [u16; 3]) -> Result<bool, Error> {
+        self.view().share_plane(plane)
+    }
+
     /// Offers a polygon by an iterator of vertex indices; see
     /// [`PolygonTables::offer_polygon`].
     pub fn offer_polygon<I>(
@@ -419,6 +465,7 @@ impl<S: TableStorage> Tables<S> {
         decide: impl FnOnce(&Outline) -> Option<S::Color>,
     ) -> Result<Admission, Error> {
         let st = &mut self.state;
+        st.counts.shareable = false;
         if st.counts.open_polygon.is_some() || st.corners != st.counts.committed_corners {
             self.view().discard_polygon();
         }
@@ -477,7 +524,7 @@ impl<S: TableStorage> Tables<S> {
         slots.copy_from_slice(&ids);
         *entry = PolygonEntry {
             corner_start: st.corners as u32,
-            corner_count: 3,
+            corner_field: 3,
             first_row: rows.start,
             end_row: rows.end,
             id: st.counts.next_id,
@@ -487,6 +534,7 @@ impl<S: TableStorage> Tables<S> {
         st.corners += 3;
         st.counts.committed_corners = st.corners;
         st.counts.prepared = false;
+        st.counts.shareable = true;
         st.counts.next_id += 1;
         Ok(Admission::Queued(st.counts.next_id - 1))
     }
@@ -501,6 +549,7 @@ impl<S: TableStorage> Tables<S> {
         {
             let mut t = self.view();
             t.discard_polygon();
+            t.counts.shareable = false;
             if !t.counts.prepared {
                 t.sort_polygons();
                 t.build_edge_table();
@@ -587,6 +636,10 @@ impl<S: TableStorage> PolygonTables<S::Color> for Tables<S> {
         Tables::offer_triangle(self, corners, decide)
     }
 
+    fn share_plane(&mut self, plane: [u16; 3]) -> Result<bool, Error> {
+        Tables::share_plane(self, plane)
+    }
+
     fn begin_polygon(&mut self) {
         self.view().begin_polygon();
     }
@@ -623,6 +676,7 @@ impl<C: Copy> TablesMut<'_, C> {
         decide: impl FnOnce(&Outline) -> Option<C>,
     ) -> Result<Admission, Error> {
         self.discard_polygon();
+        self.counts.shareable = false;
         let mut outline = OutlineBuilder::default();
         let vertices = self.vertices.as_slice();
         for index in corners.clone() {
@@ -660,6 +714,7 @@ impl<C: Copy> TablesMut<'_, C> {
         ids: [u16; 3],
         decide: impl FnOnce(&Outline) -> Option<C>,
     ) -> Result<Admission, Error> {
+        self.counts.shareable = false;
         if self.counts.open_polygon.is_some() || self.corners.len() != self.counts.committed_corners
         {
             self.discard_polygon();
@@ -740,7 +795,7 @@ impl<C: Copy> TablesMut<'_, C> {
     fn queue(&mut self, start: usize, count: usize, rows: (u16, u16), color: C) -> Admission {
         let entry = PolygonEntry {
             corner_start: start as u32,
-            corner_count: count as u16,
+            corner_field: count as u16,
             first_row: rows.0,
             end_row: rows.1,
             id: self.counts.next_id,
@@ -754,12 +809,47 @@ impl<C: Copy> TablesMut<'_, C> {
         self.counts.committed_corners = self.corners.len();
         self.counts.open_polygon = None;
         self.counts.prepared = false;
+        self.counts.shareable = true;
         self.counts.next_id += 1;
         Admission::Queued(self.counts.next_id - 1)
     }
 
+    fn share_plane(&mut self, plane: [u16; 3]) -> Result<bool, Error> {
+        let last = self.polygons.len().checked_sub(1);
+        if !self.counts.shareable || self.corners.len() != self.counts.committed_corners {
+            return Err(Error::NoPolygonToShare);
+        }
+        let Some(last) = last else {
+            return Err(Error::NoPolygonToShare);
+        };
+        let vertices = self.vertices.as_slice();
+        let vertex = |k: usize| vertices.get(usize::from(plane[k])).copied();
+        let (Some(a), Some(b), Some(c)) = (vertex(0), vertex(1), vertex(2)) else {
+            return Err(Error::VertexOutOfRange);
+        };
+        // Twice the projected area, as the triangle's plane computes it:
+        // below 2^45 inside the guard band.
+        let twice_area = (i64::from(b.x) - i64::from(a.x)) * (i64::from(c.y) - i64::from(a.y))
+            - (i64::from(b.y) - i64::from(a.y)) * (i64::from(c.x) - i64::from(a.x));
+        if twice_area == 0 {
+            return Ok(false);
+        }
+        if self.corners.room() < 3 {
+            return Err(Error::EdgeTableFull);
+        }
+        for id in plane {
+            // Room was checked above.
+            self.corners.push(id).map_err(|_| Error::EdgeTableFull)?;
+        }
+        self.counts.committed_corners = self.corners.len();
+        self.counts.shareable = false;
+        self.polygons.as_mut_slice()[last].corner_field |= SHARED_PLANE;
+        Ok(true)
+    }
+
     fn begin_polygon(&mut self) {
         self.discard_polygon();
+        self.counts.shareable = false;
         self.counts.open_polygon = Some(self.vertices.len());
     }
 
@@ -780,6 +870,7 @@ impl<C: Copy> TablesMut<'_, C> {
         if self.counts.open_polygon.is_none() {
             self.counts.open_polygon = Some(self.vertices.len());
         }
+        self.counts.shareable = false;
         self.corners.push(vertex).map_err(|_| Error::EdgeTableFull)
     }
 
@@ -787,6 +878,7 @@ impl<C: Copy> TablesMut<'_, C> {
         &mut self,
         decide: impl FnOnce(&Outline) -> Option<C>,
     ) -> Result<Admission, Error> {
+        self.counts.shareable = false;
         let start = self.counts.committed_corners;
         let mut outline = OutlineBuilder::default();
         let vertices = self.vertices.as_slice();
@@ -863,11 +955,11 @@ impl<C: Copy> TablesMut<'_, C> {
         let capacity = self.edges.capacity();
         let edges = self.edges.all_mut();
         for (position, polygon) in self.polygons.as_slice().iter().enumerate() {
-            if polygon.corner_count <= 3 {
+            if polygon.corner_count() <= 3 {
                 continue;
             }
             let start = polygon.corner_start as usize;
-            let ring = &corners[start..start + usize::from(polygon.corner_count)];
+            let ring = &corners[start..start + polygon.corner_count()];
             for (k, &a) in ring.iter().enumerate() {
                 let b = ring[(k + 1) % ring.len()];
                 let (a, b) = (vertices[usize::from(a)], vertices[usize::from(b)]);

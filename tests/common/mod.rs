@@ -97,6 +97,8 @@ pub struct Recorder {
     pub height: u16,
     pub vertices: Vec<zline::ScreenVertex>,
     pub polygons: Vec<(Vec<zline::ScreenVertex>, u32)>,
+    /// Shared planes given: (polygon index, the plane's three corners).
+    pub shared_planes: Vec<(usize, [zline::ScreenVertex; 3])>,
     open: Vec<u16>,
     mark: Option<usize>,
 }
@@ -108,6 +110,7 @@ impl Recorder {
             height,
             vertices: Vec::new(),
             polygons: Vec::new(),
+            shared_planes: Vec::new(),
             open: Vec::new(),
             mark: None,
         }
@@ -165,6 +168,14 @@ impl zline::PolygonTables<u32> for Recorder {
     {
         let ids: Vec<u16> = corners.into_iter().collect();
         Ok(self.offer(ids, decide))
+    }
+    fn share_plane(&mut self, plane: [u16; 3]) -> Result<bool, zline::Error> {
+        let last = self.polygons.len().checked_sub(1);
+        let last = last.ok_or(zline::Error::NoPolygonToShare)?;
+        let corner = |k: usize| self.vertices[usize::from(plane[k])];
+        self.shared_planes
+            .push((last, [corner(0), corner(1), corner(2)]));
+        Ok(true)
     }
     fn begin_polygon(&mut self) {
         self.discard_polygon();
