@@ -626,7 +626,6 @@ where
         stats: &mut stats,
         shade: &mut shade,
         planes: mesh.shared_planes(),
-        plane: None,
     };
     for face in 0..mesh.face_count() {
         draw.face(face).map_err(|error| DrawError {
@@ -650,8 +649,6 @@ struct Draw<'a, T: ?Sized, M: ?Sized, S, const VM: usize> {
     shade: &'a mut S,
     /// The mesh's shared planes not yet reached (sorted by face).
     planes: &'a [SharedPlane],
-    /// The shared plane of the face being drawn, if it has one.
-    plane: Option<[u16; 3]>,
 }
 
 impl<C, T, M, S, const VM: usize> Draw<'_, T, M, S, VM>
@@ -662,18 +659,6 @@ where
     S: FnMut(&FaceInfo) -> C,
 {
     fn face(&mut self, face: usize) -> Result<(), Error> {
-        self.plane = None;
-        while let Some((first, rest)) = self.planes.split_first() {
-            match (first.face as usize).cmp(&face) {
-                core::cmp::Ordering::Less => self.planes = rest,
-                core::cmp::Ordering::Equal => {
-                    self.plane = Some(first.vertices);
-                    self.planes = rest;
-                    break;
-                }
-                core::cmp::Ordering::Greater => break,
-            }
-        }
         let corners = self.mesh.face(face);
         if corners.len() > MAX_FACE_CORNERS {
             return Err(Error::TooManyCorners);
@@ -705,7 +690,7 @@ where
                 let admission = self.tables.offer_triangle(ids, |outline| {
                     shade_front_face(frame, mesh, face, corners, outline, stats, shade)
                 })?;
-                self.count(admission)?;
+                self.count(face, admission)?;
                 return Ok(());
             }
         }
@@ -731,31 +716,52 @@ where
         let admission = self.tables.offer_polygon(ids, |outline| {
             shade_front_face(frame, mesh, face, corners, outline, stats, shade)
         })?;
-        self.count(admission)
+        self.count(face, admission)
     }
 
-    /// Counts what became of a polygon; a queued one whose face shares a
-    /// plane takes that plane, when its three vertices are projected.
-    fn count(&mut self, admission: Admission) -> Result<(), Error> {
-        if let (Admission::Queued(_), Some(plane)) = (admission, self.plane) {
-            let ids = [
-                self.slot(plane[0])?,
-                self.slot(plane[1])?,
-                self.slot(plane[2])?,
-            ];
-            if ids.iter().all(|&id| id < NON_FINITE) {
-                if self.tables.share_plane(ids)? {
-                    self.stats.shared_planes += 1;
-                }
-            } else {
-                self.stats.unshared_planes += 1;
-            }
+    /// Counts what became of a polygon of `face`; a queued one whose face
+    /// shares a plane takes that plane.
+    #[inline(always)]
+    fn count(&mut self, face: usize, admission: Admission) -> Result<(), Error> {
+        if matches!(admission, Admission::Queued(_)) && !self.planes.is_empty() {
+            self.share(face)?;
         }
         match admission {
             Admission::Queued(_) => self.stats.queued += 1,
             Admission::OffScreen => self.stats.off_screen += 1,
             Admission::Degenerate => self.stats.degenerate += 1,
             Admission::Declined => {}
+        }
+        Ok(())
+    }
+
+    /// Gives the polygon of `face` just queued the plane its face shares,
+    /// if it has one and the plane's three vertices are projected (out of
+    /// line: rare). Faces come in order, so the sorted list is walked once
+    /// per draw.
+    #[inline(never)]
+    fn share(&mut self, face: usize) -> Result<(), Error> {
+        while let Some((first, rest)) = self.planes.split_first() {
+            if first.face as usize >= face {
+                break;
+            }
+            self.planes = rest;
+        }
+        let plane = match self.planes.first() {
+            Some(first) if first.face as usize == face => first.vertices,
+            _ => return Ok(()),
+        };
+        let ids = [
+            self.slot(plane[0])?,
+            self.slot(plane[1])?,
+            self.slot(plane[2])?,
+        ];
+        if ids.iter().all(|&id| id < NON_FINITE) {
+            if self.tables.share_plane(ids)? {
+                self.stats.shared_planes += 1;
+            }
+        } else {
+            self.stats.unshared_planes += 1;
         }
         Ok(())
     }
@@ -933,7 +939,7 @@ where
             return Err(e);
         }
         let admission = self.tables.finish_polygon(|_| Some(color))?;
-        self.count(admission)
+        self.count(face, admission)
     }
 }
 

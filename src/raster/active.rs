@@ -22,26 +22,14 @@ pub(crate) enum SpanDepth {
         dz_dx: i64,
         dz_dy: i64,
         row_value: i64,
-        /// How its spans turn plane values into stored depths.
-        stepping: Stepping,
+        /// The depth format's accumulator step for `dz_dx`, when the
+        /// polygon stays in [`IN_RANGE`](crate::raster::depth::IN_RANGE)
+        /// and its spans need no range check.
+        accumulator: Option<i64>,
     },
-    /// Edge-on polygon: its plane is evaluated exactly at each pixel.
+    /// Edge-on polygon, or one sharing a plane: its plane is evaluated
+    /// exactly at each pixel.
     Exact,
-}
-
-/// How a stepped polygon's spans turn plane values into stored depths.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Stepping {
-    /// The polygon stays in [`IN_RANGE`](crate::raster::depth::IN_RANGE):
-    /// the depth format's accumulator with this step, no range check.
-    Accumulate(i64),
-    /// The range is checked span by span (the accumulator where it fits).
-    CheckEachSpan,
-    /// Each pixel's plane value is rounded on its own, so the stored depth
-    /// depends on the plane and the pixel alone, never on where a span
-    /// starts: for polygons sharing a plane, which must agree at every
-    /// pixel ([`Tables::share_plane`](crate::raster::Tables::share_plane)).
-    RoundEachPixel,
 }
 
 /// Active-polygon-table entry (opaque).

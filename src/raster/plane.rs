@@ -181,37 +181,26 @@ impl Plane {
         (self.origin.x >> SUBPIXEL_BITS).clamp(0, i32::from(width.max(1)) - 1)
     }
 
-    /// The row anchoring the stepped rows of a plane that polygons share
-    /// ([`Tables::share_plane`](crate::raster::Tables::share_plane)): the
-    /// row of corner 0, clamped to the frame's `height` rows, so that it
-    /// depends on the plane alone.
-    #[inline]
-    pub fn anchor_row(&self, height: u16) -> u16 {
-        (self.origin.y >> SUBPIXEL_BITS).clamp(0, i32::from(height.max(1)) - 1) as u16
-    }
-
     /// The value a stepped polygon holds for column 0 of `row`:
-    /// `V(anchor, anchor_row) - dz_dx·anchor + (row - anchor_row)·dz_dy`,
+    /// `V(anchor, first_row) - dz_dx·anchor + (row - first_row)·dz_dy`,
     /// with `V` the exact (rounded) plane value at the anchor column's
-    /// sample and `anchor_row` the polygon's first row (or, for a shared
-    /// plane, [`Self::anchor_row`]). It is exactly what stepping from
-    /// `anchor_row` by `dz_dy` gives, so a band that starts below it
-    /// writes the depths one scan would; a span starting at column `x`
-    /// then adds `dz_dx·x`, which cancels the anchor term exactly, so a
-    /// stored value is off the exact plane by at most `2^-17·(1 + |row -
-    /// anchor_row| + |x - anchor|)` depth steps before the format's
-    /// rounding.
+    /// sample. It is exactly what stepping from `first_row` by `dz_dy`
+    /// gives, so a band that starts below `first_row` writes the depths
+    /// one scan would; a span starting at column `x` then adds
+    /// `dz_dx·x`, which cancels the anchor term exactly, so a stored value
+    /// is off the exact plane by at most `2^-17·(1 + rows stepped + |x -
+    /// anchor|)` depth steps before the format's rounding.
     ///
     /// Ranges (`dz_dx`, `dz_dy` stepped, so below `2^40`; columns and rows
-    /// below `2^12`, so `|row - anchor_row| < 2^12`): `dz_dx·anchor` and
-    /// `(row - anchor_row)·dz_dy` are below `2^52`; the result is the plane
-    /// value at column 0 within `2^12` plane units, so below `2^56 + 2^41`.
+    /// below `2^12`): `dz_dx·anchor` and `(row - first_row)·dz_dy` are
+    /// below `2^52`; the result is the plane value at column 0 within
+    /// `2^12` plane units, so below `2^56 + 2^41`.
     #[inline]
-    pub fn row_start(&self, gradients: (i64, i64), width: u16, anchor_row: u16, row: u16) -> i64 {
+    pub fn row_start(&self, gradients: (i64, i64), width: u16, first_row: u16, row: u16) -> i64 {
         let (dz_dx, dz_dy) = gradients;
         let anchor = self.anchor_column(width);
-        let steps = i64::from(row) - i64::from(anchor_row);
-        self.value_at_pixel(anchor, i32::from(anchor_row)) - dz_dx * i64::from(anchor)
+        let steps = i64::from(row.saturating_sub(first_row));
+        self.value_at_pixel(anchor, i32::from(first_row)) - dz_dx * i64::from(anchor)
             + steps * dz_dy
     }
 

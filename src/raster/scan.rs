@@ -22,7 +22,7 @@
 use core::ops::Range;
 
 use crate::error::{Error, RenderError};
-use crate::raster::active::{ActivePolygon, EdgePool, NO_EDGE, NO_ROW, SpanDepth, Stepping};
+use crate::raster::active::{ActivePolygon, EdgePool, NO_EDGE, NO_ROW, SpanDepth};
 use crate::raster::depth::{DepthFormat, IN_RANGE};
 use crate::raster::edge::ActiveEdge;
 use crate::raster::fixed::first_sample_at_or_after;
@@ -430,15 +430,8 @@ pub(crate) fn row_plane<C>(
     row: u16,
 ) -> Option<RowPlane> {
     let polygon = &tables.polygons[position];
-    if let Some(plane) = shared_plane_of(polygon, tables.corners, tables.vertices) {
-        return Some(
-            match shared_depth(&plane, tables.width, tables.height, row) {
-                SpanDepth::Stepped {
-                    dz_dx, row_value, ..
-                } => RowPlane::Stepped { dz_dx, row_value },
-                SpanDepth::Exact => RowPlane::Exact(plane),
-            },
-        );
+    if polygon.shared_plane().is_some() {
+        return polygon_plane(polygon, tables.corners, tables.vertices).map(RowPlane::Exact);
     }
     let corners = || entry_corners(polygon, tables.corners, tables.vertices);
     if polygon.corner_count() == 3 {
@@ -464,7 +457,7 @@ pub(crate) fn row_plane<C>(
 /// The plane of a polygon that shares one
 /// ([`Tables::share_plane`](crate::raster::Tables::share_plane)): the
 /// triangle of the three corners after its own.
-#[inline]
+#[inline(never)]
 fn shared_plane_of<C>(
     polygon: &PolygonEntry<C>,
     corners: &[u16],
@@ -475,30 +468,24 @@ fn shared_plane_of<C>(
     Plane::triangle(corner(0), corner(1), corner(2))
 }
 
-/// The exact plane a polygon's depth comes from: the shared one, or
+/// The exact plane a polygon's depth comes from: the plane it shares, or
 /// Newell's over its own corners.
-fn polygon_plane<C>(
+///
+/// A polygon that shares a plane is drawn as [`SpanDepth::Exact`]: each
+/// pixel's depth is the shared plane's value there, exactly rounded, a
+/// function of the plane and the pixel alone, so every polygon of that
+/// plane stores the same depth at a pixel, whatever its corners, spans or
+/// activation row (and in every method that draws from the tables).
+/// Shared planes are rare (overlapping coplanar faces), so their cost per
+/// pixel does not matter.
+pub(crate) fn polygon_plane<C>(
     polygon: &PolygonEntry<C>,
     corners: &[u16],
     vertices: &[ScreenVertex],
 ) -> Option<Plane> {
-    shared_plane_of(polygon, corners, vertices)
-        .or_else(|| Plane::new(entry_corners(polygon, corners, vertices)))
-}
-
-/// The depth set-up of a shared plane on `row`: stepped from the plane's
-/// own anchor ([`Plane::anchor_row`]) and rounded pixel by pixel, so that
-/// every polygon sharing the plane stores the same depth at a pixel,
-/// whatever its corners and spans; exact per pixel when steep.
-fn shared_depth(plane: &Plane, width: u16, height: u16, row: u16) -> SpanDepth {
-    match plane.gradients() {
-        Some(gradients) => SpanDepth::Stepped {
-            dz_dx: gradients.0,
-            dz_dy: gradients.1,
-            row_value: plane.row_start(gradients, width, plane.anchor_row(height), row),
-            stepping: Stepping::RoundEachPixel,
-        },
-        None => SpanDepth::Exact,
+    match polygon.shared_plane() {
+        Some(_) => shared_plane_of(polygon, corners, vertices),
+        None => Plane::new(entry_corners(polygon, corners, vertices)),
     }
 }
 
@@ -595,11 +582,27 @@ impl<C: Copy> ScanState<'_, '_, C> {
         if polygon.corner_count() == 3 {
             return self.activate_triangle(position, row, rows);
         }
-        let (corners, vertices) = (self.tables.corners, self.tables.vertices);
-        let shared = shared_plane_of(&polygon, corners, vertices);
-        let depth = match shared.map(|p| (p, p.gradients())) {
-            Some((plane, _)) => shared_depth(&plane, self.tables.width, self.tables.height, row),
-            None => self.own_depth(position, row),
+        let own_plane = match polygon.shared_plane() {
+            // A shared plane: exact per pixel (see `polygon_plane`).
+            Some(_) => None,
+            None => Plane::new(self.corners(position)),
+        };
+        let depth = match own_plane.map(|p| (p, p.gradients())) {
+            Some((plane, Some((dz_dx, dz_dy)))) => SpanDepth::Stepped {
+                dz_dx,
+                dz_dy,
+                row_value: plane.row_start(
+                    (dz_dx, dz_dy),
+                    self.tables.width,
+                    polygon.first_row,
+                    row,
+                ),
+                // A polygon's plane is Newell's fit: its corners may lie
+                // off it, so its range is checked span by span.
+                accumulator: None,
+            },
+            // Non-zero area was checked when the polygon entered the table.
+            Some((_, None)) | None => SpanDepth::Exact,
         };
         let entry = ActivePolygon::new(
             position as u32,
@@ -613,29 +616,6 @@ impl<C: Copy> ScanState<'_, '_, C> {
             .map_err(|_| Error::ActivePolygonsFull { row })?;
         let slot = self.active.len() - 1;
         self.activate_edges(slot, row, true)
-    }
-
-    /// The depth set-up of a polygon of four or more corners on its own
-    /// plane (Newell's).
-    fn own_depth(&self, position: usize, row: u16) -> SpanDepth {
-        let polygon = &self.tables.polygons[position];
-        match Plane::new(self.corners(position)).map(|p| (p, p.gradients())) {
-            Some((plane, Some((dz_dx, dz_dy)))) => SpanDepth::Stepped {
-                dz_dx,
-                dz_dy,
-                row_value: plane.row_start(
-                    (dz_dx, dz_dy),
-                    self.tables.width,
-                    polygon.first_row,
-                    row,
-                ),
-                // A polygon's plane is Newell's fit: its corners may lie
-                // off it, so its range is checked span by span.
-                stepping: Stepping::CheckEachSpan,
-            },
-            // Non-zero area was checked when the polygon entered the table.
-            Some((_, None)) | None => SpanDepth::Exact,
-        }
     }
 
     /// [`Self::activate_polygon`] for a triangle: its corners sorted by y,
@@ -654,10 +634,8 @@ impl<C: Copy> ScanState<'_, '_, C> {
         let (corners, vertices) = (self.tables.corners, self.tables.vertices);
         let ids = [corners[start], corners[start + 1], corners[start + 2]];
         let [a, b, c] = ids.map(|id| vertices[usize::from(id)]);
-        let shared = shared_plane_of(&polygon, corners, vertices);
-        if shared.is_none()
-            && polygon.end_row == row + 1
-            && self.draw_tiny_row(a, b, c, &polygon, row, rows)
+        let shared = polygon.shared_plane().is_some();
+        if !shared && polygon.end_row == row + 1 && self.draw_tiny_row(a, b, c, &polygon, row, rows)
         {
             return Ok(());
         }
@@ -668,34 +646,29 @@ impl<C: Copy> ScanState<'_, '_, C> {
             dz_dx,
             dz_dy,
             row_value,
-            stepping: match in_range.then(|| D::accumulator_step(dz_dx)).flatten() {
-                Some(step) => Stepping::Accumulate(step),
-                None => Stepping::CheckEachSpan,
-            },
+            accumulator: in_range.then(|| D::accumulator_step(dz_dx)).flatten(),
         };
-        let own = || TrianglePlane::new(a, b, c);
-        let depth = match shared {
-            Some(plane) => shared_depth(&plane, self.tables.width, self.tables.height, row),
-            None => match own() {
-                // The common case: two exact divisions per gradient.
-                Some(plane) => stepped(plane.dz_dx, plane.dz_dy, plane.row_start(row)),
-                // Large (256 px or more) or steep: the general plane.
-                None => match Plane::triangle(a, b, c) {
-                    Some(plane) => match plane.gradients() {
-                        Some((dz_dx, dz_dy)) => stepped(
-                            dz_dx,
-                            dz_dy,
-                            plane.row_start(
-                                (dz_dx, dz_dy),
-                                self.tables.width,
-                                polygon.first_row,
-                                row,
-                            ),
-                        ),
-                        None => SpanDepth::Exact,
-                    },
-                    None => return Ok(()), // Zero area was left out when it was queued.
+        let own_plane = if shared {
+            // A shared plane: exact per pixel (see `polygon_plane`).
+            None
+        } else {
+            TrianglePlane::new(a, b, c)
+        };
+        let depth = match own_plane {
+            // The common case: two exact divisions per gradient.
+            Some(plane) => stepped(plane.dz_dx, plane.dz_dy, plane.row_start(row)),
+            // Large (256 px or more) or steep: the general plane.
+            None if shared => SpanDepth::Exact,
+            None => match Plane::triangle(a, b, c) {
+                Some(plane) => match plane.gradients() {
+                    Some((dz_dx, dz_dy)) => stepped(
+                        dz_dx,
+                        dz_dy,
+                        plane.row_start((dz_dx, dz_dy), self.tables.width, polygon.first_row, row),
+                    ),
+                    None => SpanDepth::Exact,
                 },
+                None => return Ok(()), // Zero area was left out when it was queued.
             },
         };
         let [(_, top), (mid_id, mid), (bot_id, bot)] =
@@ -911,15 +884,16 @@ pub(crate) fn fill_and_step<C: Copy, D: DepthFormat>(
         SpanDepth::Stepped {
             dz_dx,
             row_value,
-            stepping,
+            accumulator,
             ..
         } => SpanSource::Stepped {
             dz_dx,
             row_value,
-            stepping,
+            accumulator,
         },
         SpanDepth::Exact => {
-            // Edge-on: the plane, exactly, at each pixel (rare).
+            // Edge-on or a shared plane: the plane, exactly, at each pixel
+            // (rare).
             let entry = &tables.polygons[polygon.position as usize];
             match polygon_plane(entry, tables.corners, tables.vertices) {
                 Some(plane) => SpanSource::Exact(plane, row),
@@ -935,7 +909,7 @@ pub(crate) fn fill_and_step<C: Copy, D: DepthFormat>(
             SpanSource::Stepped {
                 dz_dx,
                 row_value,
-                stepping: Stepping::Accumulate(step),
+                accumulator: Some(step),
             } => rows.fill_in_range(start, end, key, color, row_value, dz_dx, step),
             _ => rows.fill(start, end, key, color, &source),
         };
@@ -1022,12 +996,12 @@ const SHORT_SPAN: u32 = 4;
 
 /// Where a span's depths come from.
 enum SpanSource {
-    /// From the row's plane value at column 0 and the gradient, turned
-    /// into stored depths as `stepping` says.
+    /// From the row's plane value at column 0 and the gradient; with the
+    /// accumulator step when the polygon is known to stay in range.
     Stepped {
         dz_dx: i64,
         row_value: i64,
-        stepping: Stepping,
+        accumulator: Option<i64>,
     },
     /// Exactly from the plane, at each pixel of the row.
     Exact(Plane, u16),
@@ -1068,7 +1042,7 @@ fn fill_span<C: Copy, D: DepthFormat, const MODE: u8>(
         SpanSource::Stepped {
             dz_dx,
             row_value,
-            stepping: Stepping::Accumulate(step),
+            accumulator: Some(step),
         } => {
             // In range (checked once per polygon): the accumulator, with
             // no range check and no rounding per pixel.
@@ -1076,20 +1050,6 @@ fn fill_span<C: Copy, D: DepthFormat, const MODE: u8>(
             for ((stored, stored_key), pixel) in pixels {
                 write(D::value(acc), stored, stored_key, pixel);
                 acc = D::advance(acc, step);
-            }
-        }
-        SpanSource::Stepped {
-            dz_dx,
-            row_value,
-            stepping: Stepping::RoundEachPixel,
-        } => {
-            // A shared plane: every pixel's value rounded on its own, so
-            // the depth never depends on where the span starts. |dz_dx| <
-            // 2^40, x0 < 2^12, |row_value| < 2^57: no overflow.
-            let mut value = row_value + dz_dx * i64::from(x0);
-            for ((stored, stored_key), pixel) in pixels {
-                write(D::quantize(value), stored, stored_key, pixel);
-                value += dz_dx;
             }
         }
         SpanSource::Stepped {
