@@ -3,16 +3,16 @@
 //! in the scanline z-buffer and in the z-buffer bands alike, in both depth
 //! formats; and every misuse is a clear error.
 
+mod common;
+
+use common::{Rows, scanline_rows, zbuffer_rows};
 use proptest::prelude::*;
 use zline::host::TableVecs;
 use zline::methods::exact::{Offered, check_frame_shared, covers};
+use zline::raster::TableArrays;
 use zline::raster::fixed::{DEPTH_MAX, SUBPIXEL_STEPS};
-use zline::raster::zbuffer::{BandBuffers, DepthTest, render_bands};
-use zline::raster::{ActiveEdge, ActivePolygon, ScanArrays, TableArrays};
-use zline::{
-    Admission, Capacities, Depth16, Depth24, DepthFormat, Error, FnSink, Scanner, ScreenVertex,
-    Tables, scan,
-};
+use zline::raster::zbuffer::DepthTest;
+use zline::{Admission, Capacities, Depth16, Depth24, DepthFormat, Error, ScreenVertex, Tables};
 
 const W: u16 = 40;
 const H: u16 = 32;
@@ -68,8 +68,6 @@ fn outline() -> impl Strategy<Value = Vec<(i32, i32)>> {
     )
 }
 
-type Rows = Vec<(u16, Vec<u32>, Vec<u64>)>;
-
 /// The polygons on `spec`, each sharing the plane through `triple`
 /// (corner positions) when `share` is set; what was offered, as the
 /// oracle sees it.
@@ -101,53 +99,14 @@ fn scanline<D: DepthFormat>(t: &mut Tables<TableVecs<u32>>) -> Rows
 where
     D::Value: Into<u64>,
 {
-    let prepared = t.prepare();
-    let mut scanner = Scanner::new(ScanArrays::<u32, D, { W as usize }, 32, 64>::new(0), 0);
-    let mut rows = Vec::new();
-    scan(
-        &prepared,
-        &mut scanner,
-        0..H,
-        &mut FnSink(|y: u16, c: &[u32], z: &[D::Value]| {
-            rows.push((y, c.to_vec(), z.iter().map(|&v| v.into()).collect()));
-            Ok::<(), ()>(())
-        }),
-    )
-    .unwrap();
-    rows
+    scanline_rows::<D, { W as usize }>(&t.prepare())
 }
 
 fn zbuffer<D: DepthFormat>(t: &mut Tables<TableVecs<u32>>, k: u16) -> Rows
 where
     D::Value: Into<u64>,
 {
-    let drawn = t.in_drawing_order();
-    let n = usize::from(k) * usize::from(W);
-    let (mut depth, mut color, mut scratch) =
-        (vec![D::CLEAR; n], vec![0u32; n], vec![0u32; usize::from(W)]);
-    let mut active = vec![ActivePolygon::filler(0u32); 1];
-    let mut pool = vec![ActiveEdge::EMPTY; 16];
-    let mut rows = Vec::new();
-    render_bands::<u32, D, _>(
-        &drawn,
-        BandBuffers {
-            depth: &mut depth,
-            color: &mut color,
-            scratch: &mut scratch,
-            active: &mut active,
-            pool: &mut pool,
-        },
-        k,
-        0,
-        DepthTest::Nearer,
-        None,
-        &mut FnSink(|y: u16, c: &[u32], z: &[D::Value]| {
-            rows.push((y, c.to_vec(), z.iter().map(|&v| v.into()).collect()));
-            Ok::<(), ()>(())
-        }),
-    )
-    .unwrap();
-    rows
+    zbuffer_rows::<D>(&t.in_drawing_order(), k, DepthTest::Nearer, None)
 }
 
 /// Pixels where a polygon covers the sample but a later one is drawn.

@@ -4,15 +4,14 @@
 //! bit for bit (both keep a tie with the polygon added first). The
 //! painter's pass draws the last polygon on top, whatever its depth.
 
+mod common;
+
+use common::{Rows, scanline_rows, zbuffer_rows};
 use proptest::prelude::*;
 use zline::host::TableVecs;
-use zline::raster::ActivePolygon;
 use zline::raster::fixed::{DEPTH_MAX, SUBPIXEL_STEPS};
-use zline::raster::zbuffer::{BandBuffers, DepthTest, render_bands};
-use zline::raster::{ActiveEdge, ScanArrays};
-use zline::{
-    Capacities, Depth16, Depth24, DepthFormat, FnSink, Scanner, ScreenVertex, Tables, scan,
-};
+use zline::raster::zbuffer::DepthTest;
+use zline::{Capacities, Depth16, Depth24, DepthFormat, ScreenVertex, Tables};
 
 const W: u16 = 40;
 const H: u16 = 32;
@@ -43,8 +42,6 @@ fn polygon() -> impl Strategy<Value = Vec<ScreenVertex>> {
     })
 }
 
-type Rows = Vec<(u16, Vec<u32>, Vec<u64>)>;
-
 fn tables(scene: &[Vec<ScreenVertex>]) -> Tables<TableVecs<u32>> {
     let mut t = Tables::new(TableVecs::new(&CAPS, 0), W, H).unwrap();
     for (k, poly) in scene.iter().enumerate() {
@@ -57,21 +54,7 @@ fn scanline<D: DepthFormat>(scene: &[Vec<ScreenVertex>]) -> Rows
 where
     D::Value: Into<u64>,
 {
-    let mut t = tables(scene);
-    let prepared = t.prepare();
-    let mut scanner = Scanner::new(ScanArrays::<u32, D, { W as usize }, 32, 64>::new(0), 0);
-    let mut rows = Vec::new();
-    scan(
-        &prepared,
-        &mut scanner,
-        0..H,
-        &mut FnSink(|y: u16, c: &[u32], z: &[D::Value]| {
-            rows.push((y, c.to_vec(), z.iter().map(|&v| v.into()).collect()));
-            Ok::<(), ()>(())
-        }),
-    )
-    .unwrap();
-    rows
+    scanline_rows::<D, { W as usize }>(&tables(scene).prepare())
 }
 
 fn bands<D: DepthFormat>(
@@ -83,34 +66,7 @@ fn bands<D: DepthFormat>(
 where
     D::Value: Into<u64>,
 {
-    let mut t = tables(scene);
-    let drawn = t.in_drawing_order();
-    let n = usize::from(k) * usize::from(W);
-    let (mut depth, mut color, mut scratch) =
-        (vec![D::CLEAR; n], vec![0u32; n], vec![0u32; usize::from(W)]);
-    let mut active = vec![ActivePolygon::filler(0u32); 1];
-    let mut pool = vec![ActiveEdge::EMPTY; 16];
-    let mut rows = Vec::new();
-    render_bands::<u32, D, _>(
-        &drawn,
-        BandBuffers {
-            depth: &mut depth,
-            color: &mut color,
-            scratch: &mut scratch,
-            active: &mut active,
-            pool: &mut pool,
-        },
-        k,
-        0,
-        test,
-        order,
-        &mut FnSink(|y: u16, c: &[u32], z: &[D::Value]| {
-            rows.push((y, c.to_vec(), z.iter().map(|&v| v.into()).collect()));
-            Ok::<(), ()>(())
-        }),
-    )
-    .unwrap();
-    rows
+    zbuffer_rows::<D>(&tables(scene).in_drawing_order(), k, test, order)
 }
 
 proptest! {

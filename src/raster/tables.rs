@@ -571,6 +571,18 @@ impl<S: TableStorage> Tables<S> {
     }
 }
 
+impl<C> Prepared<'_, C> {
+    /// Frame width in pixels.
+    pub fn width(&self) -> u16 {
+        self.width
+    }
+
+    /// Frame height in rows.
+    pub fn height(&self) -> u16 {
+        self.height
+    }
+}
+
 impl<S: TableStorage> Tables<S> {
     /// The tables as they are, for the methods that draw polygon after
     /// polygon ([`crate::raster::zbuffer`]): the polygons in the order they

@@ -204,3 +204,67 @@ impl zline::PolygonTables<u32> for Recorder {
         Ok(admission)
     }
 }
+
+/// Rows as a sink receives them: row, colours, depths widened to `u64`.
+pub type Rows = Vec<(u16, Vec<u32>, Vec<u64>)>;
+
+/// The rows the scanline core sends for prepared tables, `W` wide.
+pub fn scanline_rows<D: DepthFormat, const W: usize>(
+    prepared: &zline::raster::Prepared<'_, u32>,
+) -> Rows
+where
+    D::Value: Into<u64>,
+{
+    let mut scanner = zline::Scanner::new(ScanArrays::<u32, D, W, 32, 64>::new(0), 0);
+    let mut rows = Vec::new();
+    zline::scan(
+        prepared,
+        &mut scanner,
+        0..prepared.height(),
+        &mut FnSink(|y: u16, c: &[u32], z: &[D::Value]| {
+            rows.push((y, c.to_vec(), z.iter().map(|&v| v.into()).collect()));
+            Ok::<(), ()>(())
+        }),
+    )
+    .unwrap();
+    rows
+}
+
+/// The rows the z-buffer sends for tables in drawing order, in bands of
+/// `k` rows, with `test` and the drawing `order` (`None`: as added).
+pub fn zbuffer_rows<D: DepthFormat>(
+    drawn: &zline::raster::Prepared<'_, u32>,
+    k: u16,
+    test: zline::raster::zbuffer::DepthTest,
+    order: Option<&[u32]>,
+) -> Rows
+where
+    D::Value: Into<u64>,
+{
+    let width = usize::from(drawn.width());
+    let n = usize::from(k) * width;
+    let (mut depth, mut color, mut scratch) = (vec![D::CLEAR; n], vec![0u32; n], vec![0u32; width]);
+    let mut active = vec![zline::raster::ActivePolygon::filler(0u32); 1];
+    let mut pool = vec![zline::raster::ActiveEdge::EMPTY; 16];
+    let mut rows = Vec::new();
+    zline::raster::zbuffer::render_bands::<u32, D, _>(
+        drawn,
+        zline::raster::zbuffer::BandBuffers {
+            depth: &mut depth,
+            color: &mut color,
+            scratch: &mut scratch,
+            active: &mut active,
+            pool: &mut pool,
+        },
+        k,
+        0,
+        test,
+        order,
+        &mut FnSink(|y: u16, c: &[u32], z: &[D::Value]| {
+            rows.push((y, c.to_vec(), z.iter().map(|&v| v.into()).collect()));
+            Ok::<(), ()>(())
+        }),
+    )
+    .unwrap();
+    rows
+}
