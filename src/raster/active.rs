@@ -27,8 +27,19 @@ pub(crate) enum SpanDepth {
         /// and its spans need no range check.
         accumulator: Option<i64>,
     },
-    /// Edge-on polygon, or one sharing a plane: its plane is evaluated
-    /// exactly at each pixel.
+    /// A polygon sharing a plane with others
+    /// ([`Tables::share_plane`](crate::raster::Tables::share_plane)): the
+    /// plane's own affine function in plane units, anchored where the
+    /// plane is (not where the polygon starts), each pixel rounded on its
+    /// own, so every polygon of the plane stores the same depth at a pixel.
+    Shared {
+        dz_dx: i64,
+        dz_dy: i64,
+        /// The plane's value at the sample point of column 0 of row 0
+        /// (each row's is this plus `row · dz_dy`, so nothing is stepped).
+        row0_value: i64,
+    },
+    /// Edge-on polygon: its plane is evaluated exactly at each pixel.
     Exact,
 }
 

@@ -354,6 +354,48 @@ impl<C: Copy, D: DepthFormat> RowBuffers<'_, C, D> {
         true
     }
 
+    /// Fills pixels `[start, end)` (clamped to the row) of a polygon with a
+    /// shared plane: depths from `row_value + dz_dx · x`, each rounded on
+    /// its own ([`SpanDepth::Shared`]); whether any pixel was in the row.
+    /// Out of line: shared planes are rare, and the other fills stay as
+    /// they are.
+    #[inline(never)]
+    #[allow(clippy::too_many_arguments)]
+    fn fill_shared(
+        &mut self,
+        start: i32,
+        end: i32,
+        key: u32,
+        color: C,
+        row_value: i64,
+        dz_dx: i64,
+    ) -> bool {
+        let width = self.depth.len() as i32;
+        let (start, end) = (start.clamp(0, width), end.clamp(0, width));
+        if start >= end {
+            return false;
+        }
+        let range = start as usize..end as usize;
+        let slices = (
+            &mut self.depth[range.clone()],
+            &mut self.color[range.clone()],
+            &mut self.key[range],
+        );
+        // |dz_dx| < 2^40, start < 2^12, |row_value| < 2^57: no overflow.
+        let value = row_value + dz_dx * i64::from(start);
+        let pixel = (key, color);
+        match self.write {
+            PixelWrite::NearerOrFirstAdded => {
+                round_each_pixel::<C, D, NEARER_OR_FIRST_ADDED>(slices, value, dz_dx, pixel)
+            }
+            PixelWrite::Nearer => round_each_pixel::<C, D, NEARER>(slices, value, dz_dx, pixel),
+            PixelWrite::Overwrite => {
+                round_each_pixel::<C, D, OVERWRITE>(slices, value, dz_dx, pixel)
+            }
+        }
+        true
+    }
+
     /// Fills pixels `[start, end)` (clamped to the row) of a polygon with
     /// `key` and `color`, depths from `source`; whether any pixel was in
     /// the row. (With the `profile` feature it is kept out of line: the
@@ -431,7 +473,18 @@ pub(crate) fn row_plane<C>(
 ) -> Option<RowPlane> {
     let polygon = &tables.polygons[position];
     if polygon.shared_plane().is_some() {
-        return polygon_plane(polygon, tables.corners, tables.vertices).map(RowPlane::Exact);
+        let plane = shared_plane_of(polygon, tables.corners, tables.vertices)?;
+        return Some(match shared_depth(&plane, tables.width, tables.height) {
+            SpanDepth::Shared {
+                dz_dx,
+                dz_dy,
+                row0_value,
+            } => RowPlane::Stepped {
+                dz_dx,
+                row_value: row0_value + i64::from(row) * dz_dy,
+            },
+            _ => RowPlane::Exact(plane),
+        });
     }
     let corners = || entry_corners(polygon, tables.corners, tables.vertices);
     if polygon.corner_count() == 3 {
@@ -470,14 +523,6 @@ fn shared_plane_of<C>(
 
 /// The exact plane a polygon's depth comes from: the plane it shares, or
 /// Newell's over its own corners.
-///
-/// A polygon that shares a plane is drawn as [`SpanDepth::Exact`]: each
-/// pixel's depth is the shared plane's value there, exactly rounded, a
-/// function of the plane and the pixel alone, so every polygon of that
-/// plane stores the same depth at a pixel, whatever its corners, spans or
-/// activation row (and in every method that draws from the tables).
-/// Shared planes are rare (overlapping coplanar faces), so their cost per
-/// pixel does not matter.
 pub(crate) fn polygon_plane<C>(
     polygon: &PolygonEntry<C>,
     corners: &[u16],
@@ -486,6 +531,20 @@ pub(crate) fn polygon_plane<C>(
     match polygon.shared_plane() {
         Some(_) => shared_plane_of(polygon, corners, vertices),
         None => Plane::new(entry_corners(polygon, corners, vertices)),
+    }
+}
+
+/// The depth set-up of a polygon with a shared plane on `row`
+/// ([`SpanDepth::Shared`]); [`SpanDepth::Exact`] when the plane is steep.
+#[inline(never)]
+fn shared_depth(plane: &Plane, width: u16, height: u16) -> SpanDepth {
+    match plane.gradients() {
+        Some((dz_dx, dz_dy)) => SpanDepth::Shared {
+            dz_dx,
+            dz_dy,
+            row0_value: plane.shared_row_start((dz_dx, dz_dy), width, height, 0),
+        },
+        None => SpanDepth::Exact,
     }
 }
 
@@ -582,12 +641,35 @@ impl<C: Copy> ScanState<'_, '_, C> {
         if polygon.corner_count() == 3 {
             return self.activate_triangle(position, row, rows);
         }
-        let own_plane = match polygon.shared_plane() {
-            // A shared plane: exact per pixel (see `polygon_plane`).
-            Some(_) => None,
-            None => Plane::new(self.corners(position)),
+        let (corners, vertices) = (self.tables.corners, self.tables.vertices);
+        let (width, height) = (self.tables.width, self.tables.height);
+        let depth = match polygon.shared_plane() {
+            Some(_) => match shared_plane_of(&polygon, corners, vertices) {
+                Some(plane) => shared_depth(&plane, width, height),
+                None => SpanDepth::Exact,
+            },
+            None => self.own_depth(position, row),
         };
-        let depth = match own_plane.map(|p| (p, p.gradients())) {
+        let entry = ActivePolygon::new(
+            position as u32,
+            polygon.id + 1,
+            polygon.end_row,
+            polygon.color,
+            depth,
+        );
+        self.active
+            .push(entry)
+            .map_err(|_| Error::ActivePolygonsFull { row })?;
+        let slot = self.active.len() - 1;
+        self.activate_edges(slot, row, true)
+    }
+
+    /// The depth set-up of a polygon of four or more corners on its own
+    /// plane (Newell's).
+    #[inline]
+    fn own_depth(&self, position: usize, row: u16) -> SpanDepth {
+        let polygon = &self.tables.polygons[position];
+        match Plane::new(self.corners(position)).map(|p| (p, p.gradients())) {
             Some((plane, Some((dz_dx, dz_dy)))) => SpanDepth::Stepped {
                 dz_dx,
                 dz_dy,
@@ -603,19 +685,7 @@ impl<C: Copy> ScanState<'_, '_, C> {
             },
             // Non-zero area was checked when the polygon entered the table.
             Some((_, None)) | None => SpanDepth::Exact,
-        };
-        let entry = ActivePolygon::new(
-            position as u32,
-            polygon.id + 1,
-            polygon.end_row,
-            polygon.color,
-            depth,
-        );
-        self.active
-            .push(entry)
-            .map_err(|_| Error::ActivePolygonsFull { row })?;
-        let slot = self.active.len() - 1;
-        self.activate_edges(slot, row, true)
+        }
     }
 
     /// [`Self::activate_polygon`] for a triangle: its corners sorted by y,
@@ -649,7 +719,6 @@ impl<C: Copy> ScanState<'_, '_, C> {
             accumulator: in_range.then(|| D::accumulator_step(dz_dx)).flatten(),
         };
         let own_plane = if shared {
-            // A shared plane: exact per pixel (see `polygon_plane`).
             None
         } else {
             TrianglePlane::new(a, b, c)
@@ -658,7 +727,10 @@ impl<C: Copy> ScanState<'_, '_, C> {
             // The common case: two exact divisions per gradient.
             Some(plane) => stepped(plane.dz_dx, plane.dz_dy, plane.row_start(row)),
             // Large (256 px or more) or steep: the general plane.
-            None if shared => SpanDepth::Exact,
+            None if shared => match shared_plane_of(&polygon, corners, vertices) {
+                Some(plane) => shared_depth(&plane, self.tables.width, self.tables.height),
+                None => SpanDepth::Exact,
+            },
             None => match Plane::triangle(a, b, c) {
                 Some(plane) => match plane.gradients() {
                     Some((dz_dx, dz_dy)) => stepped(
@@ -891,9 +963,9 @@ pub(crate) fn fill_and_step<C: Copy, D: DepthFormat>(
             row_value,
             accumulator,
         },
+        SpanDepth::Shared { .. } => return fill_shared_and_step(polygon, pool, stats, row, rows),
         SpanDepth::Exact => {
-            // Edge-on or a shared plane: the plane, exactly, at each pixel
-            // (rare).
+            // Edge-on: the plane, exactly, at each pixel (rare).
             let entry = &tables.polygons[polygon.position as usize];
             match polygon_plane(entry, tables.corners, tables.vertices) {
                 Some(plane) => SpanSource::Exact(plane, row),
@@ -902,18 +974,72 @@ pub(crate) fn fill_and_step<C: Copy, D: DepthFormat>(
         }
     };
     let (key, color) = (polygon.key, polygon.color);
-    let next_row = row + 1;
-    if polygon.is_triangle() {
-        let (start, end) = polygon.triangle_span();
-        let filled = match source {
+    let active = fill_spans_and_step(
+        polygon,
+        pool,
+        stats,
+        row,
+        |start, end, triangle| match source {
             SpanSource::Stepped {
                 dz_dx,
                 row_value,
                 accumulator: Some(step),
-            } => rows.fill_in_range(start, end, key, color, row_value, dz_dx, step),
+            } if triangle => rows.fill_in_range(start, end, key, color, row_value, dz_dx, step),
             _ => rows.fill(start, end, key, color, &source),
-        };
-        if filled {
+        },
+    );
+    if let SpanDepth::Stepped {
+        dz_dy, row_value, ..
+    } = &mut polygon.depth
+    {
+        *row_value += *dz_dy;
+    }
+    active
+}
+
+/// [`fill_and_step`] for a polygon with a shared plane, out of line: each
+/// row's value is the plane's own (`row0_value + row · dz_dy`), nothing
+/// is stepped.
+#[inline(never)]
+fn fill_shared_and_step<C: Copy, D: DepthFormat>(
+    polygon: &mut ActivePolygon<C>,
+    pool: &mut EdgePool<'_>,
+    stats: &mut FrameStats,
+    row: u16,
+    rows: &mut RowBuffers<'_, C, D>,
+) -> bool {
+    let SpanDepth::Shared {
+        dz_dx,
+        dz_dy,
+        row0_value,
+    } = polygon.depth
+    else {
+        return false;
+    };
+    // |row| < 2^12, |dz_dy| < 2^40: the product is below 2^52.
+    let row_value = row0_value + i64::from(row) * dz_dy;
+    let (key, color) = (polygon.key, polygon.color);
+    fill_spans_and_step(polygon, pool, stats, row, |start, end, _| {
+        rows.fill_shared(start, end, key, color, row_value, dz_dx)
+    })
+}
+
+/// Fills an active polygon's spans on `row` with `fill(start, end,
+/// is_triangle)` (which says whether any pixel was in the row) and steps
+/// its edges down to the next row; returns whether it is still active
+/// there.
+#[inline(always)]
+fn fill_spans_and_step<C: Copy>(
+    polygon: &mut ActivePolygon<C>,
+    pool: &mut EdgePool<'_>,
+    stats: &mut FrameStats,
+    row: u16,
+    mut fill: impl FnMut(i32, i32, bool) -> bool,
+) -> bool {
+    let next_row = row + 1;
+    if polygon.is_triangle() {
+        let (start, end) = polygon.triangle_span();
+        if fill(start, end, true) {
             stats.spans += 1;
         }
         if polygon.end_row <= next_row {
@@ -924,7 +1050,7 @@ pub(crate) fn fill_and_step<C: Copy, D: DepthFormat>(
     } else {
         let spans = &mut stats.spans;
         polygon.for_each_span(pool, |start, end| {
-            if rows.fill(start, end, key, color, &source) {
+            if fill(start, end, false) {
                 *spans += 1;
             }
         });
@@ -932,12 +1058,6 @@ pub(crate) fn fill_and_step<C: Copy, D: DepthFormat>(
         if polygon.end_row <= next_row {
             return false;
         }
-    }
-    if let SpanDepth::Stepped {
-        dz_dy, row_value, ..
-    } = &mut polygon.depth
-    {
-        *row_value += *dz_dy;
     }
     true
 }
@@ -1005,6 +1125,36 @@ enum SpanSource {
     },
     /// Exactly from the plane, at each pixel of the row.
     Exact(Plane, u16),
+}
+
+/// The span loop of [`RowBuffers::fill_shared`]: each pixel's plane
+/// value, from `value` stepping by `dz_dx`, rounded on its own, so the
+/// stored depth never depends on where the span starts.
+#[inline]
+fn round_each_pixel<C: Copy, D: DepthFormat, const MODE: u8>(
+    (depths, colors, keys): (&mut [D::Value], &mut [C], &mut [u32]),
+    mut value: i64,
+    dz_dx: i64,
+    (key, color): (u32, C),
+) {
+    let pixels = depths
+        .iter_mut()
+        .zip(keys.iter_mut())
+        .zip(colors.iter_mut());
+    for ((stored, stored_key), pixel) in pixels {
+        let depth = D::quantize(value);
+        let wins = match MODE {
+            NEARER_OR_FIRST_ADDED => {
+                depth < *stored || (depth == *stored && depth != D::CLEAR && key < *stored_key)
+            }
+            NEARER => depth < *stored,
+            _ => true,
+        };
+        if wins {
+            (*stored, *stored_key, *pixel) = (depth, key, color);
+        }
+        value += dz_dx;
+    }
 }
 
 /// Depth-tests and writes one span: pixels `x0 .. x0 + depths.len()`. A
