@@ -534,8 +534,9 @@ pub(crate) fn polygon_plane<C>(
     }
 }
 
-/// The depth set-up of a polygon with a shared plane on `row`
-/// ([`SpanDepth::Shared`]); [`SpanDepth::Exact`] when the plane is steep.
+/// The depth set-up of a polygon with a shared plane
+/// ([`SpanDepth::Shared`]: the plane's gradients and its value at column 0
+/// of row 0); [`SpanDepth::Exact`] when the plane is steep.
 #[inline(never)]
 fn shared_depth(plane: &Plane, width: u16, height: u16) -> SpanDepth {
     match plane.gradients() {
