@@ -1131,6 +1131,11 @@ enum SpanSource {
 /// The span loop of [`RowBuffers::fill_shared`]: each pixel's plane
 /// value, from `value` stepping by `dz_dx`, rounded on its own, so the
 /// stored depth never depends on where the span starts.
+///
+/// Its write rule is `fill_span`'s, written out again on purpose: routing
+/// both loops through one helper changed the Cortex-M0+ code of the hot
+/// span loop (boxes, z24: 4,320,920 to 4,453,920 instructions under
+/// `cargo qemu`).
 #[inline]
 fn round_each_pixel<C: Copy, D: DepthFormat, const MODE: u8>(
     (depths, colors, keys): (&mut [D::Value], &mut [C], &mut [u32]),
