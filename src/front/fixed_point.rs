@@ -56,6 +56,7 @@ use crate::front::quantized::{NORMAL_SCALE, POSITION_SCALE};
 use crate::front::scene::CLIP_BAND_PX;
 use crate::raster::fixed::{DEPTH_MAX, SUBPIXEL_STEPS};
 use crate::raster::vertex::ScreenVertex;
+use crate::raster::wide::{mul_i32, mul_i64_i32, mul_u32};
 
 /// Smallest scale exponent `T` the integer front end works with: below it
 /// the clip coordinates would be coarser than `2^-16` and the `f32` front
@@ -201,10 +202,11 @@ fn isqrt(v: u128) -> u128 {
 /// `2^62 / w` for `w` in `[2^30, 2^31)`, within 8 of the exact quotient
 /// (relative error below `2^-28`): a 16-bit estimate from one 32-bit
 /// division (the RP2040's SIO divider does it in 8 cycles), then one
-/// Newton step in 64-bit products.
+/// Newton step in 64-bit products (of 32-bit operands, see
+/// [`crate::raster::wide`]).
 ///
 /// Ranges: `d = w >> 15` in `[2^15, 2^16)`, so `r0 = (2^32 - 1) / d` in
-/// `(2^16, 2^17]` and `R0 = r0·2^15` within `2^-15` (relative, from
+/// `(2^16, 2^17)` and `R0 = r0·2^15` within `2^-15` (relative, from
 /// above or below) of `2^62 / w`; `w·R0 < 2^63`; the residual
 /// `e = 2^62 - w·R0` in `[-2^47, 2^47]`; `r0 · (e >> 2) <= 2^62`.
 #[inline]
@@ -213,8 +215,9 @@ pub fn reciprocal62(w: u32) -> u64 {
     let d = w >> 15;
     let r0 = u64::from(u32::MAX / d);
     let r0s = r0 << 15;
-    let e = (1i64 << 62) - (u64::from(w) * r0s) as i64;
-    let correction = ((r0 as i64) * (e >> 2)) >> 45;
+    // r0 < 2^17, so r0s < 2^32 and r0 fits i32: 32-bit operands.
+    let e = (1i64 << 62) - mul_u32(w, r0s as u32) as i64;
+    let correction = mul_i64_i32(e >> 2, r0 as i32) >> 45;
     (r0s as i64 + correction) as u64
 }
 
@@ -321,10 +324,12 @@ impl FixedFrame {
     /// Clip coordinates of a quantized position (units of `2^-T`).
     #[inline]
     pub fn clip(&self, q: [i16; 3]) -> FixedClip {
-        let q = q.map(i64::from);
+        // Each product of an i32 coefficient and an i16 coordinate is
+        // below 2^46.
+        let q = q.map(i32::from);
         core::array::from_fn(|i| {
-            let [a0, a1, a2] = self.a[i].map(i64::from);
-            a0 * q[0] + a1 * q[1] + a2 * q[2] + (i64::from(self.b[i]) << 15)
+            let [a0, a1, a2] = self.a[i];
+            mul_i32(a0, q[0]) + mul_i32(a1, q[1]) + mul_i32(a2, q[2]) + (i64::from(self.b[i]) << 15)
         })
     }
 
@@ -570,6 +575,9 @@ mod tests {
             let exact = (1u128 << 62) / u128::from(w);
             let r = u128::from(reciprocal62(w));
             assert!(r.abs_diff(exact) <= 8, "w {w}: {r} vs {exact}");
+            // Never above the quotient, so below 2^32 (`Divisor` multiplies
+            // it as a 32-bit operand).
+            assert!(r <= exact && r < 1 << 32, "w {w}: {r} vs {exact}");
         };
         for w in [
             1 << 30,

@@ -20,6 +20,8 @@
 //! vertex outside it is rejected with
 //! [`Error::OutsideGuardBand`](crate::Error::OutsideGuardBand).
 
+use crate::raster::wide::mul_u32;
+
 /// Fractional bits of the sub-pixel grid.
 pub const SUBPIXEL_BITS: u32 = 8;
 /// Sub-pixel steps per pixel (256).
@@ -230,7 +232,9 @@ impl Reciprocal {
 /// remainder. For quotients below `2^26`; larger ones are refused.
 ///
 /// Ranges: `0 < d < 2^31`, normalised to `dn = d·2^(s-1)` in `[2^30,
-/// 2^31)` (`s` its leading zeros, at least 1); `R ~ 2^62 / dn` within 8;
+/// 2^31)` (`s` its leading zeros, at least 1); `R ~ 2^62 / dn` within 8
+/// and never above it (one Newton step from either side lands below, and
+/// the truncations only lower it), so `R < 2^32` (`2^32 - 1` at `dn = 2^30`);
 /// for `n < 2^57`: `(n >> 32)·R < 2^57` and `(n mod 2^32)·R < 2^64`; the
 /// estimate `q` is within `q·2^-28 + 2 < 3` of `n / d`, so each correction
 /// loop runs at most 3 times; `q·d < 2^57`.
@@ -252,6 +256,7 @@ impl Divisor {
         debug_assert!(d > 0 && d < 1 << 31);
         let s = d.leading_zeros();
         let recip = crate::front::fixed_point::reciprocal62(d << (s - 1));
+        debug_assert!(recip < 1 << 32);
         Self {
             d: u64::from(d),
             recip,
@@ -264,13 +269,16 @@ impl Divisor {
     #[inline]
     pub fn div_rem(&self, n: u64) -> Option<(u64, u64)> {
         debug_assert!(n < 1 << 57);
-        let (high, low) = (n >> 32, n & 0xFFFF_FFFF);
-        let product = high * self.recip + ((low * self.recip) >> 32);
+        // n < 2^57, R < 2^32 and d < 2^31 (see the type's notes): every
+        // product has 32-bit operands.
+        let (high, low) = ((n >> 32) as u32, n as u32);
+        let recip = self.recip as u32;
+        let product = mul_u32(high, recip) + (mul_u32(low, recip) >> 32);
         let mut q = product >> (self.shift - 32);
         if q >= Self::QUOTIENT_LIMIT + 4 {
             return None;
         }
-        let mut qd = q * self.d;
+        let mut qd = mul_u32(q as u32, self.d as u32);
         while qd > n {
             q -= 1;
             qd -= self.d;

@@ -14,8 +14,9 @@
 //!   tables and scanner.
 //! * [`zbuffer`]: the z-buffer methods it is compared with (a full-frame
 //!   or banded depth buffer, and the painter's pass), on the same tables.
-//! * `plane`, `edge`, `active`: the plane set-up, the exact edge DDA, the
-//!   active tables (internal).
+//! * `plane`, `edge`, `active`, `wide`: the plane set-up, the exact edge
+//!   DDA, the active tables, exact wide products for cores without a long
+//!   multiply (internal).
 //!
 //! Only one row of depth and one of colour exist: nothing is frame-sized.
 
@@ -29,6 +30,7 @@ pub mod scan;
 mod slots;
 pub mod tables;
 pub mod vertex;
+pub(crate) mod wide;
 pub mod zbuffer;
 
 pub use active::ActivePolygon;

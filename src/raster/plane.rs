@@ -41,6 +41,7 @@ use crate::raster::fixed::{
     SUBPIXEL_STEPS,
 };
 use crate::raster::vertex::ScreenVertex;
+use crate::raster::wide::{mul_i32, mul_i64_i32};
 
 /// A gradient of this magnitude (plane units per pixel) or more changes
 /// depth by the whole depth range within one pixel: such a polygon is
@@ -303,16 +304,15 @@ impl TrianglePlane {
         }
         // Each product below 2^32 in magnitude: i64, but no overflow check
         // needed.
-        let c = i64::from(px) * i64::from(qy) - i64::from(py) * i64::from(qx);
+        let c = mul_i32(px, qy) - mul_i32(py, qx);
         if c == 0 || c.unsigned_abs() >= 1 << 31 {
             return None;
         }
-        let (pz, qz) = (
-            i64::from(p.z) - i64::from(o.z),
-            i64::from(q.z) - i64::from(o.z),
-        );
-        let a = i64::from(py) * qz - pz * i64::from(qy);
-        let b = pz * i64::from(qx) - i64::from(px) * qz;
+        // Depths are below 2^24: their differences fit i32, and each
+        // product is below 2^40.
+        let (pz, qz) = (p.z as i32 - o.z as i32, q.z as i32 - o.z as i32);
+        let a = mul_i32(py, qz) - mul_i32(pz, qy);
+        let b = mul_i32(pz, qx) - mul_i32(px, qz);
         let divisor = Divisor::new(c.unsigned_abs() as u32);
         let d = c.unsigned_abs();
         let gradient = |coef: i64| {
@@ -346,7 +346,8 @@ impl TrianglePlane {
     pub fn row_start(&self, row: u16) -> i64 {
         let o = self.origin;
         let sample_y = i32::from(row) * SUBPIXEL_STEPS + HALF_PIXEL;
-        let sum = self.dz_dx * i64::from(HALF_PIXEL - o.x) + self.dz_dy * i64::from(sample_y - o.y);
+        let sum =
+            mul_i64_i32(self.dz_dx, HALF_PIXEL - o.x) + mul_i64_i32(self.dz_dy, sample_y - o.y);
         (i64::from(o.z) << PLANE_FRAC_BITS) + ((sum + (1 << (SUBPIXEL_BITS - 1))) >> SUBPIXEL_BITS)
     }
 }

@@ -1,0 +1,170 @@
+//! Exact wide products, cheap on a core without a long multiply.
+//!
+//! A Cortex-M0+ (ARMv6-M) multiplies 32x32 to the low 32 bits only: every
+//! `i64` product compiles to a call of compiler-builtins' `__aeabi_lmul`,
+//! about 37 instructions plus the call. Most of the set-up products of the
+//! core have 32-bit operands, or one 64-bit operand and one small one, and
+//! need far less: these functions compute them from 16-bit halves inline.
+//! Everywhere else (the host, ARMv7-M and later, which have `UMULL`) they
+//! are the ordinary product, so the host's code does not change.
+//!
+//! Every function returns the exact product; those with an `i64` result
+//! require that the product fits `i64` (each call site states its range),
+//! and compute it modulo `2^64`, which is then exact. The halves path is
+//! compiled and tested on every target.
+
+/// Whether this target lacks a 32x32→64 multiply: ARMv6-M, the one Arm
+/// profile without it, is also the one without compare-and-swap atomics,
+/// which is what `cfg` can see.
+const HALVES: bool = cfg!(all(target_arch = "arm", not(target_has_atomic = "32")));
+
+/// `a·b` for unsigned 32-bit operands, from four 16-bit products.
+#[inline(always)]
+fn umul32_by_halves(a: u32, b: u32) -> u64 {
+    let (a0, a1) = (a & 0xFFFF, a >> 16);
+    let (b0, b1) = (b & 0xFFFF, b >> 16);
+    // Each partial product is below 2^32.
+    let (low, high) = (a0 * b0, a1 * b1);
+    let (mid, mid_carry) = (a0 * b1).overflowing_add(a1 * b0);
+    let (low, low_carry) = low.overflowing_add(mid << 16);
+    // The high word of the exact product, which is below 2^32: no partial
+    // sum overflows.
+    let high = high + (mid >> 16) + (u32::from(mid_carry) << 16) + u32::from(low_carry);
+    (u64::from(high) << 32) | u64::from(low)
+}
+
+/// `a·b` for unsigned 32-bit operands.
+#[inline(always)]
+pub(crate) fn mul_u32(a: u32, b: u32) -> u64 {
+    if HALVES {
+        umul32_by_halves(a, b)
+    } else {
+        u64::from(a) * u64::from(b)
+    }
+}
+
+/// `a·b` for signed 32-bit operands (`|a·b| <= 2^62`, always in `i64`).
+#[inline(always)]
+pub(crate) fn mul_i32(a: i32, b: i32) -> i64 {
+    if HALVES {
+        mul_i32_by_halves(a, b)
+    } else {
+        i64::from(a) * i64::from(b)
+    }
+}
+
+/// [`mul_i32`] from 16-bit halves. With `A = a mod 2^32`, `B = b mod
+/// 2^32`: `A·B = a·b + 2^32·([a<0]·b + [b<0]·a) (mod 2^64)`, so the high
+/// word only needs two subtractions.
+#[inline(always)]
+fn mul_i32_by_halves(a: i32, b: i32) -> i64 {
+    let p = umul32_by_halves(a as u32, b as u32);
+    let mut high = (p >> 32) as u32;
+    if a < 0 {
+        high = high.wrapping_sub(b as u32);
+    }
+    if b < 0 {
+        high = high.wrapping_sub(a as u32);
+    }
+    ((u64::from(high) << 32) | (p & 0xFFFF_FFFF)) as i64
+}
+
+/// `a·b` for a 64-bit and a signed 32-bit operand, when the product fits
+/// `i64`.
+#[inline(always)]
+pub(crate) fn mul_i64_i32(a: i64, b: i32) -> i64 {
+    if HALVES {
+        mul_i64_i32_by_halves(a, b)
+    } else {
+        a * i64::from(b)
+    }
+}
+
+/// [`mul_i64_i32`] from 16-bit halves, modulo `2^64`: `a = h·2^32 + l`
+/// (`l` unsigned), `a·b = l·b + 2^32·h·b`, of which only the low word of
+/// `h·b` matters.
+#[inline(always)]
+fn mul_i64_i32_by_halves(a: i64, b: i32) -> i64 {
+    let (low, high) = (a as u32, (a >> 32) as u32);
+    let mut p = umul32_by_halves(low, b as u32);
+    if b < 0 {
+        // l·b = l·(b mod 2^32) - 2^32·l.
+        p = p.wrapping_sub(u64::from(low) << 32);
+    }
+    let cross = high.wrapping_mul(b as u32);
+    p.wrapping_add(u64::from(cross) << 32) as i64
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    const EDGES32: [u32; 9] = [
+        0,
+        1,
+        2,
+        0xFFFF,
+        0x1_0000,
+        0x7FFF_FFFF,
+        0x8000_0000,
+        0xFFFF_FFFE,
+        0xFFFF_FFFF,
+    ];
+
+    #[test]
+    fn extremes() {
+        for &a in &EDGES32 {
+            for &b in &EDGES32 {
+                assert_eq!(umul32_by_halves(a, b), u64::from(a) * u64::from(b));
+                assert_eq!(mul_u32(a, b), u64::from(a) * u64::from(b));
+                let (sa, sb) = (a as i32, b as i32);
+                let exact = i64::from(sa) * i64::from(sb);
+                assert_eq!(mul_i32_by_halves(sa, sb), exact, "{sa} * {sb}");
+                assert_eq!(mul_i32(sa, sb), exact);
+            }
+        }
+        // 64-bit by 32-bit at the ends of the ranges the core uses (|a| <
+        // 2^40 by |b| < 2^22) and of i64 itself.
+        for a in [
+            0i64,
+            1,
+            -1,
+            (1 << 40) - 1,
+            -(1 << 40) + 1,
+            i64::MAX,
+            i64::MIN,
+        ] {
+            for b in [
+                0i32,
+                1,
+                -1,
+                (1 << 22) - 1,
+                -(1 << 22) + 1,
+                i32::MIN,
+                i32::MAX,
+            ] {
+                let exact = i128::from(a) * i128::from(b);
+                if let Ok(exact) = i64::try_from(exact) {
+                    assert_eq!(mul_i64_i32_by_halves(a, b), exact, "{a} * {b}");
+                    assert_eq!(mul_i64_i32(a, b), exact);
+                }
+            }
+        }
+    }
+
+    proptest! {
+        #[test]
+        fn products_are_exact(a: u32, b: u32, c in -(1i64 << 40)..(1i64 << 40), d in -(1i32 << 22)..(1i32 << 22)) {
+            prop_assert_eq!(umul32_by_halves(a, b), u64::from(a) * u64::from(b));
+            let (sa, sb) = (a as i32, b as i32);
+            prop_assert_eq!(mul_i32_by_halves(sa, sb), i64::from(sa) * i64::from(sb));
+            prop_assert_eq!(mul_i64_i32_by_halves(c, d), c * i64::from(d));
+            // Any i64 by any i32 whose product fits.
+            let e = (i64::from(a) << 32 | i64::from(b)) >> (a % 40);
+            if let Ok(exact) = i64::try_from(i128::from(e) * i128::from(sb)) {
+                prop_assert_eq!(mul_i64_i32_by_halves(e, sb), exact);
+            }
+        }
+    }
+}
