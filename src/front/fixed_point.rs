@@ -202,8 +202,8 @@ fn isqrt(v: u128) -> u128 {
 /// `2^62 / w` for `w` in `[2^30, 2^31)`, within 8 of the exact quotient
 /// (relative error below `2^-28`): a 16-bit estimate from one 32-bit
 /// division (the RP2040's SIO divider does it in 8 cycles), then one
-/// Newton step in 64-bit products (of 32-bit operands, see
-/// [`crate::raster::wide`]).
+/// Newton step in 64-bit products of 32-bit operands (from 16-bit halves
+/// on a Cortex-M0+, `src/raster/wide.rs`).
 ///
 /// Ranges: `d = w >> 15` in `[2^15, 2^16)`, so `r0 = (2^32 - 1) / d` in
 /// `(2^16, 2^17)` and `R0 = r0·2^15` within `2^-15` (relative, from
