@@ -56,7 +56,7 @@ use crate::front::quantized::{NORMAL_SCALE, POSITION_SCALE};
 use crate::front::scene::CLIP_BAND_PX;
 use crate::raster::fixed::{DEPTH_MAX, SUBPIXEL_STEPS};
 use crate::raster::vertex::ScreenVertex;
-use crate::raster::wide::{mul_i32, mul_i64_i32, mul_u32};
+use crate::raster::wide::{mul_i32, mul_i64_i32, mul_u32, mul_u32_i32};
 
 /// Smallest scale exponent `T` the integer front end works with: below it
 /// the clip coordinates would be coarser than `2^-16` and the `f32` front
@@ -342,8 +342,10 @@ impl FixedFrame {
         w > 0
             && z >= -w
             && z <= w
-            && x.abs() * self.width <= self.guard_x * w
-            && y.abs() * self.height <= self.guard_y * w
+            // Frame sizes and guard bands fit i32; clip coordinates are
+            // below 2^48 (see `clip`): each product is below 2^61.
+            && mul_i64_i32(x.abs(), self.width as i32) <= mul_i64_i32(w, self.guard_x as i32)
+            && mul_i64_i32(y.abs(), self.height as i32) <= mul_i64_i32(w, self.guard_y as i32)
     }
 
     /// The screen vertex of a point [`Self::inside`] the clipping band:
@@ -377,14 +379,20 @@ impl FixedFrame {
         let r = reciprocal62(w as u32) as i64;
         let near = |v: i64| v.unsigned_abs() < 1 << 31;
         let (sx, sy) = if near(x) && near(y) {
-            // v·R ~ (v/w)·2^62 with |v/w| < 2: below 2^63.
-            let scaled = |v: i64, half_size: i64| ((((v * r) >> 31) * half_size) + (1 << 30)) >> 31;
+            // v·R ~ (v/w)·2^62 with |v/w| < 2: below 2^63; shifted, below
+            // 2^32, and times half the frame (below 2^20) below 2^52. (R <
+            // 2^32 and |v| < 2^31: 32-bit operands.)
+            let scaled = |v: i64, half_size: i64| {
+                let ndc = mul_u32_i32(r as u32, v as i32) >> 31;
+                (mul_i64_i32(ndc, half_size as i32) + (1 << 30)) >> 31
+            };
             (hw + scaled(x, hw), hh - scaled(y, hh))
         } else {
             (hw + div_round(x * hw, w), hh - div_round(y * hh, w))
         };
         // |z| <= w: z·R ~ (z/w)·2^62, below 2^63.
-        let sz = (1 << 23) + ((((z * r) >> 38) + 1) >> 1);
+        // (|z| <= w < 2^31 inside the band: a 32-bit operand.)
+        let sz = (1 << 23) + (((mul_u32_i32(r as u32, z as i32) >> 38) + 1) >> 1);
         let sz = sz.clamp(0, i64::from(DEPTH_MAX));
         ScreenVertex::new(i32::try_from(sx).ok()?, i32::try_from(sy).ok()?, sz as u32).ok()
     }

@@ -10,6 +10,7 @@
 use crate::front::fixed_point::{fraction_bits, unit_q15};
 use crate::front::geometry::Vec3;
 use crate::front::scene::FaceInfo;
+use crate::raster::wide::mul_i32;
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 
 /// How faces are coloured.
@@ -93,7 +94,7 @@ impl Lambert {
     pub fn color(&self, face: &FaceInfo) -> Rgb888 {
         if let Some(n) = face.normal_q15() {
             let l = self.light_q15;
-            let dot: i64 = (0..3).map(|k| i64::from(n[k]) * i64::from(l[k])).sum();
+            let dot: i64 = (0..3).map(|k| mul_i32(n[k], l[k])).sum();
             let dot = if face.front { dot } else { -dot };
             // Below 2^15 · (1 + 2^-10) for the normals a quantized mesh
             // accepts; clamped for any other input.

@@ -30,7 +30,7 @@ use crate::raster::plane::{Plane, TrianglePlane};
 use crate::raster::slots::Slots;
 use crate::raster::tables::{PolygonEntry, Prepared};
 use crate::raster::vertex::{ScreenVertex, TriangleTest};
-use crate::raster::wide::mul_i64_i32;
+use crate::raster::wide::{mul_i32, mul_i64_i32};
 use crate::sink::RowSink;
 
 /// Where a scanner's arrays live: the active polygon table, the edge pool
@@ -764,8 +764,8 @@ impl<C: Copy> ScanState<'_, '_, C> {
         };
         // Screen y points down: the middle corner lies left of the long edge
         // when this cross product is positive.
-        let cross = i64::from(bot.x - top.x) * i64::from(mid.y - top.y)
-            - i64::from(mid.x - top.x) * i64::from(bot.y - top.y);
+        // (Guard-band differences: below 2^23, products below 2^46.)
+        let cross = mul_i32(bot.x - top.x, mid.y - top.y) - mul_i32(mid.x - top.x, bot.y - top.y);
         let mut entry = ActivePolygon::new_triangle(
             position as u32,
             polygon.id + 1,

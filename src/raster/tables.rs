@@ -23,6 +23,7 @@ use crate::raster::edge::{EdgeEntry, MAX_POLYGONS};
 use crate::raster::fixed::{MAX_FRAME_SIZE, MAX_POLYGON_CORNERS, first_sample_at_or_after};
 use crate::raster::slots::Slots;
 use crate::raster::vertex::{Outline, OutlineBuilder, ScreenRect, ScreenVertex, TriangleTest};
+use crate::raster::wide::mul_i32;
 
 /// A polygon-table entry (opaque: its fields are the core's own).
 #[derive(Debug, Clone, Copy)]
@@ -476,15 +477,11 @@ impl<S: TableStorage> Tables<S> {
         let (Some(a), Some(b), Some(c)) = (vertex(0), vertex(1), vertex(2)) else {
             return Err(Error::VertexOutOfRange);
         };
-        let (px, py) = (
-            i64::from(b.x) - i64::from(a.x),
-            i64::from(b.y) - i64::from(a.y),
-        );
-        let (qx, qy) = (
-            i64::from(c.x) - i64::from(a.x),
-            i64::from(c.y) - i64::from(a.y),
-        );
-        let twice_area = px * qy - py * qx;
+        // Table vertices lie inside the guard band: differences below
+        // 2^23, products below 2^46.
+        let (px, py) = (b.x - a.x, b.y - a.y);
+        let (qx, qy) = (c.x - a.x, c.y - a.y);
+        let twice_area = mul_i32(px, qy) - mul_i32(py, qx);
         if twice_area == 0 {
             st.counts.degenerate += 1;
             return Ok(Admission::Degenerate);

@@ -69,6 +69,20 @@ fn mul_i32_by_halves(a: i32, b: i32) -> i64 {
     ((u64::from(high) << 32) | (p & 0xFFFF_FFFF)) as i64
 }
 
+/// `a·b` for an unsigned and a signed 32-bit operand (`|a·b| < 2^63`,
+/// always in `i64`).
+#[inline(always)]
+pub(crate) fn mul_u32_i32(a: u32, b: i32) -> i64 {
+    if HALVES {
+        // The product of the magnitudes, then the sign (see
+        // `mul_i64_i32_by_halves` for why not a correction).
+        let p = umul32_by_halves(a, b.unsigned_abs()) as i64;
+        if b < 0 { -p } else { p }
+    } else {
+        i64::from(a) * i64::from(b)
+    }
+}
+
 /// `a·b` for a 64-bit and a signed 32-bit operand, when the product fits
 /// `i64`.
 #[inline(always)]
@@ -80,19 +94,18 @@ pub(crate) fn mul_i64_i32(a: i64, b: i32) -> i64 {
     }
 }
 
-/// [`mul_i64_i32`] from 16-bit halves, modulo `2^64`: `a = h·2^32 + l`
-/// (`l` unsigned), `a·b = l·b + 2^32·h·b`, of which only the low word of
-/// `h·b` matters.
+/// [`mul_i64_i32`] from 16-bit halves, modulo `2^64`: with `m = |b|` and
+/// `a = h·2^32 + l` (`l` unsigned), `a·m = l·m + 2^32·h·m`, of which only
+/// the low word of `h·m` matters; then the sign of `b`. (Written with
+/// `|b|` rather than a correction for `b < 0`: LLVM recognises the latter
+/// as a 64-bit product and calls `__aeabi_lmul` again.)
 #[inline(always)]
 fn mul_i64_i32_by_halves(a: i64, b: i32) -> i64 {
     let (low, high) = (a as u32, (a >> 32) as u32);
-    let mut p = umul32_by_halves(low, b as u32);
-    if b < 0 {
-        // l·b = l·(b mod 2^32) - 2^32·l.
-        p = p.wrapping_sub(u64::from(low) << 32);
-    }
-    let cross = high.wrapping_mul(b as u32);
-    p.wrapping_add(u64::from(cross) << 32) as i64
+    let m = b.unsigned_abs();
+    let p = umul32_by_halves(low, m).wrapping_add(u64::from(high.wrapping_mul(m)) << 32);
+    let p = p as i64;
+    if b < 0 { p.wrapping_neg() } else { p }
 }
 
 #[cfg(test)]
@@ -122,6 +135,7 @@ mod tests {
                 let exact = i64::from(sa) * i64::from(sb);
                 assert_eq!(mul_i32_by_halves(sa, sb), exact, "{sa} * {sb}");
                 assert_eq!(mul_i32(sa, sb), exact);
+                assert_eq!(mul_u32_i32(a, sb), i64::from(a) * i64::from(sb));
             }
         }
         // 64-bit by 32-bit at the ends of the ranges the core uses (|a| <
@@ -159,6 +173,7 @@ mod tests {
             prop_assert_eq!(umul32_by_halves(a, b), u64::from(a) * u64::from(b));
             let (sa, sb) = (a as i32, b as i32);
             prop_assert_eq!(mul_i32_by_halves(sa, sb), i64::from(sa) * i64::from(sb));
+            prop_assert_eq!(mul_u32_i32(a, sb), i64::from(a) * i64::from(sb));
             prop_assert_eq!(mul_i64_i32_by_halves(c, d), c * i64::from(d));
             // Any i64 by any i32 whose product fits.
             let e = (i64::from(a) << 32 | i64::from(b)) >> (a % 40);
