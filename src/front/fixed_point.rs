@@ -56,7 +56,7 @@ use crate::front::quantized::{NORMAL_SCALE, POSITION_SCALE};
 use crate::front::scene::CLIP_BAND_PX;
 use crate::raster::fixed::{DEPTH_MAX, SUBPIXEL_STEPS};
 use crate::raster::vertex::ScreenVertex;
-use crate::raster::wide::{mul_i32, mul_i64_i32, mul_u32, mul_u32_i32};
+use crate::raster::wide::{dot3_i32_i16, mul_i64_i32, mul_u32, mul_u32_i32};
 
 /// Smallest scale exponent `T` the integer front end works with: below it
 /// the clip coordinates would be coarser than `2^-16` and the `f32` front
@@ -325,12 +325,9 @@ impl FixedFrame {
     #[inline]
     pub fn clip(&self, q: [i16; 3]) -> FixedClip {
         // Each product of an i32 coefficient and an i16 coordinate is
-        // below 2^46.
-        let q = q.map(i32::from);
-        core::array::from_fn(|i| {
-            let [a0, a1, a2] = self.a[i];
-            mul_i32(a0, q[0]) + mul_i32(a1, q[1]) + mul_i32(a2, q[2]) + (i64::from(self.b[i]) << 15)
-        })
+        // below 2^46, each row below 2^48.
+        let row = |i: usize| dot3_i32_i16(self.a[i], q) + (i64::from(self.b[i]) << 15);
+        [row(0), row(1), row(2), row(3)]
     }
 
     /// Whether the point lies in front of the eye, inside the near and far

@@ -83,6 +83,31 @@ pub(crate) fn mul_u32_i32(a: u32, b: i32) -> i64 {
     }
 }
 
+/// `a·q`, the dot product of three `i32` coefficients with three 16-bit
+/// coordinates (`|a·q| < 3·2^46`).
+#[inline(always)]
+pub(crate) fn dot3_i32_i16(a: [i32; 3], q: [i16; 3]) -> i64 {
+    if HALVES {
+        dot3_by_halves(a, q)
+    } else {
+        (0..3).map(|k| i64::from(a[k]) * i64::from(q[k])).sum()
+    }
+}
+
+/// [`dot3_i32_i16`] from two 32-bit products per term: `a = h·2^16 + l`
+/// (`h = a >> 16` signed, `l` in `[0, 2^16)`), and `|h·q| <= 2^30`,
+/// `|l·q| < 2^31` each fit `i32`; their sums are taken in `i64`.
+#[inline(always)]
+fn dot3_by_halves(a: [i32; 3], q: [i16; 3]) -> i64 {
+    let (mut high, mut low) = (0i64, 0i64);
+    for k in 0..3 {
+        let q = i32::from(q[k]);
+        high += i64::from((a[k] >> 16) * q);
+        low += i64::from((a[k] & 0xFFFF) * q);
+    }
+    (high << 16) + low
+}
+
 /// `a·b` for a 64-bit and a signed 32-bit operand, when the product fits
 /// `i64`.
 #[inline(always)]
@@ -167,7 +192,27 @@ mod tests {
         }
     }
 
+    #[test]
+    fn dot_products_at_the_extremes() {
+        let ends = [i32::MIN, i32::MIN + 1, -1, 0, 1, 0xFFFF, 0x1_0000, i32::MAX];
+        let coords = [i16::MIN, -1, 0, 1, i16::MAX];
+        for &a in &ends {
+            for &q in &coords {
+                let (a3, q3) = ([a, a, a], [q, q, q]);
+                let exact = 3 * i64::from(a) * i64::from(q);
+                assert_eq!(dot3_by_halves(a3, q3), exact, "{a} * {q}");
+                assert_eq!(dot3_i32_i16(a3, q3), exact);
+            }
+        }
+    }
+
     proptest! {
+        #[test]
+        fn dot_products_are_exact(a: [i32; 3], q: [i16; 3]) {
+            let exact: i64 = (0..3).map(|k| i64::from(a[k]) * i64::from(q[k])).sum();
+            prop_assert_eq!(dot3_by_halves(a, q), exact);
+        }
+
         #[test]
         fn products_are_exact(a: u32, b: u32, c in -(1i64 << 40)..(1i64 << 40), d in -(1i32 << 22)..(1i32 << 22)) {
             prop_assert_eq!(umul32_by_halves(a, b), u64::from(a) * u64::from(b));
