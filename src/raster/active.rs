@@ -109,11 +109,15 @@ impl<C: Copy> ActivePolygon<C> {
         }
     }
 
-    /// A triangle entering the APT: as [`Self::new`] with its two edges
-    /// set (see [`Self::set_triangle_edges`]).
+    /// Makes this entry a triangle entering the APT: its two edges ordered
+    /// left then right (`short_left` says where the short one goes), and
+    /// the ends of its lower short edge. Written field by field, so that it
+    /// can fill a table slot in place: a Cortex-M0+ would copy a finished
+    /// entry (over 100 bytes) with a call to memcpy.
     #[inline]
     #[allow(clippy::too_many_arguments)]
-    pub(crate) const fn new_triangle(
+    pub(crate) fn set_triangle(
+        &mut self,
         position: u32,
         key: u32,
         end_row: u16,
@@ -123,25 +127,26 @@ impl<C: Copy> ActivePolygon<C> {
         long: ActiveEdge,
         short: ActiveEdge,
         short_left: bool,
-    ) -> Self {
-        Self {
-            position,
-            key,
-            end_row,
-            switch_row,
-            color,
-            depth,
-            pair: if short_left {
-                [short, long]
-            } else {
-                [long, short]
-            },
-            pair_len: 2,
-            triangle: true,
-            short_side: if short_left { 0 } else { 1 },
-            extra: NO_EDGE,
-            lower: [0; 2],
-        }
+        lower: [u16; 2],
+    ) {
+        self.position = position;
+        self.key = key;
+        self.end_row = end_row;
+        self.switch_row = switch_row;
+        self.color = color;
+        self.depth = depth;
+        let (left, right) = if short_left {
+            (short, long)
+        } else {
+            (long, short)
+        };
+        self.pair[0] = left;
+        self.pair[1] = right;
+        self.pair_len = 2;
+        self.triangle = true;
+        self.short_side = if short_left { 0 } else { 1 };
+        self.extra = NO_EDGE;
+        self.lower = lower;
     }
 
     /// A triangle's lower short edge taking the place of the upper one.

@@ -766,28 +766,33 @@ impl<C: Copy> ScanState<'_, '_, C> {
         // when this cross product is positive.
         // (Guard-band differences: below 2^23, products below 2^46.)
         let cross = mul_i32(bot.x - top.x, mid.y - top.y) - mul_i32(mid.x - top.x, bot.y - top.y);
-        let mut entry = ActivePolygon::new_triangle(
-            position as u32,
-            polygon.id + 1,
-            polygon.end_row,
-            switch_row,
-            polygon.color,
-            depth,
-            long,
-            short,
-            cross > 0,
-        );
-        entry.lower = [mid_id, bot_id];
+        let set = |entry: &mut ActivePolygon<C>| {
+            entry.set_triangle(
+                position as u32,
+                polygon.id + 1,
+                polygon.end_row,
+                switch_row,
+                polygon.color,
+                depth,
+                long,
+                short,
+                cross > 0,
+                [mid_id, bot_id],
+            )
+        };
         self.stats.edges += 2;
         self.pool.live += 2;
         if polygon.end_row == row + 1 {
             // One row: its span now, and no APT entry.
+            let mut entry = ActivePolygon::filler(polygon.color);
+            set(&mut entry);
             self.fill_and_step(&mut entry, row, rows);
             return Ok(());
         }
+        // Written in its slot (see `set_triangle`).
         self.active
-            .push(entry)
-            .map_err(|_| Error::ActivePolygonsFull { row })
+            .push_in_place(set)
+            .map_err(|()| Error::ActivePolygonsFull { row })
     }
 
     /// Draws a triangle that covers `row` alone and spans at most

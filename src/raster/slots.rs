@@ -51,6 +51,17 @@ impl<'a, T: Copy> Slots<'a, T> {
         }
     }
 
+    /// Appends an item written by `fill` straight into the next slot (which
+    /// holds an old item or a filler until then), or does nothing when
+    /// full.
+    #[inline]
+    pub fn push_in_place(&mut self, fill: impl FnOnce(&mut T)) -> Result<(), ()> {
+        let slot = self.items.get_mut(*self.len).ok_or(())?;
+        fill(slot);
+        *self.len += 1;
+        Ok(())
+    }
+
     /// Keeps the first `len` items.
     pub fn truncate(&mut self, len: usize) {
         *self.len = (*self.len).min(len);
