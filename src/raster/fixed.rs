@@ -20,7 +20,7 @@
 //! vertex outside it is rejected with
 //! [`Error::OutsideGuardBand`](crate::Error::OutsideGuardBand).
 
-use crate::raster::wide::mul_u32;
+use crate::raster::wide::{mul_u32, shr_u64};
 
 /// Fractional bits of the sub-pixel grid.
 pub const SUBPIXEL_BITS: u32 = 8;
@@ -274,7 +274,8 @@ impl Divisor {
         let (high, low) = ((n >> 32) as u32, n as u32);
         let recip = self.recip as u32;
         let product = mul_u32(high, recip) + (mul_u32(low, recip) >> 32);
-        let mut q = product >> (self.shift - 32);
+        // shift - 32 = 31 - s, below 32.
+        let mut q = shr_u64(product, self.shift - 32);
         if q >= Self::QUOTIENT_LIMIT + 4 {
             return None;
         }

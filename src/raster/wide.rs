@@ -1,4 +1,5 @@
-//! Exact wide products, cheap on a core without a long multiply.
+//! Exact wide products (and 64-bit shifts), cheap on a core without a
+//! long multiply.
 //!
 //! A Cortex-M0+ (ARMv6-M) multiplies 32x32 to the low 32 bits only: every
 //! `i64` product compiles to a call of compiler-builtins' `__aeabi_lmul`,
@@ -133,6 +134,28 @@ fn mul_i64_i32_by_halves(a: i64, b: i32) -> i64 {
     if b < 0 { p.wrapping_neg() } else { p }
 }
 
+/// `v >> s` for `s < 32`: a variable 64-bit shift is another call on an
+/// ARMv6-M core (`__aeabi_llsr`); from the two words it is a few
+/// instructions.
+#[inline(always)]
+pub(crate) fn shr_u64(v: u64, s: u32) -> u64 {
+    debug_assert!(s < 32);
+    if HALVES {
+        shr_u64_by_words(v, s)
+    } else {
+        v >> s
+    }
+}
+
+/// [`shr_u64`] from the two 32-bit words.
+#[inline(always)]
+fn shr_u64_by_words(v: u64, s: u32) -> u64 {
+    let (low, high) = (v as u32, (v >> 32) as u32);
+    // `high << (32 - s)` would be a shift by 32 when s = 0: shift twice.
+    let low = (low >> s) | ((high << 1) << (31 - s));
+    (u64::from(high >> s) << 32) | u64::from(low)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -206,7 +229,30 @@ mod tests {
         }
     }
 
+    #[test]
+    fn shifts_by_words() {
+        for v in [
+            0u64,
+            1,
+            u64::MAX,
+            1 << 63,
+            0x8000_0000,
+            0x1_0000_0000,
+            0x0123_4567_89AB_CDEF,
+        ] {
+            for s in 0..32 {
+                assert_eq!(shr_u64_by_words(v, s), v >> s, "{v:#x} >> {s}");
+                assert_eq!(shr_u64(v, s), v >> s);
+            }
+        }
+    }
+
     proptest! {
+        #[test]
+        fn shifts_are_exact(v: u64, s in 0u32..32) {
+            prop_assert_eq!(shr_u64_by_words(v, s), v >> s);
+        }
+
         #[test]
         fn dot_products_are_exact(a: [i32; 3], q: [i16; 3]) {
             let exact: i64 = (0..3).map(|k| i64::from(a[k]) * i64::from(q[k])).sum();
