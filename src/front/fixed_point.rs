@@ -304,6 +304,11 @@ impl FixedFrame {
         let b = offset.map(|(sum, base)| scale_round(sum, base + t - 15) as i32);
         let (w, h) = (i64::from(width), i64::from(height));
         let band = 2 * CLIP_BAND_PX as i64;
+        // `inside` relies on the band holding the frame: true for every
+        // frame the core accepts (at most MAX_FRAME_SIZE each way).
+        if w > band - w || h > band - h {
+            return None;
+        }
         Some(Self {
             a,
             b,
@@ -339,10 +344,14 @@ impl FixedFrame {
         w > 0
             && z >= -w
             && z <= w
-            // Frame sizes and guard bands fit i32; clip coordinates are
-            // below 2^48 (see `clip`): each product is below 2^61.
-            && mul_i64_i32(x.abs(), self.width as i32) <= mul_i64_i32(w, self.guard_x as i32)
-            && mul_i64_i32(y.abs(), self.height as i32) <= mul_i64_i32(w, self.guard_y as i32)
+            // The band holds the frame (guard >= size), so a point of the
+            // frame (|x| <= w) passes with no product. Frame sizes and
+            // guard bands fit i32; clip coordinates are below 2^48 (see
+            // `clip`): each product is below 2^61.
+            && (x.abs() <= w
+                || mul_i64_i32(x.abs(), self.width as i32) <= mul_i64_i32(w, self.guard_x as i32))
+            && (y.abs() <= w
+                || mul_i64_i32(y.abs(), self.height as i32) <= mul_i64_i32(w, self.guard_y as i32))
     }
 
     /// The screen vertex of a point [`Self::inside`] the clipping band:
@@ -639,6 +648,50 @@ mod tests {
         assert!(f.inside(&c) && f.project(&c).is_some());
         let c = f.clip([-32767; 3]);
         assert!(!f.inside(&c));
+    }
+
+    proptest! {
+        /// The clip-band test against its definition in i128, around the
+        /// frame's edge and the band's, for any frame the core accepts.
+        #[test]
+        fn inside_is_the_band_test(
+            width in 1u16..=4096,
+            height in 1u16..=4096,
+            w in 1i64..(1 << 47),
+            fx in -3.0f64..3.0,
+            fy in -3.0f64..3.0,
+            fz in -1.5f64..1.5,
+            frame_units: bool,
+        ) {
+            let camera = Camera::reference(width, height);
+            let (m, mv) = mvp(30.0, 20.0, &camera);
+            let frame = FixedFrame::new(&m, &mv, [0.0; 3], 1.0, width, height).unwrap();
+            // Points at multiples of the frame's half-width or of the
+            // band's.
+            let band = |size: u16| if frame_units {
+                1.0
+            } else {
+                (2.0 * CLIP_BAND_PX as f64 - f64::from(size)) / f64::from(size)
+            };
+            let (x, y) = ((fx * band(width) * w as f64) as i64, (fy * band(height) * w as f64) as i64);
+            let z = (fz * w as f64) as i64;
+            let c = [x, y, z, w];
+            let wide = |v: i64| i128::from(v);
+            let expected = z >= -w
+                && z <= w
+                && wide(x.abs()) * wide(frame.width) <= wide(frame.guard_x) * wide(w)
+                && wide(y.abs()) * wide(frame.height) <= wide(frame.guard_y) * wide(w);
+            prop_assert_eq!(frame.inside(&c), expected);
+        }
+    }
+
+    #[test]
+    fn frames_larger_than_the_core_takes_fall_back() {
+        let camera = Camera::reference(240, 240);
+        let (m, mv) = mvp(0.0, 0.0, &camera);
+        assert!(FixedFrame::new(&m, &mv, [0.0; 3], 1.0, 4096, 4096).is_some());
+        assert!(FixedFrame::new(&m, &mv, [0.0; 3], 1.0, 4097, 240).is_none());
+        assert!(FixedFrame::new(&m, &mv, [0.0; 3], 1.0, 240, 4097).is_none());
     }
 
     #[test]
