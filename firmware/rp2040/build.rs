@@ -22,13 +22,12 @@ use std::fs;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use zline::front::mesh::{Mesh, StaticMesh};
 use zline::front::scene::{MAX_FACE_CORNERS, VertexCache, bounding_sphere};
 use zline::host::{
     HostMesh, QuantizedHostMesh, ScanVecs, TableVecs, host_renderer, quantized_mesh_source, shapes,
 };
-use zline::{Capacities, Crc32Sink, Depth16, FrameStats, Renderer};
+use zline::{Capacities, Crc32Sink, Depth16, FrameStats, Renderer, RowSink};
 
 /// Room for any view on the host, where the capacities are measured.
 const HOST_CAPACITIES: Capacities = Capacities {
@@ -164,14 +163,34 @@ fn measure(mesh: HostMesh, origin: &str) -> Result<String, String> {
         .map_err(|_| "the sizing thread failed".to_string())?
 }
 
+/// The CRC-32 of rows of [`frame::WireColor`] pixels: their bytes as they
+/// lie in memory, which is the big-endian Rgb565 the LCD receives.
+struct WireCrc(Crc32Sink);
+
+impl RowSink<frame::WireColor, u16> for WireCrc {
+    type Error = core::convert::Infallible;
+
+    fn write_row(
+        &mut self,
+        _y: u16,
+        colors: &[frame::WireColor],
+        _depths: &[u16],
+    ) -> Result<(), Self::Error> {
+        for c in colors {
+            self.0.update(&c.to_ne_bytes());
+        }
+        Ok(())
+    }
+}
+
 fn measure_views(mesh: &HostMesh, origin: &str) -> Result<String, String> {
     // The very arrays the firmware's statics hold.
     let quantized = QuantizedHostMesh::new(mesh).map_err(|e| format!("{origin}: {e}"))?;
     let quantized = quantized
         .mesh()
         .map_err(|e| format!("{origin}: invalid quantized mesh: {e:?}"))?;
-    let mut host: Renderer<TableVecs<Rgb565>, ScanVecs<Rgb565, Depth16>> =
-        host_renderer(&HOST_CAPACITIES, WIDTH, HEIGHT, Rgb565::BLACK)
+    let mut host: Renderer<TableVecs<frame::WireColor>, ScanVecs<frame::WireColor, Depth16>> =
+        host_renderer(&HOST_CAPACITIES, WIDTH, HEIGHT, frame::WIRE_BLACK)
             .map_err(|e| format!("host renderer: {e}"))?;
     let mut cache: Box<VertexCache<65536>> = Box::default();
     // The firmware computes the sphere once at start-up, the same way.
@@ -179,7 +198,7 @@ fn measure_views(mesh: &HostMesh, origin: &str) -> Result<String, String> {
     let mut peak = FrameStats::default();
     let mut crcs = Vec::new();
     for step in 0..YAW_STEPS {
-        let mut crc = Crc32Sink::new();
+        let mut crc = WireCrc(Crc32Sink::new());
         let (_, s) = frame::render_frame(
             &mut host,
             &mut cache,
@@ -189,7 +208,7 @@ fn measure_views(mesh: &HostMesh, origin: &str) -> Result<String, String> {
             &mut crc,
         )
         .map_err(|e| format!("{origin}: view {step} does not render on the host: {e:?}"))?;
-        crcs.push(crc.value());
+        crcs.push(crc.0.value());
         peak.vertices = peak.vertices.max(s.vertices);
         peak.polygons = peak.polygons.max(s.polygons);
         peak.corners = peak.corners.max(s.corners);
@@ -215,7 +234,7 @@ fn measure_views(mesh: &HostMesh, origin: &str) -> Result<String, String> {
         peak_pooled_edges: pooled_edges as u32,
         ..FrameStats::default()
     };
-    let renderer = sized.ram_bytes::<Rgb565, Depth16>(usize::from(WIDTH));
+    let renderer = sized.ram_bytes::<frame::WireColor, Depth16>(usize::from(WIDTH));
     let ram = renderer + 2 * mesh_vertices + SPI_BUFFER;
     // The renderer is built at compile time in its static
     // (`Renderer::new_in_static`), so it needs room once.

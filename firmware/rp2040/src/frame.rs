@@ -4,6 +4,7 @@
 //! end (the mesh is quantized), same pixels.
 
 use embedded_graphics_core::pixelcolor::Rgb565;
+use embedded_graphics_core::prelude::IntoStorage;
 use zline::front::geometry::Vec3;
 use zline::front::mesh::Mesh;
 use zline::front::scene::{
@@ -13,9 +14,24 @@ use zline::front::shade::Shading;
 use zline::raster::{ScanStorage, TableStorage};
 use zline::{DepthFormat, FrameStats, RenderError, Renderer, RowSink};
 
+/// A pixel as the ST7789 takes it: Rgb565 whose two bytes in memory are
+/// big-endian, the wire's order. The scanner is generic over its colour,
+/// so it stores these, and a finished row leaves by a plain copy of its
+/// bytes (no per-pixel conversion).
+pub type WireColor = u16;
+
+/// Black, in wire order.
+pub const WIRE_BLACK: WireColor = 0;
+
+/// `c` in wire order.
+pub fn wire(c: Rgb565) -> WireColor {
+    u16::from_ne_bytes(c.into_storage().to_be_bytes())
+}
+
 /// Draws `mesh` (bounding sphere `(centre, radius)`, computed once) in the
 /// reference view at `yaw`/`pitch` degrees, Lambert-shaded with back faces
-/// culled, and sends the frame to `sink` row by row.
+/// culled, and sends the frame to `sink` row by row, in wire order
+/// ([`WireColor`]).
 pub fn render_frame<T, S, K, M, const VM: usize>(
     renderer: &mut Renderer<T, S>,
     cache: &mut VertexCache<VM>,
@@ -25,9 +41,9 @@ pub fn render_frame<T, S, K, M, const VM: usize>(
     sink: &mut K,
 ) -> Result<(DrawStats, FrameStats), RenderError<K::Error>>
 where
-    T: TableStorage<Color = Rgb565>,
-    S: ScanStorage<Color = Rgb565>,
-    K: RowSink<Rgb565, <S::Depth as DepthFormat>::Value>,
+    T: TableStorage<Color = WireColor>,
+    S: ScanStorage<Color = WireColor>,
+    K: RowSink<WireColor, <S::Depth as DepthFormat>::Value>,
     M: Mesh,
 {
     renderer.clear();
@@ -35,7 +51,7 @@ where
     let camera = Camera::reference(renderer.width(), renderer.height());
     let shading = Shading::lambert();
     let draw = draw_mesh(renderer, cache, mesh, &model, &camera, Cull::Back, |f| {
-        Rgb565::from(shading.color(f))
+        wire(Rgb565::from(shading.color(f)))
     })?;
     let frame = renderer.render(sink)?;
     Ok((draw, frame))

@@ -1,15 +1,14 @@
 //! Rows to the ST7789 by DMA, double-buffered: the renderer's row sink.
 //!
 //! A frame opens the LCD's whole window (CASET, RASET, RAMWR) once; then
-//! each finished row is converted to big-endian Rgb565 bytes in whichever
-//! of the two row buffers is free, and handed to DMA channel 0, which feeds
+//! each finished row, already in the wire's byte order (the renderer
+//! stores [`WireColor`] pixels), is copied into whichever of the two row
+//! buffers is free, and handed to DMA channel 0, which feeds
 //! SPI0's transmit FIFO at the wire's pace. While it goes out, the CPU
 //! computes the next row. The CPU waits only when it outruns the wire: at a
 //! row, for the previous row's transfer; at a frame's start, for the last
 //! row of the frame before.
 
-use embedded_graphics_core::pixelcolor::Rgb565;
-use embedded_graphics_core::prelude::IntoStorage;
 use embedded_hal::digital::OutputPin;
 use embedded_hal::spi::SpiBus;
 use rp2040_hal::dma::{CH0, Channel, single_buffer};
@@ -17,6 +16,7 @@ use static_cell::ConstStaticCell;
 use zline::RowSink;
 
 use crate::board::{LcdCs, LcdDc, LcdSpi, OFFSET};
+use crate::frame::WireColor;
 use crate::sizes::{HEIGHT, WIDTH};
 
 /// Bytes of one row on the wire.
@@ -29,9 +29,15 @@ type Dma = Channel<CH0>;
 /// A row on its way out.
 type Transfer = single_buffer::Transfer<Dma, RowBuf, LcdSpi>;
 
+/// A row buffer, word-aligned so that copying a row into it goes a word at
+/// a time (the boot ROM's memcpy copies byte by byte between buffers of
+/// different alignment).
+#[repr(C, align(4))]
+struct RowBytes([u8; ROW_BYTES]);
+
 /// The two row buffers, in `.bss`.
-static ROW_A: ConstStaticCell<[u8; ROW_BYTES]> = ConstStaticCell::new([0; ROW_BYTES]);
-static ROW_B: ConstStaticCell<[u8; ROW_BYTES]> = ConstStaticCell::new([0; ROW_BYTES]);
+static ROW_A: ConstStaticCell<RowBytes> = ConstStaticCell::new(RowBytes([0; ROW_BYTES]));
+static ROW_B: ConstStaticCell<RowBytes> = ConstStaticCell::new(RowBytes([0; ROW_BYTES]));
 
 /// ST7789 commands.
 const CASET: u8 = 0x2A;
@@ -65,7 +71,10 @@ impl LcdRows {
     pub fn new(spi: LcdSpi, cs: LcdCs, dc: LcdDc, dma: Dma) -> Option<Self> {
         Some(Self {
             bus: Some(Bus::Idle { dma, spi }),
-            free: [Some(ROW_A.try_take()?), Some(ROW_B.try_take()?)],
+            free: [
+                Some(&mut ROW_A.try_take()?.0),
+                Some(&mut ROW_B.try_take()?.0),
+            ],
             cs,
             dc,
         })
@@ -131,10 +140,10 @@ impl LcdRows {
     }
 }
 
-impl RowSink<Rgb565, u16> for LcdRows {
+impl RowSink<WireColor, u16> for LcdRows {
     type Error = LcdError;
 
-    fn write_row(&mut self, y: u16, colors: &[Rgb565], _depths: &[u16]) -> Result<(), LcdError> {
+    fn write_row(&mut self, y: u16, colors: &[WireColor], _depths: &[u16]) -> Result<(), LcdError> {
         if y == 0 {
             self.begin_frame()?;
         }
@@ -147,12 +156,12 @@ impl RowSink<Rgb565, u16> for LcdRows {
                 self.take_free().ok_or(LcdError)?
             }
         };
-        // Big-endian Rgb565, as the ST7789 takes it over SPI.
-        for (pair, c) in buf.chunks_exact_mut(2).zip(colors) {
-            let v = c.into_storage();
-            pair[0] = (v >> 8) as u8;
-            pair[1] = v as u8;
-        }
+        // The row's bytes are already big-endian Rgb565, as the ST7789
+        // takes it over SPI: one copy (a row longer than the buffer is
+        // cut, as the panel's window would cut it).
+        let bytes: &[u8] = bytemuck::cast_slice(colors);
+        let len = bytes.len().min(buf.len());
+        buf[..len].copy_from_slice(&bytes[..len]);
         let (dma, spi) = self.idle()?;
         self.bus = Some(Bus::Sending(
             single_buffer::Config::new(dma, buf, spi).start(),
