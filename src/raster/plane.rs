@@ -41,7 +41,7 @@ use crate::raster::fixed::{
     SUBPIXEL_STEPS,
 };
 use crate::raster::vertex::ScreenVertex;
-use crate::raster::wide::{mul_i32, mul_i64_i32};
+use crate::raster::wide::{mul_i32_small, mul_i64_i32};
 
 /// A gradient of this magnitude (plane units per pixel) or more changes
 /// depth by the whole depth range within one pixel: such a polygon is
@@ -304,15 +304,15 @@ impl TrianglePlane {
         }
         // Each product below 2^32 in magnitude: i64, but no overflow check
         // needed.
-        let c = mul_i32(px, qy) - mul_i32(py, qx);
+        let c = mul_i32_small(px, qy) - mul_i32_small(py, qx);
         if c == 0 || c.unsigned_abs() >= 1 << 31 {
             return None;
         }
         // Depths are below 2^24: their differences fit i32, and each
         // product is below 2^40.
         let (pz, qz) = (p.z as i32 - o.z as i32, q.z as i32 - o.z as i32);
-        let a = mul_i32(py, qz) - mul_i32(pz, qy);
-        let b = mul_i32(pz, qx) - mul_i32(px, qz);
+        let a = mul_i32_small(qz, py) - mul_i32_small(pz, qy);
+        let b = mul_i32_small(pz, qx) - mul_i32_small(qz, px);
         let divisor = Divisor::new(c.unsigned_abs() as u32);
         let d = c.unsigned_abs();
         let gradient = |coef: i64| {

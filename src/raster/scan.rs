@@ -30,7 +30,7 @@ use crate::raster::plane::{Plane, TrianglePlane};
 use crate::raster::slots::Slots;
 use crate::raster::tables::{PolygonEntry, Prepared};
 use crate::raster::vertex::{ScreenVertex, TriangleTest};
-use crate::raster::wide::{mul_i32, mul_i64_i32};
+use crate::raster::wide::{mul_i32, mul_i64_small};
 use crate::sink::RowSink;
 
 /// Where a scanner's arrays live: the active polygon table, the edge pool
@@ -336,7 +336,7 @@ impl<C: Copy, D: DepthFormat> RowBuffers<'_, C, D> {
         );
         // |dz_dx| < 2^40, start < 2^12: the product is below 2^52.
         let (mut acc, step) =
-            D::accumulator(row_value + mul_i64_i32(dz_dx, start), accumulator_step);
+            D::accumulator(row_value + mul_i64_small(dz_dx, start), accumulator_step);
         if self.write != PixelWrite::NearerOrFirstAdded {
             // The other methods' rules, out of line: the scanline's span
             // loop stays as it was.
@@ -383,7 +383,7 @@ impl<C: Copy, D: DepthFormat> RowBuffers<'_, C, D> {
             &mut self.key[range],
         );
         // |dz_dx| < 2^40, start < 2^12, |row_value| < 2^57: no overflow.
-        let value = row_value + mul_i64_i32(dz_dx, start);
+        let value = row_value + mul_i64_small(dz_dx, start);
         let pixel = (key, color);
         match self.write {
             PixelWrite::NearerOrFirstAdded => {

@@ -134,6 +134,56 @@ fn mul_i64_i32_by_halves(a: i64, b: i32) -> i64 {
     if b < 0 { p.wrapping_neg() } else { p }
 }
 
+/// `a·b` for a 32-bit `a` and a small `b` (`|b| < 2^16`, so the product
+/// is below `2^47`): two 16-bit products instead of four.
+#[inline(always)]
+pub(crate) fn mul_i32_small(a: i32, b: i32) -> i64 {
+    debug_assert!(b.unsigned_abs() < 1 << 16);
+    if HALVES {
+        mul_i32_small_by_halves(a, b)
+    } else {
+        i64::from(a) * i64::from(b)
+    }
+}
+
+/// `a·m` for `m < 2^16`: `a = h·2^16 + l`, and `l·m`, `h·m` are each below
+/// `2^32`.
+#[inline(always)]
+fn umul32_small(a: u32, m: u32) -> u64 {
+    let (low, high) = ((a & 0xFFFF) * m, (a >> 16) * m);
+    u64::from(low) + (u64::from(high) << 16)
+}
+
+/// [`mul_i32_small`] from the magnitudes (see `mul_i64_i32_by_halves` for
+/// why not a correction).
+#[inline(always)]
+fn mul_i32_small_by_halves(a: i32, b: i32) -> i64 {
+    let p = umul32_small(a.unsigned_abs(), b.unsigned_abs()) as i64;
+    if (a ^ b) < 0 { -p } else { p }
+}
+
+/// `a·b` for a 64-bit `a` and a small `b` (`|b| < 2^16`), when the
+/// product fits `i64`: three 16-bit products instead of five.
+#[inline(always)]
+pub(crate) fn mul_i64_small(a: i64, b: i32) -> i64 {
+    debug_assert!(b.unsigned_abs() < 1 << 16);
+    if HALVES {
+        mul_i64_small_by_halves(a, b)
+    } else {
+        a * i64::from(b)
+    }
+}
+
+/// [`mul_i64_small`] modulo `2^64`, as [`mul_i64_i32_by_halves`].
+#[inline(always)]
+fn mul_i64_small_by_halves(a: i64, b: i32) -> i64 {
+    let (low, high) = (a as u32, (a >> 32) as u32);
+    let m = b.unsigned_abs();
+    let p = umul32_small(low, m).wrapping_add(u64::from(high.wrapping_mul(m)) << 32);
+    let p = p as i64;
+    if b < 0 { p.wrapping_neg() } else { p }
+}
+
 /// `v >> s` for `s < 32`: a variable 64-bit shift is another call on an
 /// ARMv6-M core (`__aeabi_llsr`); from the two words it is a few
 /// instructions.
@@ -216,6 +266,33 @@ mod tests {
     }
 
     #[test]
+    fn small_products_at_the_extremes() {
+        let smalls = [-(1 << 16) + 1, -1, 0, 1, 0xFFFF];
+        for a in [i32::MIN, i32::MIN + 1, -1, 0, 1, 0xFFFF, 0x1_0000, i32::MAX] {
+            for &b in &smalls {
+                let exact = i64::from(a) * i64::from(b);
+                assert_eq!(mul_i32_small_by_halves(a, b), exact, "{a} * {b}");
+                assert_eq!(mul_i32_small(a, b), exact);
+            }
+        }
+        for a in [
+            0i64,
+            1,
+            -1,
+            (1 << 40) - 1,
+            -(1 << 40) + 1,
+            (1 << 47) - 1,
+            -(1 << 47),
+        ] {
+            for &b in &smalls {
+                let exact = a * i64::from(b);
+                assert_eq!(mul_i64_small_by_halves(a, b), exact, "{a} * {b}");
+                assert_eq!(mul_i64_small(a, b), exact);
+            }
+        }
+    }
+
+    #[test]
     fn dot_products_at_the_extremes() {
         let ends = [i32::MIN, i32::MIN + 1, -1, 0, 1, 0xFFFF, 0x1_0000, i32::MAX];
         let coords = [i16::MIN, -1, 0, 1, i16::MAX];
@@ -251,6 +328,12 @@ mod tests {
         #[test]
         fn shifts_are_exact(v: u64, s in 0u32..32) {
             prop_assert_eq!(shr_u64_by_words(v, s), v >> s);
+        }
+
+        #[test]
+        fn small_products_are_exact(a: i32, b in -(1i32 << 16) + 1..(1 << 16), c in -(1i64 << 47)..(1i64 << 47)) {
+            prop_assert_eq!(mul_i32_small_by_halves(a, b), i64::from(a) * i64::from(b));
+            prop_assert_eq!(mul_i64_small_by_halves(c, b), c * i64::from(b));
         }
 
         #[test]
