@@ -20,7 +20,7 @@
 //! vertex outside it is rejected with
 //! [`Error::OutsideGuardBand`](crate::Error::OutsideGuardBand).
 
-use crate::raster::wide::{mul_u32, shr_u64};
+use crate::raster::wide::{mul_u32, mul_u32_by_size, shr_u64};
 
 /// Fractional bits of the sub-pixel grid.
 pub const SUBPIXEL_BITS: u32 = 8;
@@ -273,13 +273,13 @@ impl Divisor {
         // product has 32-bit operands.
         let (high, low) = ((n >> 32) as u32, n as u32);
         let recip = self.recip as u32;
-        let product = mul_u32(high, recip) + (mul_u32(low, recip) >> 32);
+        let product = mul_u32_by_size(recip, high) + (mul_u32(low, recip) >> 32);
         // shift - 32 = 31 - s, below 32.
         let mut q = shr_u64(product, self.shift - 32);
         if q >= Self::QUOTIENT_LIMIT + 4 {
             return None;
         }
-        let mut qd = mul_u32(q as u32, self.d as u32);
+        let mut qd = mul_u32_by_size(self.d as u32, q as u32);
         while qd > n {
             q -= 1;
             qd -= self.d;

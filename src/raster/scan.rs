@@ -30,7 +30,7 @@ use crate::raster::plane::{Plane, TrianglePlane};
 use crate::raster::slots::Slots;
 use crate::raster::tables::{PolygonEntry, Prepared};
 use crate::raster::vertex::{ScreenVertex, TriangleTest};
-use crate::raster::wide::{mul_i32, mul_i64_small};
+use crate::raster::wide::{cross, mul_i64_small};
 use crate::sink::RowSink;
 
 /// Where a scanner's arrays live: the active polygon table, the edge pool
@@ -765,7 +765,7 @@ impl<C: Copy> ScanState<'_, '_, C> {
         // Screen y points down: the middle corner lies left of the long edge
         // when this cross product is positive.
         // (Guard-band differences: below 2^23, products below 2^46.)
-        let cross = mul_i32(bot.x - top.x, mid.y - top.y) - mul_i32(mid.x - top.x, bot.y - top.y);
+        let cross = cross(bot.x - top.x, mid.x - top.x, bot.y - top.y, mid.y - top.y);
         let set = |entry: &mut ActivePolygon<C>| {
             entry.set_triangle(
                 position as u32,

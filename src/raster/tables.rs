@@ -23,7 +23,7 @@ use crate::raster::edge::{EdgeEntry, MAX_POLYGONS};
 use crate::raster::fixed::{MAX_FRAME_SIZE, MAX_POLYGON_CORNERS, first_sample_at_or_after};
 use crate::raster::slots::Slots;
 use crate::raster::vertex::{Outline, OutlineBuilder, ScreenRect, ScreenVertex, TriangleTest};
-use crate::raster::wide::mul_i32;
+use crate::raster::wide::cross;
 
 /// A polygon-table entry (opaque: its fields are the core's own).
 #[derive(Debug, Clone, Copy)]
@@ -481,7 +481,7 @@ impl<S: TableStorage> Tables<S> {
         // 2^23, products below 2^46.
         let (px, py) = (b.x - a.x, b.y - a.y);
         let (qx, qy) = (c.x - a.x, c.y - a.y);
-        let twice_area = mul_i32(px, qy) - mul_i32(py, qx);
+        let twice_area = cross(px, py, qx, qy);
         if twice_area == 0 {
             st.counts.degenerate += 1;
             return Ok(Admission::Degenerate);

@@ -44,6 +44,34 @@ pub(crate) fn mul_u32(a: u32, b: u32) -> u64 {
     }
 }
 
+/// [`mul_u32`] when `b` is often below `2^16`: on a core without a long
+/// multiply, two 16-bit products then, four otherwise.
+#[inline(always)]
+pub(crate) fn mul_u32_by_size(a: u32, b: u32) -> u64 {
+    if HALVES {
+        if b < 1 << 16 {
+            umul32_small(a, b)
+        } else {
+            umul32_by_halves(a, b)
+        }
+    } else {
+        u64::from(a) * u64::from(b)
+    }
+}
+
+/// `p_x·q_y - p_y·q_x`, the cross product of two screen vectors whose
+/// components fit `i32` (below `2^63` in magnitude): when `q`'s components
+/// are below `2^16` (small triangles, on a core without a long multiply),
+/// from two 16-bit products each.
+#[inline(always)]
+pub(crate) fn cross(px: i32, py: i32, qx: i32, qy: i32) -> i64 {
+    if HALVES && qx.unsigned_abs() < 1 << 16 && qy.unsigned_abs() < 1 << 16 {
+        mul_i32_small_by_halves(px, qy) - mul_i32_small_by_halves(py, qx)
+    } else {
+        mul_i32(px, qy) - mul_i32(py, qx)
+    }
+}
+
 /// `a·b` for signed 32-bit operands (`|a·b| <= 2^62`, always in `i64`).
 #[inline(always)]
 pub(crate) fn mul_i32(a: i32, b: i32) -> i64 {
@@ -293,6 +321,18 @@ mod tests {
     }
 
     #[test]
+    fn products_by_size() {
+        for &a in &EDGES32 {
+            for &b in &EDGES32 {
+                assert_eq!(mul_u32_by_size(a, b), u64::from(a) * u64::from(b));
+                if b < 1 << 16 {
+                    assert_eq!(umul32_small(a, b), u64::from(a) * u64::from(b));
+                }
+            }
+        }
+    }
+
+    #[test]
     fn dot_products_at_the_extremes() {
         let ends = [i32::MIN, i32::MIN + 1, -1, 0, 1, 0xFFFF, 0x1_0000, i32::MAX];
         let coords = [i16::MIN, -1, 0, 1, i16::MAX];
@@ -334,6 +374,18 @@ mod tests {
         fn small_products_are_exact(a: i32, b in -(1i32 << 16) + 1..(1 << 16), c in -(1i64 << 47)..(1i64 << 47)) {
             prop_assert_eq!(mul_i32_small_by_halves(a, b), i64::from(a) * i64::from(b));
             prop_assert_eq!(mul_i64_small_by_halves(c, b), c * i64::from(b));
+        }
+
+        #[test]
+        fn cross_products_are_exact(
+            p in proptest::array::uniform2(-(1i32 << 30)..(1 << 30)),
+            q in proptest::array::uniform2(-(1i32 << 16) + 1..(1 << 16)),
+            wide: bool,
+        ) {
+            // Small q (the halves path on an M0+) or any.
+            let q = if wide { [q[0] << 14, q[1] << 14] } else { q };
+            let exact = i128::from(p[0]) * i128::from(q[1]) - i128::from(p[1]) * i128::from(q[0]);
+            prop_assert_eq!(i128::from(cross(p[0], p[1], q[0], q[1])), exact);
         }
 
         #[test]
