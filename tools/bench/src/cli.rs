@@ -17,7 +17,7 @@ zline's float64 reference.
 
   --sizes LIST   frame sizes [240x240,320x240,800x600]
   --cull LIST    none, back or both [none,back]
-  --rounds N     timed rounds after one warm-up frame each [15]
+  --rounds N     timed rounds, after a second of untimed warm-up frames [15]
   --quick        240x240 only, 3 rounds, at most the 3 smallest mesh files
                  (overrides --sizes and --rounds)
   --out FILE     CSV output [target/bench/peers.csv]

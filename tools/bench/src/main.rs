@@ -2,8 +2,9 @@
 //! and euc 0.5, drawing the same reference view (see [`view`]) of real
 //! meshes, side by side.
 //!
-//! For each mesh × size × cull it builds every renderer once, draws one
-//! warm-up frame with each, then times N interleaved rounds (each round
+//! For each mesh × size × cull it builds every renderer once, draws
+//! untimed warm-up frames with each (at least one, for at least a second in
+//! all), then times N interleaved rounds (each round
 //! draws one frame with every renderer, in an order that rotates from
 //! round to round) by per-thread CPU time, single-threaded. It writes
 //! the median and minimum to a CSV, prints them as a Markdown table with
@@ -178,6 +179,9 @@ fn mesh_files(options: &Options) -> Result<Vec<PathBuf>, String> {
     Ok(files)
 }
 
+/// Least untimed rendering per configuration before its timed rounds.
+const WARM_UP: std::time::Duration = std::time::Duration::from_millis(1000);
+
 /// Builds every renderer for one view, times them, and measures their
 /// face ids against the reference.
 fn bench_view(
@@ -195,8 +199,18 @@ fn bench_view(
         Box::new(EucRenderer::new(scene, view)?),
         Box::new(Embedded3dgfxRenderer::new(e3d, view)?),
     ];
-    for r in &mut renderers {
-        r.render()?;
+    // Warm-up, untimed: every renderer at least once, and for at least
+    // WARM_UP in all. On this shared machine the first configurations
+    // after loading the meshes measured up to 45 % slow after a single
+    // warm-up frame, and still after 100 ms; after a second they did not.
+    let warm_up = std::time::Instant::now();
+    loop {
+        for r in &mut renderers {
+            r.render()?;
+        }
+        if warm_up.elapsed() >= WARM_UP {
+            break;
+        }
     }
     let n = renderers.len();
     let mut times = vec![Vec::with_capacity(options.rounds); n];
