@@ -57,6 +57,10 @@ const STACK_RESERVE: usize = 16 * 1024;
 /// Bytes of the SPI interface buffer in the firmware (one 240-pixel row
 /// of Rgb565).
 const SPI_BUFFER: usize = 2 * WIDTH as usize;
+/// Row buffers queued for DMA (`src/lcd.rs`): the CPU may run this many
+/// rows ahead of the wire, which covers the light rows above and below a
+/// mesh, where it outruns the wire.
+const ROW_BUFFERS: usize = 48;
 
 fn main() -> ExitCode {
     match run() {
@@ -235,15 +239,15 @@ fn measure_views(mesh: &HostMesh, origin: &str) -> Result<String, String> {
         ..FrameStats::default()
     };
     let renderer = sized.ram_bytes::<frame::WireColor, Depth16>(usize::from(WIDTH));
-    let ram = renderer + 2 * mesh_vertices + SPI_BUFFER;
+    let ram = renderer + 2 * mesh_vertices + SPI_BUFFER + ROW_BUFFERS * 2 * usize::from(WIDTH);
     // The renderer is built at compile time in its static
     // (`Renderer::new_in_static`), so it needs room once.
     let needed = ram + STACK_RESERVE;
     if needed > RAM {
         return Err(format!(
             "{origin}: too big for the RP2040's RAM: the renderer's tables for this mesh take \
-             about {renderer} bytes, {needed} bytes in all with the vertex cache, the SPI buffer \
-             and {STACK_RESERVE} bytes of stack, over the {RAM} bytes in memory.x; use a \
+             about {renderer} bytes, {needed} bytes in all with the vertex cache, the SPI buffer, \
+             the DMA row queue and {STACK_RESERVE} bytes of stack, over the {RAM} bytes in memory.x; use a \
              smaller mesh ({} vertices, {} faces here)",
             mesh.vertex_count(),
             mesh.face_count()
@@ -269,15 +273,16 @@ fn measure_views(mesh: &HostMesh, origin: &str) -> Result<String, String> {
     );
     let _ = writeln!(
         s,
-        "// Estimated RAM (renderer + cache + SPI buffer): {ram} bytes.\n"
+        "// Estimated RAM (renderer + cache + SPI buffer + DMA row queue): {ram} bytes.\n"
     );
-    let items: [(&str, &str, String); 7] = [
+    let items: [(&str, &str, String); 8] = [
         ("WIDTH", "u16", WIDTH.to_string()),
         ("HEIGHT", "u16", HEIGHT.to_string()),
         ("YAW_STEPS", "u32", YAW_STEPS.to_string()),
         ("YAW_STEP_DEG", "f32", format!("{:?}", yaw_step_deg())),
         ("PITCH_DEG", "f32", format!("{PITCH_DEG:?}")),
         ("SPI_BUFFER", "usize", SPI_BUFFER.to_string()),
+        ("ROW_BUFFERS", "usize", ROW_BUFFERS.to_string()),
         ("MESH_VERTICES", "usize", mesh_vertices.to_string()),
     ];
     for (name, ty, value) in items {

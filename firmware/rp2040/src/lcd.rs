@@ -1,23 +1,29 @@
-//! Rows to the ST7789 by DMA, double-buffered: the renderer's row sink.
+//! Rows to the ST7789 by DMA from a queue of row buffers: the renderer's
+//! row sink.
 //!
 //! A frame opens the LCD's whole window (CASET, RASET, RAMWR) once; then
 //! each finished row, already in the wire's byte order (the renderer
-//! stores [`WireColor`] pixels), is copied into whichever of the two row
-//! buffers is free, and handed to DMA channel 0, which feeds
-//! SPI0's transmit FIFO at the wire's pace. While it goes out, the CPU
-//! computes the next row. The CPU waits only when it outruns the wire: at a
-//! row, for the previous row's transfer; at a frame's start, for the last
-//! row of the frame before.
+//! stores [`WireColor`] pixels), is copied into a free row buffer and
+//! queued. DMA channel 0 feeds the queued rows to SPI0's transmit FIFO at
+//! the wire's pace, one after another: its completion interrupt
+//! (`DMA_IRQ_0`) frees the row just sent and starts the next one, so the
+//! wire keeps going whatever the CPU does, building the next frame's scene
+//! included. The CPU waits only when it is [`ROW_BUFFERS`] rows ahead of
+//! the wire, and at a frame's start until the last frame's rows are out.
 
+use core::cell::RefCell;
+
+use critical_section::Mutex;
 use embedded_hal::digital::OutputPin;
 use embedded_hal::spi::SpiBus;
-use rp2040_hal::dma::{CH0, Channel, single_buffer};
+use rp2040_hal::dma::{CH0, Channel, SingleChannel, single_buffer};
+use rp2040_hal::pac::{self, interrupt};
 use static_cell::ConstStaticCell;
 use zline::RowSink;
 
 use crate::board::{LcdCs, LcdDc, LcdSpi, OFFSET};
 use crate::frame::WireColor;
-use crate::sizes::{HEIGHT, WIDTH};
+use crate::sizes::{HEIGHT, ROW_BUFFERS, WIDTH};
 
 /// Bytes of one row on the wire.
 pub const ROW_BYTES: usize = 2 * WIDTH as usize;
@@ -35,27 +41,102 @@ type Transfer = single_buffer::Transfer<Dma, RowBuf, LcdSpi>;
 #[repr(C, align(4))]
 struct RowBytes([u8; ROW_BYTES]);
 
-/// The two row buffers, in `.bss`.
-static ROW_A: ConstStaticCell<RowBytes> = ConstStaticCell::new(RowBytes([0; ROW_BYTES]));
-static ROW_B: ConstStaticCell<RowBytes> = ConstStaticCell::new(RowBytes([0; ROW_BYTES]));
+/// The row buffers, in `.bss`.
+static ROWS: ConstStaticCell<[RowBytes; ROW_BUFFERS]> =
+    ConstStaticCell::new([const { RowBytes([0; ROW_BYTES]) }; ROW_BUFFERS]);
 
 /// ST7789 commands.
 const CASET: u8 = 0x2A;
 const RASET: u8 = 0x2B;
 const RAMWR: u8 = 0x2C;
 
-/// Where the bus is: idle (the CPU holds the channel and SPI) or sending a
-/// row (DMA holds them).
+/// Where the bus is: idle (the channel and SPI are free) or sending a row
+/// (DMA holds them).
 enum Bus {
     Idle { dma: Dma, spi: LcdSpi },
     Sending(Transfer),
 }
 
+/// A first-in first-out ring of row buffers.
+struct Ring {
+    slots: [Option<RowBuf>; ROW_BUFFERS],
+    head: usize,
+    len: usize,
+}
+
+impl Ring {
+    const fn new() -> Self {
+        Self {
+            slots: [const { None }; ROW_BUFFERS],
+            head: 0,
+            len: 0,
+        }
+    }
+
+    /// Appends `buf` (never full: there are `ROW_BUFFERS` buffers in all).
+    fn push(&mut self, buf: RowBuf) {
+        debug_assert!(self.len < ROW_BUFFERS);
+        self.slots[(self.head + self.len) % ROW_BUFFERS] = Some(buf);
+        self.len += 1;
+    }
+
+    fn pop(&mut self) -> Option<RowBuf> {
+        let buf = self.slots[self.head].take()?;
+        self.head = (self.head + 1) % ROW_BUFFERS;
+        self.len -= 1;
+        Some(buf)
+    }
+}
+
+/// What the sink and the DMA interrupt share: the bus, the rows queued
+/// for it and the free buffers.
+struct Queue {
+    /// `None` only while the sink sends commands with the SPI.
+    bus: Option<Bus>,
+    queued: Ring,
+    free: Ring,
+}
+
+impl Queue {
+    /// Takes back the buffer of a finished transfer (clearing its
+    /// interrupt), then starts the next queued row if the bus is idle.
+    fn advance(&mut self) {
+        self.bus = match self.bus.take() {
+            Some(Bus::Sending(transfer)) if transfer.is_done() => {
+                let (mut dma, buf, spi) = transfer.wait();
+                dma.check_irq0();
+                self.free.push(buf);
+                Some(Bus::Idle { dma, spi })
+            }
+            other => other,
+        };
+        if let Some(Bus::Idle { .. }) = self.bus
+            && let Some(buf) = self.queued.pop()
+            && let Some(Bus::Idle { dma, spi }) = self.bus.take()
+        {
+            self.bus = Some(Bus::Sending(
+                single_buffer::Config::new(dma, buf, spi).start(),
+            ));
+        }
+    }
+}
+
+static QUEUE: Mutex<RefCell<Option<Queue>>> = Mutex::new(RefCell::new(None));
+
+/// Runs `f` on the queue with interrupts held off; `None` before
+/// [`LcdRows::new`].
+fn with_queue<R>(f: impl FnOnce(&mut Queue) -> R) -> Option<R> {
+    critical_section::with(|cs| QUEUE.borrow_ref_mut(cs).as_mut().map(f))
+}
+
+/// A row has left: free its buffer, start the next.
+#[interrupt]
+fn DMA_IRQ_0() {
+    with_queue(Queue::advance);
+}
+
 /// The LCD as a row sink: see the module notes.
 pub struct LcdRows {
-    bus: Option<Bus>,
-    /// Row buffers not in flight (one or two).
-    free: [Option<RowBuf>; 2],
     cs: LcdCs,
     dc: LcdDc,
 }
@@ -66,47 +147,29 @@ pub struct LcdError;
 
 impl LcdRows {
     /// Takes over SPI0 (8-bit frames, the LCD initialised), its chip
-    /// select and data/command pins, and DMA channel 0. `None` if the row
-    /// buffers were taken already.
-    pub fn new(spi: LcdSpi, cs: LcdCs, dc: LcdDc, dma: Dma) -> Option<Self> {
-        Some(Self {
-            bus: Some(Bus::Idle { dma, spi }),
-            free: [
-                Some(&mut ROW_A.try_take()?.0),
-                Some(&mut ROW_B.try_take()?.0),
-            ],
-            cs,
-            dc,
-        })
-    }
-
-    /// Waits until nothing is in flight and returns the channel and SPI;
-    /// a buffer that was in flight is free again.
-    fn idle(&mut self) -> Result<(Dma, LcdSpi), LcdError> {
-        match self.bus.take() {
-            Some(Bus::Idle { dma, spi }) => Ok((dma, spi)),
-            Some(Bus::Sending(t)) => {
-                let (dma, buf, spi) = t.wait();
-                self.give_back(buf);
-                Ok((dma, spi))
-            }
-            // Only after a panic in between: never in this firmware.
-            None => Err(LcdError),
+    /// select and data/command pins, and DMA channel 0 with its
+    /// interrupt. `None` if the row buffers were taken already.
+    pub fn new(spi: LcdSpi, cs: LcdCs, dc: LcdDc, mut dma: Dma) -> Option<Self> {
+        let mut free = Ring::new();
+        for row in ROWS.try_take()? {
+            free.push(&mut row.0);
         }
+        dma.enable_irq0();
+        critical_section::with(|cs| {
+            QUEUE.borrow_ref_mut(cs).replace(Queue {
+                bus: Some(Bus::Idle { dma, spi }),
+                queued: Ring::new(),
+                free,
+            })
+        });
+        // SAFETY: the handler only touches `QUEUE`, inside a critical
+        // section; unmasking cannot break a critical section in progress.
+        unsafe { pac::NVIC::unmask(pac::Interrupt::DMA_IRQ_0) };
+        Some(Self { cs, dc })
     }
 
-    fn give_back(&mut self, buf: RowBuf) {
-        if let Some(slot) = self.free.iter_mut().find(|b| b.is_none()) {
-            *slot = Some(buf);
-        }
-    }
-
-    fn take_free(&mut self) -> Option<RowBuf> {
-        self.free.iter_mut().find_map(Option::take)
-    }
-
-    /// Sends one command and its parameters with the CPU (DC low for the
-    /// command byte, high for the parameters).
+    /// Sends one command over the SPI (DC low for the command byte, high
+    /// for the parameters).
     fn command(spi: &mut LcdSpi, dc: &mut LcdDc, cmd: u8, params: &[u8]) -> Result<(), LcdError> {
         dc.set_low().map_err(|_| LcdError)?;
         spi.write(&[cmd]).map_err(|_| LcdError)?;
@@ -119,10 +182,35 @@ impl LcdRows {
         Ok(())
     }
 
+    /// Waits until the queue is empty and the last row is out, and takes
+    /// the channel and SPI from the bus (the interrupt then finds nothing
+    /// to do).
+    fn take_idle_bus() -> Result<(Dma, LcdSpi), LcdError> {
+        loop {
+            let taken = with_queue(|q| {
+                // A transfer that ends with interrupts held off is seen
+                // here too.
+                q.advance();
+                if q.queued.len == 0
+                    && let Some(Bus::Idle { .. }) = q.bus
+                    && let Some(Bus::Idle { dma, spi }) = q.bus.take()
+                {
+                    return Some((dma, spi));
+                }
+                None
+            })
+            .ok_or(LcdError)?;
+            if let Some(parts) = taken {
+                return Ok(parts);
+            }
+            core::hint::spin_loop();
+        }
+    }
+
     /// Opens the whole panel for writing, once the last frame's rows are
     /// out: CS cycled, CASET, RASET, RAMWR, then DC high for pixel data.
     fn begin_frame(&mut self) -> Result<(), LcdError> {
-        let (dma, mut spi) = self.idle()?;
+        let (dma, mut spi) = Self::take_idle_bus()?;
         let span = |offset: u16, size: u16| {
             let (a, b) = (offset, offset + size - 1);
             [(a >> 8) as u8, a as u8, (b >> 8) as u8, b as u8]
@@ -135,7 +223,7 @@ impl LcdRows {
             .and_then(|()| Self::command(&mut spi, dc, CASET, &span(OFFSET.0, WIDTH)))
             .and_then(|()| Self::command(&mut spi, dc, RASET, &span(OFFSET.1, HEIGHT)))
             .and_then(|()| Self::command(&mut spi, dc, RAMWR, &[]));
-        self.bus = Some(Bus::Idle { dma, spi });
+        with_queue(|q| q.bus = Some(Bus::Idle { dma, spi }));
         result
     }
 }
@@ -147,14 +235,17 @@ impl RowSink<WireColor, u16> for LcdRows {
         if y == 0 {
             self.begin_frame()?;
         }
-        // A free buffer, waiting for the row in flight if both are taken.
-        let buf = match self.take_free() {
-            Some(buf) => buf,
-            None => {
-                let (dma, spi) = self.idle()?;
-                self.bus = Some(Bus::Idle { dma, spi });
-                self.take_free().ok_or(LcdError)?
+        // A free buffer; when every buffer is queued, wait for the wire.
+        let buf = loop {
+            if let Some(buf) = with_queue(|q| {
+                q.advance();
+                q.free.pop()
+            })
+            .ok_or(LcdError)?
+            {
+                break buf;
             }
+            core::hint::spin_loop();
         };
         // The row's bytes are already big-endian Rgb565, as the ST7789
         // takes it over SPI: one copy (a row longer than the buffer is
@@ -162,10 +253,10 @@ impl RowSink<WireColor, u16> for LcdRows {
         let bytes: &[u8] = bytemuck::cast_slice(colors);
         let len = bytes.len().min(buf.len());
         buf[..len].copy_from_slice(&bytes[..len]);
-        let (dma, spi) = self.idle()?;
-        self.bus = Some(Bus::Sending(
-            single_buffer::Config::new(dma, buf, spi).start(),
-        ));
-        Ok(())
+        with_queue(|q| {
+            q.queued.push(buf);
+            q.advance();
+        })
+        .ok_or(LcdError)
     }
 }
