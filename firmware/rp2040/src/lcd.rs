@@ -13,7 +13,7 @@
 
 use core::cell::RefCell;
 
-use critical_section::Mutex;
+use cortex_m::interrupt::{Mutex, free as without_interrupts};
 use embedded_hal::digital::OutputPin;
 use embedded_hal::spi::SpiBus;
 use rp2040_hal::dma::{CH0, Channel, SingleChannel, single_buffer};
@@ -121,12 +121,14 @@ impl Queue {
     }
 }
 
+/// The queue. Only core 0 touches it (the render loop and its DMA
+/// interrupt), so masking interrupts is enough to share it: no spinlock.
 static QUEUE: Mutex<RefCell<Option<Queue>>> = Mutex::new(RefCell::new(None));
 
 /// Runs `f` on the queue with interrupts held off; `None` before
 /// [`LcdRows::new`].
 fn with_queue<R>(f: impl FnOnce(&mut Queue) -> R) -> Option<R> {
-    critical_section::with(|cs| QUEUE.borrow_ref_mut(cs).as_mut().map(f))
+    without_interrupts(|cs| QUEUE.borrow(cs).borrow_mut().as_mut().map(f))
 }
 
 /// A row has left: free its buffer, start the next.
@@ -155,8 +157,8 @@ impl LcdRows {
             free.push(&mut row.0);
         }
         dma.enable_irq0();
-        critical_section::with(|cs| {
-            QUEUE.borrow_ref_mut(cs).replace(Queue {
+        without_interrupts(|cs| {
+            QUEUE.borrow(cs).borrow_mut().replace(Queue {
                 bus: Some(Bus::Idle { dma, spi }),
                 queued: Ring::new(),
                 free,
