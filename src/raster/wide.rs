@@ -155,9 +155,16 @@ pub(crate) fn mul_i64_i32(a: i64, b: i32) -> i64 {
 /// as a 64-bit product and calls `__aeabi_lmul` again.)
 #[inline(always)]
 fn mul_i64_i32_by_halves(a: i64, b: i32) -> i64 {
+    mul_i64_by_magnitude(a, b, umul32_by_halves)
+}
+
+/// `a·b` modulo `2^64` from `|b|`: the low word's product by `low_product`
+/// (exact for the `|b|` it is given), the high word's low half, the sign.
+#[inline(always)]
+fn mul_i64_by_magnitude(a: i64, b: i32, low_product: impl Fn(u32, u32) -> u64) -> i64 {
     let (low, high) = (a as u32, (a >> 32) as u32);
     let m = b.unsigned_abs();
-    let p = umul32_by_halves(low, m).wrapping_add(u64::from(high.wrapping_mul(m)) << 32);
+    let p = low_product(low, m).wrapping_add(u64::from(high.wrapping_mul(m)) << 32);
     let p = p as i64;
     if b < 0 { p.wrapping_neg() } else { p }
 }
@@ -205,11 +212,7 @@ pub(crate) fn mul_i64_small(a: i64, b: i32) -> i64 {
 /// [`mul_i64_small`] modulo `2^64`, as [`mul_i64_i32_by_halves`].
 #[inline(always)]
 fn mul_i64_small_by_halves(a: i64, b: i32) -> i64 {
-    let (low, high) = (a as u32, (a >> 32) as u32);
-    let m = b.unsigned_abs();
-    let p = umul32_small(low, m).wrapping_add(u64::from(high.wrapping_mul(m)) << 32);
-    let p = p as i64;
-    if b < 0 { p.wrapping_neg() } else { p }
+    mul_i64_by_magnitude(a, b, umul32_small)
 }
 
 /// `v >> s` for `s < 32`: a variable 64-bit shift is another call on an
