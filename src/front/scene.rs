@@ -37,6 +37,7 @@
 //! Depth handed to the core is `z_ndc` mapped to `[0, 1]`. It is affine in
 //! screen space, so the core's plane stepping is exact.
 
+use core::cell::OnceCell;
 use core::fmt;
 
 use crate::error::Error;
@@ -442,8 +443,12 @@ enum Corner {
 /// Per-draw constants.
 struct Frame {
     mvp: Mat4,
-    /// The same product in `f64`, for faces that need clipping.
-    mvp64: [[f64; 4]; 4],
+    /// The same product in `f64`, for faces that need clipping: made the
+    /// first time one does (on a core without an FPU it is hundreds of
+    /// soft-float operations, every frame).
+    mvp64: OnceCell<[[f64; 4]; 4]>,
+    /// What `mvp64` is the product of: projection, view and model.
+    factors: [Mat4; 3],
     model_view: Mat4,
     width: f32,
     height: f32,
@@ -473,10 +478,6 @@ impl Frame {
     fn new(model: &Mat4, camera: &Camera, cull: Cull, quantized: Option<&QuantizedView>) -> Self {
         let model_view = camera.view.mul(model);
         let (width, height) = (f32::from(camera.width), f32::from(camera.height));
-        let mvp64 = mul64(
-            &to64(&camera.projection),
-            &mul64(&to64(&camera.view), &to64(model)),
-        );
         let mvp = camera.projection.mul(&model_view);
         let fixed = quantized.and_then(|q| {
             FixedFrame::new(
@@ -490,7 +491,8 @@ impl Frame {
         });
         Self {
             mvp,
-            mvp64,
+            mvp64: OnceCell::new(),
+            factors: [camera.projection, camera.view, *model],
             model_view,
             fixed,
             width,
@@ -520,7 +522,10 @@ impl Frame {
     fn clip_position64<M: Mesh + ?Sized>(&self, mesh: &M, index: usize) -> ClipPoint {
         let p = mesh.position(index).map(f64::from);
         let row = |r: [f64; 4]| r[0] * p[0] + r[1] * p[1] + r[2] * p[2] + r[3];
-        let m = &self.mvp64;
+        let m = self.mvp64.get_or_init(|| {
+            let [projection, view, model] = &self.factors;
+            mul64(&to64(projection), &mul64(&to64(view), &to64(model)))
+        });
         ClipPoint::new(row(m[0]), row(m[1]), row(m[2]), row(m[3]))
     }
 
