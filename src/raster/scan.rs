@@ -765,7 +765,7 @@ impl<C: Copy> ScanState<'_, '_, C> {
         // Screen y points down: the middle corner lies left of the long edge
         // when this cross product is positive.
         // (Guard-band differences: below 2^23, products below 2^46.)
-        let cross = cross(bot.x - top.x, mid.x - top.x, bot.y - top.y, mid.y - top.y);
+        let turn = cross(bot.x - top.x, bot.y - top.y, mid.x - top.x, mid.y - top.y);
         let set = |entry: &mut ActivePolygon<C>| {
             entry.set_triangle(
                 position as u32,
@@ -776,7 +776,7 @@ impl<C: Copy> ScanState<'_, '_, C> {
                 depth,
                 long,
                 short,
-                cross > 0,
+                turn > 0,
                 [mid_id, bot_id],
             )
         };
