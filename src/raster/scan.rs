@@ -916,6 +916,7 @@ impl<C: Copy> ScanState<'_, '_, C> {
     /// Fills every active polygon's spans on `row` into the row buffers,
     /// then steps each down to the next row: those that end leave the APT
     /// at once (its order does not matter, ties being broken by key).
+    #[inline(never)]
     fn scan_row<D: DepthFormat>(
         &mut self,
         row: u16,
@@ -925,18 +926,29 @@ impl<C: Copy> ScanState<'_, '_, C> {
         let mut switches = false;
         let mut slot = 0;
         let (tables, pool, stats) = (self.tables, &mut self.pool, &mut self.stats);
-        while slot < self.active.len() {
-            let items = self.active.as_mut_slice();
-            let polygon = &mut items[slot];
-            if fill_and_step(polygon, tables, pool, stats, row, rows) {
+        let items = self.active.as_mut_slice();
+        let mut len = items.len();
+        while let Some(polygon) = items[..len].get_mut(slot) {
+            let alive = match fill_and_step_triangle(polygon, pool, stats, row, rows) {
+                Some(alive) => alive,
+                None => fill_and_step(polygon, tables, pool, stats, row, rows),
+            };
+            if alive {
                 switches |= polygon.switch_row == next_row;
                 slot += 1;
             } else {
-                let last = items.len() - 1;
-                items[slot] = items[last];
-                self.active.truncate(last);
+                // Swap-remove; the last entry moves only when it is
+                // another one, so the copy cannot overlap (a memcpy, not
+                // a memmove, on a Cortex-M0+).
+                len -= 1;
+                if let (head, [moved, ..]) = items.split_at_mut(len)
+                    && let Some(target) = head.get_mut(slot)
+                {
+                    *target = *moved;
+                }
             }
         }
+        self.active.truncate(len);
         if switches {
             for slot in 0..self.active.len() {
                 if self.active.as_slice()[slot].switch_row == next_row {
@@ -948,9 +960,58 @@ impl<C: Copy> ScanState<'_, '_, C> {
     }
 }
 
+/// [`fill_and_step`] for the common case, a triangle whose depths stay in
+/// range: `None` (nothing done) for any other polygon. Kept apart from the
+/// general path so that, inlined into the row loop, it holds no more state
+/// than it needs (on a Cortex-M0+ the general path's spills cost more than
+/// the work).
+#[inline(always)]
+fn fill_and_step_triangle<C: Copy, D: DepthFormat>(
+    polygon: &mut ActivePolygon<C>,
+    pool: &mut EdgePool<'_>,
+    stats: &mut FrameStats,
+    row: u16,
+    rows: &mut RowBuffers<'_, C, D>,
+) -> Option<bool> {
+    let SpanDepth::Stepped {
+        dz_dx,
+        dz_dy,
+        row_value,
+        accumulator: Some(step),
+    } = polygon.depth
+    else {
+        return None;
+    };
+    if !polygon.is_triangle() {
+        return None;
+    }
+    let (start, end) = polygon.triangle_span();
+    if rows.fill_in_range(
+        start,
+        end,
+        polygon.key,
+        polygon.color,
+        row_value,
+        dz_dx,
+        step,
+    ) {
+        stats.spans += 1;
+    }
+    let next_row = row + 1;
+    if polygon.end_row <= next_row {
+        pool.live -= 2;
+        return Some(false);
+    }
+    polygon.advance_triangle(next_row);
+    if let SpanDepth::Stepped { row_value, .. } = &mut polygon.depth {
+        *row_value += dz_dy;
+    }
+    Some(true)
+}
+
 /// Fills an active polygon's spans on `row` into the row buffers and steps
 /// it down to the next row; returns whether it is still active there.
-#[inline]
+#[inline(never)]
 pub(crate) fn fill_and_step<C: Copy, D: DepthFormat>(
     polygon: &mut ActivePolygon<C>,
     tables: &Prepared<'_, C>,
