@@ -611,7 +611,20 @@ mod tests {
     #[test]
     fn rounded_division_is_exact_on_both_paths() {
         const LIMIT: i128 = 1 << 61;
-        let nums = [0, 1, -1, 2, -2, 3, -3, LIMIT - 1, -(LIMIT - 1), LIMIT, -LIMIT, 1 << 100];
+        let nums = [
+            0,
+            1,
+            -1,
+            2,
+            -2,
+            3,
+            -3,
+            LIMIT - 1,
+            -(LIMIT - 1),
+            LIMIT,
+            -LIMIT,
+            1 << 100,
+        ];
         let dens = [1, 2, 3, 32767, 65534, LIMIT - 1, LIMIT, 1 << 90];
         for &n in &nums {
             for &d in &dens {

@@ -223,6 +223,15 @@ impl Reciprocal {
     }
 }
 
+/// Whether a 32-bit division is cheap on this target: everywhere but on
+/// ARMv6-M (a Cortex-M0+ has no divide instruction, and compiler-builtins'
+/// division takes about 70 instructions), unless the `hardware-divider`
+/// feature says the chip has one of its own (the RP2040's SIO divider,
+/// which rp2040-hal uses for `/`). Where it is not, exact divisions that
+/// can take a [`Divisor`]'s reciprocal do.
+pub(crate) const DIVISION_IS_CHEAP: bool = cfg!(feature = "hardware-divider")
+    || !cfg!(all(target_arch = "arm", not(target_has_atomic = "32")));
+
 /// Exact division by one 31-bit divisor, several times, without a 64-bit
 /// division (a Cortex-M0+ has no divide instruction, and compiler-builtins'
 /// 64-bit division costs hundreds of instructions there): a 32-bit

@@ -37,8 +37,8 @@
 //! arithmetic, with overflow checks on.
 
 use crate::raster::fixed::{
-    Divisor, HALF_PIXEL, MAX_POLYGON_CORNERS, PLANE_FRAC_BITS, Reciprocal, SUBPIXEL_BITS,
-    SUBPIXEL_STEPS,
+    DIVISION_IS_CHEAP, Divisor, HALF_PIXEL, MAX_POLYGON_CORNERS, PLANE_FRAC_BITS, Reciprocal,
+    SUBPIXEL_BITS, SUBPIXEL_STEPS,
 };
 use crate::raster::vertex::ScreenVertex;
 use crate::raster::wide::{mul_i32_small, mul_i64_i32};
@@ -284,6 +284,69 @@ impl Plane {
 /// | `r·2^17 + c` | `< 2^48` | `i64` |
 /// | gradient (else steep: `None`) | `< 2^40` | `i64` |
 /// | `dz_dx·(128 - o.x)`, `dz_dy·(y_s - o.y)` (`|o| < 2^21`) | `< 2^61.01` each, `< 2^62.01` summed | `i64` |
+/// Division by a small triangle's `d = |c|` (`0 < d < 2^31`) for
+/// [`TrianglePlane`]'s gradients: a 32-bit division where the operands fit
+/// (a few cycles with a hardware divider, such as the RP2040's), else the
+/// reciprocal of a [`Divisor`], made the first time it is needed. Both
+/// give the same results exactly.
+struct GradientDivisor {
+    d: u32,
+    divisor: Option<Divisor>,
+    /// Whether to divide 32-bit operands directly ([`DIVISION_IS_CHEAP`]).
+    divide_32: bool,
+}
+
+impl GradientDivisor {
+    /// Division by `d`, with the 32-bit path on or off.
+    fn with_paths(d: u32, divide_32: bool) -> Self {
+        debug_assert!(d > 0 && d < 1 << 31);
+        Self {
+            d,
+            divisor: None,
+            divide_32,
+        }
+    }
+
+    fn divisor(&mut self) -> &Divisor {
+        let d = self.d;
+        self.divisor.get_or_insert_with(|| Divisor::new(d))
+    }
+
+    /// `(n / d, n mod d)` for `n < 2^57`; `None` when the quotient is
+    /// [`Divisor::QUOTIENT_LIMIT`] or more (as [`Divisor::div_rem`]).
+    #[inline]
+    fn div_rem(&mut self, n: u64) -> Option<(u64, u64)> {
+        match u32::try_from(n) {
+            Ok(n) if self.divide_32 => {
+                let (q, r) = (n / self.d, n % self.d);
+                (u64::from(q) < Divisor::QUOTIENT_LIMIT).then_some((q.into(), r.into()))
+            }
+            _ => self.divisor().div_rem(n),
+        }
+    }
+
+    /// `floor((rest·2^16 + floor(d / 2)) / d)` for `rest < d`: the
+    /// fraction of a gradient, rounded (below `2^16 + 1`).
+    ///
+    /// With `d < 2^23`, in two 32-bit steps of 8 bits: `rest·2^8 < 2^31`
+    /// gives `q1 < 2^8` and `r1 < d`; then `r1·2^8 + floor(d / 2) < 2^31 +
+    /// 2^22`, and the fraction is `q1·2^8 + floor(that / d)`, since
+    /// `rest·2^16 + h = q1·2^8·d + (r1·2^8 + h)`.
+    #[inline]
+    fn fraction(&mut self, rest: u64) -> Option<u64> {
+        let (d, half) = (self.d, self.d >> 1);
+        if self.divide_32 && d < 1 << 23 {
+            let a = (rest as u32) << 8;
+            let (q1, r1) = (a / d, a % d);
+            let q2 = ((r1 << 8) + half) / d;
+            return Some(u64::from((q1 << 8) + q2));
+        }
+        // rest < 2^31: the numerator is below 2^47.
+        let n = (rest << PLANE_FRAC_BITS) + u64::from(half);
+        Some(self.divisor().div_rem(n)?.0)
+    }
+}
+
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct TrianglePlane {
     pub dz_dx: i64,
@@ -297,6 +360,18 @@ impl TrianglePlane {
     /// gradient is steep.
     #[inline]
     pub fn new(o: ScreenVertex, p: ScreenVertex, q: ScreenVertex) -> Option<Self> {
+        Self::with_division(o, p, q, DIVISION_IS_CHEAP)
+    }
+
+    /// [`Self::new`], dividing 32-bit operands directly or not (the tests
+    /// compare both paths).
+    #[inline(always)]
+    fn with_division(
+        o: ScreenVertex,
+        p: ScreenVertex,
+        q: ScreenVertex,
+        divide_32: bool,
+    ) -> Option<Self> {
         let small = |d: i32| d.unsigned_abs() < 1 << 16;
         let (px, py, qx, qy) = (p.x - o.x, p.y - o.y, q.x - o.x, q.y - o.y);
         if !(small(px) && small(py) && small(qx) && small(qy)) {
@@ -313,9 +388,9 @@ impl TrianglePlane {
         let (pz, qz) = (p.z as i32 - o.z as i32, q.z as i32 - o.z as i32);
         let a = mul_i32_small(qz, py) - mul_i32_small(pz, qy);
         let b = mul_i32_small(pz, qx) - mul_i32_small(qz, px);
-        let divisor = Divisor::new(c.unsigned_abs() as u32);
         let d = c.unsigned_abs();
-        let gradient = |coef: i64| {
+        let mut divisor = GradientDivisor::with_paths(d as u32, divide_32);
+        let mut gradient = |coef: i64| {
             // round(-coef·2^8·2^16 / c), exactly, in two divisions by the
             // same divisor: |n| = whole·d + rest, then the fraction.
             let n = if c < 0 { coef } else { -coef } << SUBPIXEL_BITS;
@@ -329,8 +404,7 @@ impl TrianglePlane {
             } else {
                 (whole, rest)
             };
-            let (fraction, _) =
-                divisor.div_rem(((rest << (PLANE_FRAC_BITS + 1)) + d as i64) as u64 >> 1)?;
+            let fraction = divisor.fraction(rest as u64)?;
             let g = (whole << PLANE_FRAC_BITS) + fraction as i64;
             (g.abs() < STEEP_GRADIENT).then_some(g)
         };
@@ -521,7 +595,120 @@ mod tests {
         ]
     }
 
+    /// A triangle's set-up against the general plane's (the same rounding,
+    /// to the unit), on both division paths; whether it had one.
+    fn check_triangle_plane(o: ScreenVertex, p: ScreenVertex, q: ScreenVertex) -> bool {
+        let fast = TrianglePlane::with_division(o, p, q, true);
+        let reciprocal = TrianglePlane::with_division(o, p, q, false);
+        let gradients = |t: Option<TrianglePlane>| t.map(|t| (t.dz_dx, t.dz_dy));
+        assert_eq!(gradients(fast), gradients(reciprocal), "{o:?} {p:?} {q:?}");
+        if let Some(t) = fast {
+            let plane = Plane::triangle(o, p, q).expect("a triangle with a set-up has area");
+            assert_eq!(
+                plane.gradients(),
+                Some((t.dz_dx, t.dz_dy)),
+                "{o:?} {p:?} {q:?}"
+            );
+        }
+        fast.is_some()
+    }
+
+    /// Both division paths against `u128` arithmetic.
+    fn check_division(d: u32, n: u64, rest: u64) {
+        for divide_32 in [true, false] {
+            let mut divisor = GradientDivisor::with_paths(d, divide_32);
+            let (q, r) = (n / u64::from(d), n % u64::from(d));
+            let expected = (q < Divisor::QUOTIENT_LIMIT).then_some((q, r));
+            assert_eq!(divisor.div_rem(n), expected, "{n} / {d} ({divide_32})");
+            let exact = (u128::from(rest) << 16) + u128::from(d / 2);
+            let fraction = (exact / u128::from(d)) as u64;
+            assert_eq!(divisor.fraction(rest), Some(fraction), "{rest} / {d}");
+        }
+    }
+
+    #[test]
+    fn gradient_division_is_exact() {
+        let mut x = 0x2545_F491_4F6C_DD1Du64;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        };
+        for round in 0..300_000 {
+            // Divisors of every size, small ones often (where the rounding
+            // boundaries are dense), and both sides of the 2^23 switch.
+            let d = match round % 4 {
+                0 => (next() % 1000 + 1) as u32,
+                1 => ((1 << 23) - 2 + next() % 4) as u32,
+                _ => ((next() as u32) >> (next() % 31)).clamp(1, (1 << 31) - 1),
+            };
+            let n = match round % 5 {
+                0 => next() % (1 << 32),
+                1 => u64::from(d) * (next() % (1 << 10)) + next() % 3,
+                // Around the largest quotient computed.
+                2 => u64::from(d) * Divisor::QUOTIENT_LIMIT - 1 + next() % 3,
+                _ => next() >> (7 + next() % 57),
+            };
+            let rest = match round % 2 {
+                0 => next() % u64::from(d),
+                // Just below a multiple of d after the shift: the boundary.
+                _ => ((u64::from(d) * (next() % (1 << 16))) >> 16).min(u64::from(d) - 1),
+            };
+            check_division(d, n, rest);
+        }
+    }
+
+    #[test]
+    fn triangle_planes_at_the_extremes() {
+        let depths = [0, DEPTH_MAX, DEPTH_MAX / 2, 1];
+        let offsets = [
+            0,
+            1,
+            255,
+            256,
+            4095,
+            (1 << 15) - 1,
+            (1 << 16) - 1,
+            -(1 << 16) + 1,
+        ];
+        let (mut count, mut set_up) = (0, 0);
+        for &(ox, oy) in &[(0, 0), (-G, -G), (G - (1 << 16), 17)] {
+            for &px in &offsets {
+                for &qy in &offsets {
+                    let (p, q) = ((ox + px, oy + 3), (ox + 5, oy + qy));
+                    if [p.0, p.1, q.0, q.1].iter().any(|c| c.abs() > G) {
+                        continue;
+                    }
+                    for k in 0..depths.len() {
+                        let z = |j: usize| depths[(k + j) % depths.len()];
+                        set_up += usize::from(check_triangle_plane(
+                            v(ox, oy, z(0)),
+                            v(p.0, p.1, z(1)),
+                            v(q.0, q.1, z(2)),
+                        ));
+                        count += 1;
+                    }
+                }
+            }
+        }
+        assert!(
+            count > 500 && set_up > count / 4,
+            "{set_up} of {count} set up"
+        );
+    }
+
     proptest! {
+        #[test]
+        fn triangle_planes_match_the_general_plane(
+            o in (extreme_coordinate(), extreme_coordinate(), extreme_depth()),
+            p in (-(1i32 << 16) + 1..1 << 16, -(1i32 << 16) + 1..1 << 16, extreme_depth()),
+            q in (-(1i32 << 12)..1 << 12, -(1i32 << 12)..1 << 12, extreme_depth()),
+        ) {
+            let o = v(o.0.clamp(-G + (1 << 16), G - (1 << 16)), o.1.clamp(-G + (1 << 16), G - (1 << 16)), o.2);
+            check_triangle_plane(o, v(o.x + p.0, o.y + p.1, p.2), v(o.x + q.0, o.y + q.1, q.2));
+        }
+
         #[test]
         fn random_polygons_near_the_limits(
             poly in prop::collection::vec((extreme_coordinate(), extreme_coordinate(), extreme_depth()), 3..40)

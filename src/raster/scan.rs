@@ -944,7 +944,7 @@ impl<C: Copy> ScanState<'_, '_, C> {
                 if let (head, [moved, ..]) = items.split_at_mut(len)
                     && let Some(target) = head.get_mut(slot)
                 {
-                    *target = *moved;
+                    core::slice::from_mut(target).copy_from_slice(core::slice::from_ref(moved));
                 }
             }
         }
