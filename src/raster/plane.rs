@@ -351,6 +351,8 @@ impl GradientDivisor {
 pub(crate) struct TrianglePlane {
     pub dz_dx: i64,
     pub dz_dy: i64,
+    /// `c`: twice the signed area of `o p q` (non-zero, below `2^31`).
+    pub twice_area: i32,
     origin: ScreenVertex,
 }
 
@@ -411,6 +413,7 @@ impl TrianglePlane {
         Some(Self {
             dz_dx: gradient(a)?,
             dz_dy: gradient(b)?,
+            twice_area: c as i32,
             origin: o,
         })
     }

@@ -745,7 +745,7 @@ impl<C: Copy> ScanState<'_, '_, C> {
                 None => return Ok(()), // Zero area was left out when it was queued.
             },
         };
-        let [(_, top), (mid_id, mid), (bot_id, bot)] =
+        let ([(_, top), (mid_id, mid), (bot_id, bot)], odd) =
             sort_by_y([(ids[0], a), (ids[1], b), (ids[2], c)]);
         let height = i32::from(self.tables.height);
         let row_of = |y: i32| first_sample_at_or_after(y);
@@ -763,9 +763,20 @@ impl<C: Copy> ScanState<'_, '_, C> {
             ActiveEdge::start(mid, bot, row, clip(bot_row), NO_EDGE)
         };
         // Screen y points down: the middle corner lies left of the long edge
-        // when this cross product is positive.
+        // when the cross product (bottom - top) x (middle - top) is
+        // positive. That is minus twice the signed area of (top, middle,
+        // bottom), which is the set-up's `a b c` area, signed by the
+        // parity of the sort: no second product when the set-up made it.
         // (Guard-band differences: below 2^23, products below 2^46.)
-        let turn = cross(bot.x - top.x, bot.y - top.y, mid.x - top.x, mid.y - top.y);
+        let turn = match own_plane {
+            Some(plane) if odd => i64::from(plane.twice_area),
+            Some(plane) => -i64::from(plane.twice_area),
+            None => cross(bot.x - top.x, bot.y - top.y, mid.x - top.x, mid.y - top.y),
+        };
+        debug_assert_eq!(
+            turn,
+            cross(bot.x - top.x, bot.y - top.y, mid.x - top.x, mid.y - top.y)
+        );
         let set = |entry: &mut ActivePolygon<C>| {
             entry.set_triangle(
                 position as u32,
@@ -856,17 +867,9 @@ impl<C: Copy> ScanState<'_, '_, C> {
 
     /// A triangle reaching its middle corner's row: its lower short edge
     /// joins the pair (the upper one has just left it).
-    #[inline(never)]
     pub(crate) fn switch_triangle(&mut self, slot: usize, row: u16) -> Result<(), Error> {
-        let [mid, bot] = self.active.as_slice()[slot]
-            .lower
-            .map(|id| self.tables.vertices[usize::from(id)]);
-        let end = first_sample_at_or_after(bot.y).min(i32::from(self.tables.height));
-        let entry = &mut self.active.as_mut_slice()[slot];
-        entry.switch_row = NO_ROW;
-        if end > i32::from(row) {
-            entry.switch_short_edge(ActiveEdge::start(mid, bot, row, end as u16, NO_EDGE));
-            self.stats.edges += 1;
+        if let Some(entry) = self.active.as_mut_slice().get_mut(slot) {
+            switch_triangle(entry, self.tables, &mut self.stats, row);
         }
         Ok(())
     }
@@ -923,7 +926,6 @@ impl<C: Copy> ScanState<'_, '_, C> {
         rows: &mut RowBuffers<'_, C, D>,
     ) -> Result<(), Error> {
         let next_row = row + 1;
-        let mut switches = false;
         let mut slot = 0;
         let (tables, pool, stats) = (self.tables, &mut self.pool, &mut self.stats);
         let items = self.active.as_mut_slice();
@@ -934,7 +936,11 @@ impl<C: Copy> ScanState<'_, '_, C> {
                 None => fill_and_step(polygon, tables, pool, stats, row, rows),
             };
             if alive {
-                switches |= polygon.switch_row == next_row;
+                // A triangle reaching its middle corner's row (the switch
+                // is the same whichever polygon comes first).
+                if polygon.switch_row == next_row {
+                    switch_triangle(polygon, tables, stats, next_row);
+                }
                 slot += 1;
             } else {
                 // Swap-remove; the last entry moves only when it is
@@ -949,13 +955,6 @@ impl<C: Copy> ScanState<'_, '_, C> {
             }
         }
         self.active.truncate(len);
-        if switches {
-            for slot in 0..self.active.len() {
-                if self.active.as_slice()[slot].switch_row == next_row {
-                    self.switch_triangle(slot, next_row)?;
-                }
-            }
-        }
         Ok(())
     }
 }
@@ -1007,6 +1006,24 @@ fn fill_and_step_triangle<C: Copy, D: DepthFormat>(
         *row_value += dz_dy;
     }
     Some(true)
+}
+
+/// A triangle reaching its middle corner's row: its lower short edge
+/// joins the pair (the upper one has just left it).
+#[inline(never)]
+fn switch_triangle<C: Copy>(
+    entry: &mut ActivePolygon<C>,
+    tables: &Prepared<'_, C>,
+    stats: &mut FrameStats,
+    row: u16,
+) {
+    let [mid, bot] = entry.lower.map(|id| tables.vertices[usize::from(id)]);
+    let end = first_sample_at_or_after(bot.y).min(i32::from(tables.height));
+    entry.switch_row = NO_ROW;
+    if end > i32::from(row) {
+        entry.switch_short_edge(ActiveEdge::start(mid, bot, row, end as u16, NO_EDGE));
+        stats.edges += 1;
+    }
 }
 
 /// Fills an active polygon's spans on `row` into the row buffers and steps
@@ -1131,20 +1148,25 @@ fn fill_spans_and_step<C: Copy>(
 }
 
 /// A triangle's corners (with their vertex indices) sorted by y (stable:
-/// equal ones keep their order).
+/// equal ones keep their order), and whether the sort was an odd
+/// permutation.
 #[inline]
-fn sort_by_y(corners: [(u16, ScreenVertex); 3]) -> [(u16, ScreenVertex); 3] {
+fn sort_by_y(corners: [(u16, ScreenVertex); 3]) -> ([(u16, ScreenVertex); 3], bool) {
     let [mut top, mut mid, mut bot] = corners;
+    let mut odd = false;
     if mid.1.y < top.1.y {
         core::mem::swap(&mut top, &mut mid);
+        odd = !odd;
     }
     if bot.1.y < mid.1.y {
         core::mem::swap(&mut mid, &mut bot);
+        odd = !odd;
         if mid.1.y < top.1.y {
             core::mem::swap(&mut top, &mut mid);
+            odd = !odd;
         }
     }
-    [top, mid, bot]
+    ([top, mid, bot], odd)
 }
 
 /// Calls `f(top, bottom)` for every non-horizontal edge of a polygon, its
