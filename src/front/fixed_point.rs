@@ -56,7 +56,9 @@ use crate::front::quantized::{NORMAL_SCALE, POSITION_SCALE};
 use crate::front::scene::CLIP_BAND_PX;
 use crate::raster::fixed::{DEPTH_MAX, SUBPIXEL_STEPS};
 use crate::raster::vertex::ScreenVertex;
-use crate::raster::wide::{dot3_i32_i16, mul_i64_i32, mul_u32, mul_u32_i32};
+use crate::raster::wide::{
+    dot3_i32_i16, leading_zeros_u64, mul_i64_i32, mul_u32, mul_u32_i32, shl_i64, shr_i64,
+};
 
 /// Smallest scale exponent `T` the integer front end works with: below it
 /// the clip coordinates would be coarser than `2^-16` and the `f32` front
@@ -386,11 +388,15 @@ impl FixedFrame {
         }
         // Normalise w to 31 bits; |x|, |y| <= 2^13·w and |z| <= w keep
         // every shifted value below 2^44.
-        let shift = 64 - w.leading_zeros() as i32 - 31;
+        // (w > 0 and below 2^48: the shift is in (-31, 17], and each shift
+        // takes the two words, not a library call, on ARMv6-M.)
+        let shift = 64 - leading_zeros_u64(w as u64) as i32 - 31;
         let (x, y, z, w) = if shift >= 0 {
-            (x >> shift, y >> shift, z >> shift, w >> shift)
+            let s = shift as u32;
+            (shr_i64(x, s), shr_i64(y, s), shr_i64(z, s), shr_i64(w, s))
         } else {
-            (x << -shift, y << -shift, z << -shift, w << -shift)
+            let s = shift.unsigned_abs();
+            (shl_i64(x, s), shl_i64(y, s), shl_i64(z, s), shl_i64(w, s))
         };
         let half = i64::from(SUBPIXEL_STEPS / 2);
         let (hw, hh) = (half * self.width, half * self.height);

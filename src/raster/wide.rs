@@ -228,6 +228,60 @@ pub(crate) fn shr_u64(v: u64, s: u32) -> u64 {
     }
 }
 
+/// `v >> s` (arithmetic) for `s < 32`: [`shr_u64`] for signed values.
+#[inline(always)]
+pub(crate) fn shr_i64(v: i64, s: u32) -> i64 {
+    debug_assert!(s < 32);
+    if HALVES {
+        shr_i64_by_words(v, s)
+    } else {
+        v >> s
+    }
+}
+
+/// [`shr_i64`] from the two 32-bit words.
+#[inline(always)]
+fn shr_i64_by_words(v: i64, s: u32) -> i64 {
+    let (low, high) = (v as u32, (v >> 32) as i32);
+    let low = (low >> s) | (((high as u32) << 1) << (31 - s));
+    (i64::from(high >> s) << 32) | i64::from(low)
+}
+
+/// `v << s` for `s < 32`, when the result fits `i64`.
+#[inline(always)]
+pub(crate) fn shl_i64(v: i64, s: u32) -> i64 {
+    debug_assert!(s < 32);
+    if HALVES {
+        shl_i64_by_words(v, s)
+    } else {
+        v << s
+    }
+}
+
+/// [`shl_i64`] from the two 32-bit words.
+#[inline(always)]
+fn shl_i64_by_words(v: i64, s: u32) -> i64 {
+    let (low, high) = (v as u32, (v >> 32) as u32);
+    let high = (high << s) | ((low >> 1) >> (31 - s));
+    ((u64::from(high) << 32) | u64::from(low << s)) as i64
+}
+
+/// Leading zeros of a 64-bit value, from its words: one 32-bit count (a
+/// call on ARMv6-M, which has no count instruction) rather than two.
+#[inline(always)]
+pub(crate) fn leading_zeros_u64(v: u64) -> u32 {
+    if HALVES {
+        let high = (v >> 32) as u32;
+        if high != 0 {
+            high.leading_zeros()
+        } else {
+            32 + (v as u32).leading_zeros()
+        }
+    } else {
+        v.leading_zeros()
+    }
+}
+
 /// [`shr_u64`] from the two 32-bit words.
 #[inline(always)]
 fn shr_u64_by_words(v: u64, s: u32) -> u64 {
@@ -367,10 +421,39 @@ mod tests {
         }
     }
 
+    #[test]
+    fn signed_shifts_and_counts_at_the_extremes() {
+        for v in [
+            0i64,
+            1,
+            -1,
+            i64::MAX,
+            i64::MIN,
+            1 << 47,
+            -(1 << 47),
+            0x0123_4567_89AB_CDEF,
+        ] {
+            for s in 0..32 {
+                assert_eq!(shr_i64_by_words(v, s), v >> s, "{v:#x} >> {s}");
+                assert_eq!(shr_i64(v, s), v >> s);
+                if let Some(exact) = v.checked_mul(1 << s) {
+                    assert_eq!(shl_i64_by_words(v, s), exact, "{v:#x} << {s}");
+                    assert_eq!(shl_i64(v, s), exact);
+                }
+            }
+            assert_eq!(leading_zeros_u64(v as u64), (v as u64).leading_zeros());
+        }
+        for k in 0..64 {
+            assert_eq!(leading_zeros_u64(1 << k), 63 - k);
+        }
+    }
+
     proptest! {
         #[test]
         fn shifts_are_exact(v: u64, s in 0u32..32) {
             prop_assert_eq!(shr_u64_by_words(v, s), v >> s);
+            prop_assert_eq!(shr_i64_by_words(v as i64, s), (v as i64) >> s);
+            prop_assert_eq!(shl_i64_by_words(v as i64, s), (v as i64) << s);
         }
 
         #[test]
