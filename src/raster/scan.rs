@@ -257,7 +257,7 @@ fn scan_rows<C: Copy, D: DepthFormat, K: RowSink<C, D::Value>>(
         // stored depth equals the new one and is not CLEAR, that is where
         // this row has written it (see `fill_span`).
         row_buffers.depth.fill(D::CLEAR);
-        row_buffers.color.fill(background);
+        clear_color_row(row_buffers.color, background);
         if row == first {
             // Polygons that started above the band and reach into it enter
             // at its first row, with the edges covering it.
@@ -291,6 +291,15 @@ fn scan_rows<C: Copy, D: DepthFormat, K: RowSink<C, D::Value>>(
             .map_err(RenderError::Sink)?;
     }
     Ok(state.stats)
+}
+
+/// Clears the colour row to `background`; out of line so that the colour
+/// stays in a register (inlined into the row loop, a Cortex-M0+ reloaded
+/// it from the stack every four pixels). The depth row's constant fill is
+/// left inline, where it becomes a `memset`.
+#[inline(never)]
+fn clear_color_row<C: Copy>(row: &mut [C], background: C) {
+    row.fill(background);
 }
 
 /// The row being built: depth, colour and tie-break key per pixel.
