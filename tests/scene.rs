@@ -283,3 +283,69 @@ fn faces_sharing_a_plane_keep_the_first_on_every_view() {
         assert!(drawn.iter().all(|&c| c != 2), "view {yaw}/{pitch}");
     }
 }
+
+/// Two large triangles facing opposite ways and two tiny ones (far below a
+/// pixel, between the samples) facing opposite ways.
+static FACING: StaticMesh<'static> = match StaticMesh::new(
+    &[
+        [-1.0, -1.0, 0.0],
+        [1.0, -1.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [0.30, 0.30, 0.0],
+        [0.31, 0.30, 0.0],
+        [0.30, 0.31, 0.0],
+    ],
+    &[
+        0, 1, 2, // large, counter-clockwise from +z
+        0, 2, 1, // large, clockwise
+        3, 4, 5, // tiny, counter-clockwise
+        3, 5, 4, // tiny, clockwise
+    ],
+    &[0, 3, 6, 9],
+) {
+    Ok(m) => m,
+    Err(_) => panic!("bad mesh"),
+};
+
+#[test]
+fn back_faces_are_culled_wherever_they_lie_and_only_kept_faces_are_shaded() {
+    let camera = Camera::reference(96, 72);
+    let model = reference_model(&FACING, 0.0, 0.0).unwrap();
+    let run = |cull: Cull| {
+        let mut renderer = R::with_size(camera.width, camera.height, 0).unwrap();
+        let mut cache: VertexCache<64> = VertexCache::new();
+        let mut shaded = Vec::new();
+        let stats = draw_mesh(
+            &mut renderer,
+            &mut cache,
+            &FACING,
+            &model,
+            &camera,
+            cull,
+            |f| {
+                shaded.push(f.face);
+                f.face + 1
+            },
+        )
+        .unwrap();
+        (stats, shaded)
+    };
+    let (none, shaded) = run(Cull::None);
+    // Without culling: both large faces drawn, both tiny ones cover no
+    // sample; the shading closure sees only what is drawn.
+    assert_eq!(
+        (none.queued, none.back_faces, none.off_screen),
+        (2, 0, 2),
+        "{none:?}"
+    );
+    assert_eq!(shaded, [0, 1]);
+    let (back, shaded) = run(Cull::Back);
+    // Culled: one large face drawn; both back faces culled, the tiny one
+    // too (before its sample test); the tiny front face covers no sample.
+    assert_eq!(
+        (back.queued, back.back_faces, back.off_screen),
+        (1, 2, 1),
+        "{back:?}"
+    );
+    assert_eq!(shaded.len(), 1);
+}

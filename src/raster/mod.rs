@@ -68,13 +68,11 @@ pub trait PolygonTables<C> {
     fn add_vertex(&mut self, vertex: ScreenVertex) -> Result<u16, Error>;
     /// A vertex added before.
     fn get_vertex(&self, index: u16) -> Option<ScreenVertex>;
-    /// Offers a polygon by its corners' vertex indices. A polygon of zero
-    /// area is counted and left out (see [`Admission`]); otherwise `decide`
-    /// sees its [`Outline`] and gives its colour, or `None` to leave it out
-    /// ([`Admission::Declined`]: a back face, say, which then costs no
-    /// frame or sample test); a polygon it keeps that covers no pixel
-    /// sample is counted and left out ([`Admission::OffScreen`]). Nothing
-    /// is stored unless it is queued; on `Err` nothing was added.
+    /// Offers a polygon by its corners' vertex indices. Polygons of zero
+    /// area or covering no pixel sample are counted and left out (see
+    /// [`Admission`]); otherwise `decide` sees its [`Outline`] and gives
+    /// its colour, or `None` to leave it out ([`Admission::Declined`]).
+    /// Nothing is stored unless it is queued; on `Err` nothing was added.
     fn offer_polygon<I>(
         &mut self,
         corners: I,

@@ -179,10 +179,7 @@ impl<C: Copy, const V: usize, const P: usize, const E: usize> TableStorage
 pub enum Admission {
     /// It entered the polygon table; its id is the given value.
     Queued(u32),
-    /// It covers no pixel sample of the frame (bounding-box test, and the
-    /// sample test for small triangles); asked after the caller's
-    /// `decide`, so a face the caller declines counts as declined wherever
-    /// it lies.
+    /// It covers no pixel sample of the frame (bounding-box test).
     OffScreen,
     /// Its projected area is zero: it cannot cover a sample.
     Degenerate,
@@ -495,16 +492,6 @@ impl<S: TableStorage> Tables<S> {
             y0: a.y.min(b.y).min(c.y),
             y1: a.y.max(b.y).max(c.y),
         };
-        let outline = Outline {
-            corners: 3,
-            twice_area,
-            rect: Some(rect),
-        };
-        // The caller's decision (a back face is culled there) before the
-        // frame and sample tests, which every face would pay for.
-        let Some(color) = decide(&outline) else {
-            return Ok(Admission::Declined);
-        };
         let Some((columns, rows)) = rect.samples(st.counts.width, st.counts.height) else {
             st.counts.off_screen += 1;
             return Ok(Admission::OffScreen);
@@ -512,6 +499,14 @@ impl<S: TableStorage> Tables<S> {
         let Some(rows) = covered_rows(a, b, c, columns, rows) else {
             st.counts.off_screen += 1;
             return Ok(Admission::OffScreen);
+        };
+        let outline = Outline {
+            corners: 3,
+            twice_area,
+            rect: Some(rect),
+        };
+        let Some(color) = decide(&outline) else {
+            return Ok(Admission::Declined);
         };
         let (Some(entry), Some(slots)) = (
             parts.polygons.get_mut(st.polygons),
@@ -701,15 +696,12 @@ impl<C: Copy> TablesMut<'_, C> {
             outline.add(*vertex.ok_or(Error::VertexOutOfRange)?);
         }
         let outline = outline.finish();
-        if let Err(admission) = self.judge(&outline)? {
-            return Ok(admission);
-        }
-        let Some(color) = decide(&outline) else {
-            return Ok(Admission::Declined);
-        };
-        let rows = match self.sample_rows(&outline) {
+        let rows = match self.judge(&outline)? {
             Ok(rows) => rows,
             Err(admission) => return Ok(admission),
+        };
+        let Some(color) = decide(&outline) else {
+            return Ok(Admission::Declined);
         };
         if self.polygons.is_full() {
             return Err(Error::PolygonTableFull);
@@ -762,11 +754,6 @@ impl<C: Copy> TablesMut<'_, C> {
         if let Err(admission) = self.judge(&outline)? {
             return Ok(admission);
         }
-        // The caller's decision (a back face is culled there) before the
-        // frame and sample tests, which every face would pay for.
-        let Some(color) = decide(&outline) else {
-            return Ok(Admission::Declined);
-        };
         let covered = outline
             .rect
             .and_then(|r| r.samples(self.counts.width, self.counts.height))
@@ -776,6 +763,9 @@ impl<C: Copy> TablesMut<'_, C> {
             return Ok(Admission::OffScreen);
         };
         let rows = (rows.start, rows.end);
+        let Some(color) = decide(&outline) else {
+            return Ok(Admission::Declined);
+        };
         if self.polygons.is_full() {
             return Err(Error::PolygonTableFull);
         }
@@ -789,9 +779,9 @@ impl<C: Copy> TablesMut<'_, C> {
         Ok(self.queue(start, 3, rows, color))
     }
 
-    /// The core's verdict on an outline before the caller's: `Ok(Ok(()))`
-    /// when it has area, `Ok(Err(Degenerate))` (counted) when it has none.
-    fn judge(&mut self, outline: &Outline) -> Result<Result<(), Admission>, Error> {
+    /// The core's verdict on an outline: `Ok(Ok(rows))` when it can cover
+    /// a pixel sample, `Ok(Err(admission))` (counted) when it cannot.
+    fn judge(&mut self, outline: &Outline) -> Result<Result<(u16, u16), Admission>, Error> {
         if outline.corners < 3 {
             return Err(Error::TooFewCorners);
         }
@@ -799,20 +789,14 @@ impl<C: Copy> TablesMut<'_, C> {
             self.counts.degenerate += 1;
             return Ok(Err(Admission::Degenerate));
         }
-        Ok(Ok(()))
-    }
-
-    /// The rows an outline the caller kept may cover, or `OffScreen`
-    /// (counted) when its bounding box holds no pixel sample.
-    fn sample_rows(&mut self, outline: &Outline) -> Result<(u16, u16), Admission> {
         let (width, height) = (self.counts.width, self.counts.height);
-        outline
-            .rect
-            .and_then(|r| r.sample_rows(width, height))
-            .ok_or_else(|| {
+        match outline.rect.and_then(|r| r.sample_rows(width, height)) {
+            Some(rows) => Ok(Ok(rows)),
+            None => {
                 self.counts.off_screen += 1;
-                Admission::OffScreen
-            })
+                Ok(Err(Admission::OffScreen))
+            }
+        }
     }
 
     /// Enters the polygon whose corners are `corners[start..start + count]`
@@ -911,8 +895,8 @@ impl<C: Copy> TablesMut<'_, C> {
             outline.add(vertices[usize::from(index)]);
         }
         let outline = outline.finish();
-        match self.judge(&outline) {
-            Ok(Ok(())) => {}
+        let rows = match self.judge(&outline) {
+            Ok(Ok(rows)) => rows,
             Ok(Err(admission)) => {
                 self.discard_polygon();
                 return Ok(admission);
@@ -921,17 +905,10 @@ impl<C: Copy> TablesMut<'_, C> {
                 self.discard_polygon();
                 return Err(e);
             }
-        }
+        };
         let Some(color) = decide(&outline) else {
             self.discard_polygon();
             return Ok(Admission::Declined);
-        };
-        let rows = match self.sample_rows(&outline) {
-            Ok(rows) => rows,
-            Err(admission) => {
-                self.discard_polygon();
-                return Ok(admission);
-            }
         };
         if self.polygons.is_full() {
             self.discard_polygon();
