@@ -874,15 +874,6 @@ impl<C: Copy> ScanState<'_, '_, C> {
         )
     }
 
-    /// A triangle reaching its middle corner's row: its lower short edge
-    /// joins the pair (the upper one has just left it).
-    pub(crate) fn switch_triangle(&mut self, slot: usize, row: u16) -> Result<(), Error> {
-        if let Some(entry) = self.active.as_mut_slice().get_mut(slot) {
-            switch_triangle(entry, self.tables, &mut self.stats, row);
-        }
-        Ok(())
-    }
-
     /// Starts edges of the active polygon at `slot`: at its activation,
     /// every edge covering `row`; later, those starting on `row`.
     #[inline(never)]
@@ -940,11 +931,7 @@ impl<C: Copy> ScanState<'_, '_, C> {
         let items = self.active.as_mut_slice();
         let mut len = items.len();
         while let Some(polygon) = items[..len].get_mut(slot) {
-            let alive = match fill_and_step_triangle(polygon, pool, stats, row, rows) {
-                Some(alive) => alive,
-                None => fill_and_step(polygon, tables, pool, stats, row, rows),
-            };
-            if alive {
+            if fill_and_step(polygon, tables, pool, stats, row, rows) {
                 // A triangle reaching its middle corner's row (the switch
                 // is the same whichever polygon comes first).
                 if polygon.switch_row == next_row {
@@ -1020,7 +1007,7 @@ fn fill_and_step_triangle<C: Copy, D: DepthFormat>(
 /// A triangle reaching its middle corner's row: its lower short edge
 /// joins the pair (the upper one has just left it).
 #[inline(never)]
-fn switch_triangle<C: Copy>(
+pub(crate) fn switch_triangle<C: Copy>(
     entry: &mut ActivePolygon<C>,
     tables: &Prepared<'_, C>,
     stats: &mut FrameStats,
@@ -1036,9 +1023,27 @@ fn switch_triangle<C: Copy>(
 }
 
 /// Fills an active polygon's spans on `row` into the row buffers and steps
-/// it down to the next row; returns whether it is still active there.
-#[inline(never)]
+/// it down to the next row; returns whether it is still active there. The
+/// common case inline ([`fill_and_step_triangle`]), every other polygon
+/// out of line.
+#[inline(always)]
 pub(crate) fn fill_and_step<C: Copy, D: DepthFormat>(
+    polygon: &mut ActivePolygon<C>,
+    tables: &Prepared<'_, C>,
+    pool: &mut EdgePool<'_>,
+    stats: &mut FrameStats,
+    row: u16,
+    rows: &mut RowBuffers<'_, C, D>,
+) -> bool {
+    match fill_and_step_triangle(polygon, pool, stats, row, rows) {
+        Some(alive) => alive,
+        None => fill_and_step_general(polygon, tables, pool, stats, row, rows),
+    }
+}
+
+/// [`fill_and_step`] for every polygon but an in-range triangle.
+#[inline(never)]
+fn fill_and_step_general<C: Copy, D: DepthFormat>(
     polygon: &mut ActivePolygon<C>,
     tables: &Prepared<'_, C>,
     pool: &mut EdgePool<'_>,
@@ -1068,20 +1073,9 @@ pub(crate) fn fill_and_step<C: Copy, D: DepthFormat>(
         }
     };
     let (key, color) = (polygon.key, polygon.color);
-    let active = fill_spans_and_step(
-        polygon,
-        pool,
-        stats,
-        row,
-        |start, end, triangle| match source {
-            SpanSource::Stepped {
-                dz_dx,
-                row_value,
-                accumulator: Some(step),
-            } if triangle => rows.fill_in_range(start, end, key, color, row_value, dz_dx, step),
-            _ => rows.fill(start, end, key, color, &source),
-        },
-    );
+    let active = fill_spans_and_step(polygon, pool, stats, row, |start, end| {
+        rows.fill(start, end, key, color, &source)
+    });
     if let SpanDepth::Stepped {
         dz_dy, row_value, ..
     } = &mut polygon.depth
@@ -1113,14 +1107,14 @@ fn fill_shared_and_step<C: Copy, D: DepthFormat>(
     // |row| < 2^12, |dz_dy| < 2^40: the product is below 2^52.
     let row_value = row0_value + i64::from(row) * dz_dy;
     let (key, color) = (polygon.key, polygon.color);
-    fill_spans_and_step(polygon, pool, stats, row, |start, end, _| {
+    fill_spans_and_step(polygon, pool, stats, row, |start, end| {
         rows.fill_shared(start, end, key, color, row_value, dz_dx)
     })
 }
 
-/// Fills an active polygon's spans on `row` with `fill(start, end,
-/// is_triangle)` (which says whether any pixel was in the row) and steps
-/// its edges down to the next row; returns whether it is still active
+/// Fills an active polygon's spans on `row` with `fill(start, end)`
+/// (which says whether any pixel was in the row) and steps its edges down
+/// to the next row; returns whether it is still active
 /// there.
 #[inline(always)]
 fn fill_spans_and_step<C: Copy>(
@@ -1128,12 +1122,12 @@ fn fill_spans_and_step<C: Copy>(
     pool: &mut EdgePool<'_>,
     stats: &mut FrameStats,
     row: u16,
-    mut fill: impl FnMut(i32, i32, bool) -> bool,
+    mut fill: impl FnMut(i32, i32) -> bool,
 ) -> bool {
     let next_row = row + 1;
     if polygon.is_triangle() {
         let (start, end) = polygon.triangle_span();
-        if fill(start, end, true) {
+        if fill(start, end) {
             stats.spans += 1;
         }
         if polygon.end_row <= next_row {
@@ -1144,7 +1138,7 @@ fn fill_spans_and_step<C: Copy>(
     } else {
         let spans = &mut stats.spans;
         polygon.for_each_span(pool, |start, end| {
-            if fill(start, end, false) {
+            if fill(start, end) {
                 *spans += 1;
             }
         });

@@ -23,7 +23,9 @@ use crate::error::{Error, RenderError};
 use crate::raster::active::{ActivePolygon, EdgePool, NO_ROW};
 use crate::raster::depth::DepthFormat;
 use crate::raster::edge::ActiveEdge;
-use crate::raster::scan::{FrameStats, PixelWrite, RowBuffers, ScanState, fill_and_step};
+use crate::raster::scan::{
+    FrameStats, PixelWrite, RowBuffers, ScanState, fill_and_step, switch_triangle,
+};
 use crate::raster::slots::Slots;
 use crate::raster::tables::Prepared;
 use crate::sink::RowSink;
@@ -212,9 +214,11 @@ fn draw_rows<C: Copy, D: DepthFormat>(
             break;
         }
         if is_triangle {
-            let switch = state.active.as_slice()[0].switch_row;
-            if switch == next && switch != NO_ROW {
-                state.switch_triangle(0, next)?;
+            if let Some(entry) = state.active.as_mut_slice().first_mut()
+                && entry.switch_row == next
+                && entry.switch_row != NO_ROW
+            {
+                switch_triangle(entry, state.tables, &mut state.stats, next);
             }
         } else {
             // The edge table's work: edges starting on the next row join.
