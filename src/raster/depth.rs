@@ -19,6 +19,7 @@
 //! exact plane; `tests/depth_bound.rs` checks this over full-width spans.
 
 use crate::raster::fixed::PLANE_FRAC_BITS;
+use crate::raster::wide::mul_i64_small;
 
 /// A depth-row format: the stored value type, its span accumulator and the
 /// conversions from plane units.
@@ -51,11 +52,23 @@ pub trait DepthFormat {
     /// format's accumulator step, computed once per polygon; `None` when it
     /// does not fit the accumulator.
     fn accumulator_step(step: i64) -> Option<i64>;
-    /// The accumulator at a pixel whose plane value is `start`, and the
-    /// step from [`DepthFormat::accumulator_step`], for a span of a polygon
-    /// whose every value lies in [`IN_RANGE`] depth steps: no per-span
-    /// range check (the caller has made it once per polygon).
-    fn accumulator(start: i64, step: i64) -> (Self::Accum, Self::Accum);
+    /// The accumulator at pixel `column` of a row whose plane value at
+    /// column 0 is `row_value` (the polygon's gradient `dz_dx`, its
+    /// accumulator step `step` from [`DepthFormat::accumulator_step`]),
+    /// and that step, for a span of a polygon whose every value lies in
+    /// [`IN_RANGE`] depth steps: no per-span range check (the caller has
+    /// made it once per polygon).
+    ///
+    /// Ranges: `|row_value| < 2^62`, `|dz_dx| < 2^40`, `0 <= column <
+    /// 2^12`. Column 0 may lie far outside the polygon, so the value there
+    /// may not fit the accumulator: a format may compute modulo the
+    /// accumulator's width, since the value at `column` does fit.
+    fn accumulator_at(
+        row_value: i64,
+        dz_dx: i64,
+        step: i64,
+        column: i32,
+    ) -> (Self::Accum, Self::Accum);
 }
 
 /// Depths (input steps) of a triangle's corners for which its spans take
@@ -145,13 +158,24 @@ impl DepthFormat for Depth16 {
             .map(i64::from)
     }
 
+    /// The value at column 0, rounded to the accumulator's unit, plus
+    /// `column` accumulator steps, in 32-bit words (one `muls` on a
+    /// Cortex-M0+, not a 64-bit product).
+    ///
+    /// Error: the column-0 value is off by at most half a unit (2^-16
+    /// step) and each step by at most half a unit, so the value at
+    /// `column` is within `(1 + column)·2^-16` steps of the exact plane, as
+    /// the accumulator is after `column` pixels of a span; with the
+    /// span's own pixels, below `2^-4` steps in a row of up to 2^12
+    /// pixels. That lies inside [`IN_RANGE`]'s margin, so the exact sum
+    /// `round(row_value / 2^9) + column·step + 2^14` is in `[0, 2^31)`:
+    /// computed modulo 2^32 (wrapping), it is exact.
     #[inline]
-    fn accumulator(start: i64, step: i64) -> (i32, i32) {
-        // In range, start < 2^40 plane units: below 2^31 once shifted.
-        (
-            (shift_round(start, Z16_SHIFT) + (1 << (Z16_ACC_FRAC - 1))) as i32,
-            step as i32,
-        )
+    fn accumulator_at(row_value: i64, _dz_dx: i64, step: i64, column: i32) -> (i32, i32) {
+        let step = step as i32;
+        let at_zero =
+            (shift_round(row_value, Z16_SHIFT) as i32).wrapping_add(1 << (Z16_ACC_FRAC - 1));
+        (at_zero.wrapping_add(step.wrapping_mul(column)), step)
     }
 }
 
@@ -210,9 +234,12 @@ impl DepthFormat for Depth24 {
         }
     }
 
+    /// Exact: the plane value at `column` (`|dz_dx·column| < 2^52`,
+    /// and in range below 2^40), shifted into the accumulator (below
+    /// 2^56).
     #[inline]
-    fn accumulator(start: i64, step: i64) -> (i64, i64) {
-        // In range, start < 2^40 plane units: below 2^56 once shifted.
+    fn accumulator_at(row_value: i64, dz_dx: i64, step: i64, column: i32) -> (i64, i64) {
+        let start = row_value + mul_i64_small(dz_dx, column);
         (
             (start << (Z24_ACC_FRAC - PLANE_FRAC_BITS)) + (1 << (Z24_ACC_FRAC - 1)),
             step,
@@ -261,5 +288,61 @@ mod tests {
         // 1000.3 - 2.75 * 400 < 0: the span leaves the range.
         assert!(Depth24::span(start, step, 401).is_none());
         assert!(Depth16::span(start * 256, step * 256, 401).is_none());
+    }
+
+    /// `accumulator_at` against the exact plane, at the extremes: steep
+    /// gradients, far columns (where the column-0 value is far outside the
+    /// accumulator's range), both ends of `IN_RANGE`. The Depth16
+    /// accumulator is within its stated `(1 + column)/2` units of the exact
+    /// value; the Depth24 one is exact.
+    #[test]
+    fn accumulator_at_is_within_its_bound_where_column_zero_overflows() {
+        let (lo, hi) = (*IN_RANGE.start(), *IN_RANGE.end());
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        let mut cases = 0;
+        for round in 0..200_000u64 {
+            let depth = match round % 4 {
+                0 => lo,
+                1 => hi,
+                _ => lo + (next() % u64::from(hi - lo)) as u32,
+            };
+            // The value at `column`, in plane units, with a random fraction.
+            let value = (i64::from(depth) << PLANE_FRAC_BITS) + (next() % (1 << 16)) as i64;
+            let column = match round % 3 {
+                0 => 4095,
+                1 => 0,
+                _ => (next() % 4096) as i32,
+            };
+            let dz_dx = match round % 5 {
+                0 => (1i64 << 40) - 1 - (next() % 512) as i64,
+                1 => -(1i64 << 40) + 1 + (next() % 512) as i64,
+                _ => (next() % (1 << 41)) as i64 - (1 << 40),
+            };
+            let row_value = value - dz_dx * i64::from(column);
+            if let Some(step) = Depth16::accumulator_step(dz_dx) {
+                let (acc, s) = Depth16::accumulator_at(row_value, dz_dx, step, column);
+                assert_eq!(i64::from(s), step);
+                // Exact accumulator, times 2^9: value / 2^9 + 2^14.
+                let exact = i128::from(value) + (1 << (Z16_SHIFT + Z16_ACC_FRAC - 1));
+                let error = (i128::from(acc) << Z16_SHIFT) - exact;
+                let bound = (1 + i128::from(column)) << (Z16_SHIFT - 1);
+                assert!(
+                    error.abs() <= bound,
+                    "{row_value} {dz_dx} {column}: off by {error}"
+                );
+                cases += 1;
+            }
+            let step = Depth24::accumulator_step(dz_dx).unwrap();
+            let (acc, _) = Depth24::accumulator_at(row_value, dz_dx, step, column);
+            assert_eq!(acc, (value << 16) + (1 << 31));
+        }
+        // Most random gradients fit the Depth16 step: the bound was tested.
+        assert!(cases > 100_000, "{cases}");
     }
 }

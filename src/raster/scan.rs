@@ -315,8 +315,9 @@ pub(crate) struct RowBuffers<'a, C, D: DepthFormat> {
 impl<C: Copy, D: DepthFormat> RowBuffers<'_, C, D> {
     /// Fills pixels `[start, end)` (clamped to the row) of a triangle that
     /// stays in range (see [`IN_RANGE`]): depths from the accumulator,
-    /// starting from the plane value `row_value + dz_dx · x` at the first
-    /// pixel, with no range check, no rounding and no call per span; whether
+    /// placed at the first pixel from the row's column-0 value
+    /// ([`DepthFormat::accumulator_at`]), with no range check, no rounding
+    /// and no call per span; whether
     /// any pixel was in the row. (With the `profile` feature it is kept out
     /// of line: the profile's "spans" stage.)
     #[cfg_attr(feature = "profile", inline(never))]
@@ -343,9 +344,7 @@ impl<C: Copy, D: DepthFormat> RowBuffers<'_, C, D> {
             &mut self.key[first..last],
             &mut self.color[first..last],
         );
-        // |dz_dx| < 2^40, start < 2^12: the product is below 2^52.
-        let (mut acc, step) =
-            D::accumulator(row_value + mul_i64_small(dz_dx, start), accumulator_step);
+        let (mut acc, step) = D::accumulator_at(row_value, dz_dx, accumulator_step, start);
         if self.write != PixelWrite::NearerOrFirstAdded {
             // The other methods' rules, out of line: the scanline's span
             // loop stays as it was.
@@ -1293,8 +1292,10 @@ fn fill_span<C: Copy, D: DepthFormat, const MODE: u8>(
             accumulator: Some(step),
         } => {
             // In range (checked once per polygon): the accumulator, with
-            // no range check and no rounding per pixel.
-            let (mut acc, step) = D::accumulator(row_value + dz_dx * i64::from(x0), step);
+            // no range check and no rounding per pixel, placed at the plane
+            // value of the span's first pixel (|dz_dx| < 2^40, x0 < 2^12).
+            let start = row_value + dz_dx * i64::from(x0);
+            let (mut acc, step) = D::accumulator_at(start, dz_dx, step, 0);
             for ((stored, stored_key), pixel) in pixels {
                 write(D::value(acc), stored, stored_key, pixel);
                 acc = D::advance(acc, step);
