@@ -76,15 +76,25 @@ impl Ring {
     /// Appends `buf` (never full: there are `ROW_BUFFERS` buffers in all).
     fn push(&mut self, buf: RowBuf) {
         debug_assert!(self.len < ROW_BUFFERS);
-        self.slots[(self.head + self.len) % ROW_BUFFERS] = Some(buf);
+        self.slots[wrap(self.head + self.len)] = Some(buf);
         self.len += 1;
     }
 
     fn pop(&mut self) -> Option<RowBuf> {
         let buf = self.slots[self.head].take()?;
-        self.head = (self.head + 1) % ROW_BUFFERS;
+        self.head = wrap(self.head + 1);
         self.len -= 1;
         Some(buf)
+    }
+}
+
+/// `index mod ROW_BUFFERS` for `index < 2·ROW_BUFFERS`, by a compare: `%`
+/// would be a call to the divider on every row.
+fn wrap(index: usize) -> usize {
+    if index >= ROW_BUFFERS {
+        index - ROW_BUFFERS
+    } else {
+        index
     }
 }
 
