@@ -284,26 +284,48 @@ impl Plane {
 /// | `r·2^17 + c` | `< 2^48` | `i64` |
 /// | gradient (else steep: `None`) | `< 2^40` | `i64` |
 /// | `dz_dx·(128 - o.x)`, `dz_dy·(y_s - o.y)` (`|o| < 2^21`) | `< 2^61.01` each, `< 2^62.01` summed | `i64` |
+/// How [`TrianglePlane`] divides by a triangle's doubled area. Every path
+/// gives the same results exactly.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum DivisionPath {
+    /// The reciprocal of a [`Divisor`]: products only, for a core whose
+    /// division is a library routine (a Cortex-M0+ without a divider).
+    Reciprocal,
+    /// 32-bit divisions, eight bits of quotient per step after the first,
+    /// when `d < 2^23`; else the reciprocal. For a 32-bit core that divides
+    /// 32-bit words in hardware (the RP2040's SIO divider, a Cortex-M3's
+    /// `udiv`) but 64-bit ones in a library routine.
+    Words,
+    /// The target's own 64-bit division: a 64-bit core.
+    Native,
+}
+
+/// This target's [`DivisionPath`].
+pub(crate) const DIVISION_PATH: DivisionPath = if cfg!(target_pointer_width = "64") {
+    DivisionPath::Native
+} else if DIVISION_IS_CHEAP {
+    DivisionPath::Words
+} else {
+    DivisionPath::Reciprocal
+};
+
 /// Division by a small triangle's `d = |c|` (`0 < d < 2^31`) for
-/// [`TrianglePlane`]'s gradients: a 32-bit division where the operands fit
-/// (a few cycles with a hardware divider, such as the RP2040's), else the
-/// reciprocal of a [`Divisor`], made the first time it is needed. Both
-/// give the same results exactly.
+/// [`TrianglePlane`]'s gradients, by a [`DivisionPath`]. The reciprocal of
+/// a [`Divisor`] is made the first time a path needs it.
 struct GradientDivisor {
     d: u32,
     divisor: Option<Divisor>,
-    /// Whether to divide 32-bit operands directly ([`DIVISION_IS_CHEAP`]).
-    divide_32: bool,
+    path: DivisionPath,
 }
 
 impl GradientDivisor {
-    /// Division by `d`, with the 32-bit path on or off.
-    fn with_paths(d: u32, divide_32: bool) -> Self {
+    /// Division by `d` on `path`.
+    fn with_path(d: u32, path: DivisionPath) -> Self {
         debug_assert!(d > 0 && d < 1 << 31);
         Self {
             d,
             divisor: None,
-            divide_32,
+            path,
         }
     }
 
@@ -312,17 +334,27 @@ impl GradientDivisor {
         self.divisor.get_or_insert_with(|| Divisor::new(d))
     }
 
+    /// Whether `d` is small enough for the 32-bit steps of
+    /// [`DivisionPath::Words`].
+    fn bytewise(&self) -> bool {
+        self.path == DivisionPath::Words && self.d < 1 << 23
+    }
+
     /// `(n / d, n mod d)` for `n < 2^57`; `None` when the quotient is
     /// [`Divisor::QUOTIENT_LIMIT`] or more (as [`Divisor::div_rem`]).
     #[inline]
     fn div_rem(&mut self, n: u64) -> Option<(u64, u64)> {
-        match u32::try_from(n) {
-            Ok(n) if self.divide_32 => {
-                let (q, r) = (n / self.d, n % self.d);
-                (u64::from(q) < Divisor::QUOTIENT_LIMIT).then_some((q.into(), r.into()))
-            }
-            _ => self.divisor().div_rem(n),
-        }
+        let d = self.d;
+        let (q, r) = match self.path {
+            DivisionPath::Reciprocal => return self.divisor().div_rem(n),
+            DivisionPath::Native => (n / u64::from(d), n % u64::from(d)),
+            DivisionPath::Words => match u32::try_from(n) {
+                Ok(n) => ((n / d).into(), (n % d).into()),
+                Err(_) if d < 1 << 23 => div_rem_by_bytes(n, d),
+                Err(_) => return self.divisor().div_rem(n),
+            },
+        };
+        (q < Divisor::QUOTIENT_LIMIT).then_some((q, r))
     }
 
     /// `floor((rest·2^16 + floor(d / 2)) / d)` for `rest < d`: the
@@ -335,7 +367,7 @@ impl GradientDivisor {
     #[inline]
     fn fraction(&mut self, rest: u64) -> Option<u64> {
         let (d, half) = (self.d, self.d >> 1);
-        if self.divide_32 && d < 1 << 23 {
+        if self.bytewise() {
             let a = (rest as u32) << 8;
             let (q1, r1) = (a / d, a % d);
             let q2 = ((r1 << 8) + half) / d;
@@ -343,8 +375,43 @@ impl GradientDivisor {
         }
         // rest < 2^31: the numerator is below 2^47.
         let n = (rest << PLANE_FRAC_BITS) + u64::from(half);
+        if self.path == DivisionPath::Native {
+            return Some(n / u64::from(d));
+        }
         Some(self.divisor().div_rem(n)?.0)
     }
+}
+
+/// `(n / d, n mod d)` for `n < 2^57` and `0 < d < 2^23` by 32-bit
+/// divisions only.
+///
+/// The first dividend is `n`'s top bits: its high word `hi` with as many
+/// whole bytes of its low word as fit 32 bits beside it (`bytes` bytes of
+/// the low word are left; `hi < 2^25`, so `bytes <= 4`). Each later step
+/// divides `r·2^8 + the next byte`, below `2^31` since `r < d < 2^23`,
+/// and appends eight bits to the quotient, which stays below `n < 2^57`.
+/// After each step `q·d + r` equals the bits of `n` taken so far.
+fn div_rem_by_bytes(n: u64, d: u32) -> (u64, u64) {
+    let (hi, lo) = ((n >> 32) as u32, n as u32);
+    let bytes: u32 = match hi {
+        0 => 0,
+        1..0x100 => 1,
+        0x100..0x1_0000 => 2,
+        0x1_0000..0x100_0000 => 3,
+        _ => 4,
+    };
+    let top = match bytes {
+        0 => lo,
+        4 => hi,
+        _ => (hi << (32 - 8 * bytes)) | (lo >> (8 * bytes)),
+    };
+    let (mut q, mut r) = (u64::from(top / d), top % d);
+    for k in (0..bytes).rev() {
+        let dividend = (r << 8) | ((lo >> (8 * k)) & 0xFF);
+        q = (q << 8) | u64::from(dividend / d);
+        r = dividend % d;
+    }
+    (q, u64::from(r))
 }
 
 #[derive(Debug, Clone, Copy)]
@@ -362,17 +429,16 @@ impl TrianglePlane {
     /// gradient is steep.
     #[inline]
     pub fn new(o: ScreenVertex, p: ScreenVertex, q: ScreenVertex) -> Option<Self> {
-        Self::with_division(o, p, q, DIVISION_IS_CHEAP)
+        Self::with_division(o, p, q, DIVISION_PATH)
     }
 
-    /// [`Self::new`], dividing 32-bit operands directly or not (the tests
-    /// compare both paths).
+    /// [`Self::new`] on a given [`DivisionPath`] (the tests compare them).
     #[inline(always)]
     fn with_division(
         o: ScreenVertex,
         p: ScreenVertex,
         q: ScreenVertex,
-        divide_32: bool,
+        path: DivisionPath,
     ) -> Option<Self> {
         let small = |d: i32| d.unsigned_abs() < 1 << 16;
         let (px, py, qx, qy) = (p.x - o.x, p.y - o.y, q.x - o.x, q.y - o.y);
@@ -391,7 +457,7 @@ impl TrianglePlane {
         let a = mul_i32_small(qz, py) - mul_i32_small(pz, qy);
         let b = mul_i32_small(pz, qx) - mul_i32_small(qz, px);
         let d = c.unsigned_abs();
-        let mut divisor = GradientDivisor::with_paths(d as u32, divide_32);
+        let mut divisor = GradientDivisor::with_path(d as u32, path);
         let mut gradient = |coef: i64| {
             // round(-coef·2^8·2^16 / c), exactly, in two divisions by the
             // same divisor: |n| = whole·d + rest, then the fraction.
@@ -598,13 +664,26 @@ mod tests {
         ]
     }
 
+    /// Every division path.
+    const PATHS: [DivisionPath; 3] = [
+        DivisionPath::Reciprocal,
+        DivisionPath::Words,
+        DivisionPath::Native,
+    ];
+
     /// A triangle's set-up against the general plane's (the same rounding,
-    /// to the unit), on both division paths; whether it had one.
+    /// to the unit), on every division path; whether it had one.
     fn check_triangle_plane(o: ScreenVertex, p: ScreenVertex, q: ScreenVertex) -> bool {
-        let fast = TrianglePlane::with_division(o, p, q, true);
-        let reciprocal = TrianglePlane::with_division(o, p, q, false);
+        let fast = TrianglePlane::with_division(o, p, q, DivisionPath::Words);
         let gradients = |t: Option<TrianglePlane>| t.map(|t| (t.dz_dx, t.dz_dy));
-        assert_eq!(gradients(fast), gradients(reciprocal), "{o:?} {p:?} {q:?}");
+        for path in PATHS {
+            let other = TrianglePlane::with_division(o, p, q, path);
+            assert_eq!(
+                gradients(fast),
+                gradients(other),
+                "{o:?} {p:?} {q:?} {path:?}"
+            );
+        }
         if let Some(t) = fast {
             let plane = Plane::triangle(o, p, q).expect("a triangle with a set-up has area");
             assert_eq!(
@@ -616,16 +695,25 @@ mod tests {
         fast.is_some()
     }
 
-    /// Both division paths against `u128` arithmetic.
+    /// Every division path against `u128` arithmetic.
     fn check_division(d: u32, n: u64, rest: u64) {
-        for divide_32 in [true, false] {
-            let mut divisor = GradientDivisor::with_paths(d, divide_32);
+        for path in PATHS {
+            let mut divisor = GradientDivisor::with_path(d, path);
             let (q, r) = (n / u64::from(d), n % u64::from(d));
             let expected = (q < Divisor::QUOTIENT_LIMIT).then_some((q, r));
-            assert_eq!(divisor.div_rem(n), expected, "{n} / {d} ({divide_32})");
+            assert_eq!(divisor.div_rem(n), expected, "{n} / {d} ({path:?})");
             let exact = (u128::from(rest) << 16) + u128::from(d / 2);
             let fraction = (exact / u128::from(d)) as u64;
-            assert_eq!(divisor.fraction(rest), Some(fraction), "{rest} / {d}");
+            assert_eq!(
+                divisor.fraction(rest),
+                Some(fraction),
+                "{rest} / {d} ({path:?})"
+            );
+        }
+        if d < 1 << 23 && n < 1 << 57 {
+            // The byte steps themselves, past the quotient limit too.
+            let expected = (n / u64::from(d), n % u64::from(d));
+            assert_eq!(div_rem_by_bytes(n, d), expected, "{n} / {d}");
         }
     }
 
@@ -651,6 +739,8 @@ mod tests {
                 1 => u64::from(d) * (next() % (1 << 10)) + next() % 3,
                 // Around the largest quotient computed.
                 2 => u64::from(d) * Divisor::QUOTIENT_LIMIT - 1 + next() % 3,
+                // Where the byte steps' first dividend changes width.
+                3 => (1u64 << (32 + 8 * (next() % 4))) - 1 + next() % 3,
                 _ => next() >> (7 + next() % 57),
             };
             let rest = match round % 2 {
