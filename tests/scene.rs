@@ -349,3 +349,65 @@ fn back_faces_are_culled_wherever_they_lie_and_only_kept_faces_are_shaded() {
     );
     assert_eq!(shaded.len(), 1);
 }
+
+/// `offer_front_triangle` of the tables (their own, fused with the other
+/// tests) and of the trait's default (from `get_vertex`, here through
+/// the recording tables) agree on every triangle: a back face is exactly
+/// one whose exact cross product is positive, whatever else is true of
+/// it (tiny, off screen, degenerate ones are not back faces), and any
+/// other triangle is judged as `offer_triangle` judges it.
+#[test]
+fn the_tables_and_the_default_cull_the_same_back_faces() {
+    use zline::raster::PolygonTables;
+    use zline::{Admission, ScreenVertex};
+    let mut seed = 0x9E37_79B9_7F4A_7C15u64;
+    let mut next = |n: i32| {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed % n as u64) as i32
+    };
+    let (mut back, mut kept) = (0, 0);
+    for round in 0..4000 {
+        // Sub-pixel corners on and around a 96x64 frame; every fourth
+        // triangle within a pixel, every tenth with a repeated corner.
+        let span = if round % 4 == 0 { 300 } else { 40_000 };
+        let mut corner = || {
+            ScreenVertex::new(
+                next(span) - span / 8,
+                next(span) - span / 8,
+                next(1 << 24) as u32,
+            )
+            .unwrap()
+        };
+        let (a, b) = (corner(), corner());
+        let c = if round % 10 == 0 { a } else { corner() };
+        let mut fused = R::with_size(96, 64, 0).unwrap();
+        let mut plain = R::with_size(96, 64, 0).unwrap();
+        let mut default = common::Recorder::new(96, 64);
+        let ids = |t: &mut dyn FnMut(ScreenVertex) -> u16| [t(a), t(b), t(c)];
+        let fused_ids = ids(&mut |v| fused.push_vertex(v).unwrap());
+        let plain_ids = ids(&mut |v| plain.push_vertex(v).unwrap());
+        let default_ids = ids(&mut |v| default.add_vertex(v).unwrap());
+        let got = fused.offer_front_triangle(fused_ids, |_| Some(1)).unwrap();
+        let by_default = default
+            .offer_front_triangle(default_ids, |_| Some(1))
+            .unwrap();
+        let cross = (i64::from(b.x) - i64::from(a.x)) * (i64::from(c.y) - i64::from(a.y))
+            - (i64::from(b.y) - i64::from(a.y)) * (i64::from(c.x) - i64::from(a.x));
+        if cross > 0 {
+            assert_eq!(got, Admission::BackFace, "{a:?} {b:?} {c:?}");
+            assert_eq!(by_default, Admission::BackFace, "{a:?} {b:?} {c:?}");
+            back += 1;
+        } else {
+            assert_ne!(by_default, Admission::BackFace, "{a:?} {b:?} {c:?}");
+            let judged = plain.offer_triangle(plain_ids, |_| Some(1)).unwrap();
+            assert_eq!(got, judged, "{a:?} {b:?} {c:?}");
+            kept += 1;
+        }
+    }
+    assert!(
+        back > 1000 && kept > 1000,
+        "{back} back faces, {kept} others"
+    );
+}

@@ -41,7 +41,7 @@ use crate::raster::fixed::{
     SUBPIXEL_BITS, SUBPIXEL_STEPS,
 };
 use crate::raster::vertex::ScreenVertex;
-use crate::raster::wide::{mul_i32_small, mul_i64_i32};
+use crate::raster::wide::{cross, mul_i32_small, mul_i64_i32};
 
 /// A gradient of this magnitude (plane units per pixel) or more changes
 /// depth by the whole depth range within one pixel: such a polygon is
@@ -447,7 +447,7 @@ impl TrianglePlane {
         }
         // Each product below 2^32 in magnitude: i64, but no overflow check
         // needed.
-        let c = mul_i32_small(px, qy) - mul_i32_small(py, qx);
+        let c = cross(px, py, qx, qy);
         if c == 0 || c.unsigned_abs() >= 1 << 31 {
             return None;
         }

@@ -60,15 +60,31 @@ pub(crate) fn mul_u32_by_size(a: u32, b: u32) -> u64 {
 }
 
 /// `p_x·q_y - p_y·q_x`, the cross product of two screen vectors whose
-/// components fit `i32` (below `2^63` in magnitude): when `q`'s components
-/// are below `2^16` (small triangles, on a core without a long multiply),
+/// components fit `i32` (below `2^63` in magnitude). On a core without a
+/// long multiply: when every component lies in `[-2^15, 2^15)` (triangles
+/// under 128 px each way), in 32 bits (each product at most `2^30`, the
+/// difference below `2^31`); else when `q`'s components are below `2^16`,
 /// from two 16-bit products each.
 #[inline(always)]
 pub(crate) fn cross(px: i32, py: i32, qx: i32, qy: i32) -> i64 {
-    if HALVES && qx.unsigned_abs() < 1 << 16 && qy.unsigned_abs() < 1 << 16 {
+    if HALVES {
+        cross_by_halves(px, py, qx, qy)
+    } else {
+        i64::from(px) * i64::from(qy) - i64::from(py) * i64::from(qx)
+    }
+}
+
+/// [`cross`] on a core without a long multiply.
+#[inline(always)]
+fn cross_by_halves(px: i32, py: i32, qx: i32, qy: i32) -> i64 {
+    // x + 2^15 < 2^16 as u32 exactly when -2^15 <= x < 2^15.
+    let short = |x: i32| x.wrapping_add(1 << 15) as u32;
+    if (short(px) | short(py) | short(qx) | short(qy)) < 1 << 16 {
+        i64::from(px * qy - py * qx)
+    } else if qx.unsigned_abs() < 1 << 16 && qy.unsigned_abs() < 1 << 16 {
         mul_i32_small_by_halves(px, qy) - mul_i32_small_by_halves(py, qx)
     } else {
-        mul_i32(px, qy) - mul_i32(py, qx)
+        mul_i32_by_halves(px, qy) - mul_i32_by_halves(py, qx)
     }
 }
 
@@ -448,6 +464,28 @@ mod tests {
         }
     }
 
+    /// The 32-bit path of the cross product at its edges: every component
+    /// at `-2^15` or `2^15 - 1` (in it), and one at `2^15` or `-2^15 - 1`
+    /// (out of it).
+    #[test]
+    fn cross_products_at_the_short_bounds() {
+        let values = [-(1 << 15) - 1, -(1 << 15), -1, 0, 1, (1 << 15) - 1, 1 << 15];
+        for px in values {
+            for py in values {
+                for qx in values {
+                    for qy in values {
+                        let exact = i64::from(px) * i64::from(qy) - i64::from(py) * i64::from(qx);
+                        assert_eq!(
+                            cross_by_halves(px, py, qx, qy),
+                            exact,
+                            "{px} {py} {qx} {qy}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+
     proptest! {
         #[test]
         fn shifts_are_exact(v: u64, s in 0u32..32) {
@@ -468,10 +506,15 @@ mod tests {
             q in proptest::array::uniform2(-(1i32 << 16) + 1..(1 << 16)),
             wide: bool,
         ) {
-            // Small q (the halves path on an M0+) or any.
+            // Small q (the halves path on an M0+) or any; and every
+            // component short (the 32-bit path there).
             let q = if wide { [q[0] << 14, q[1] << 14] } else { q };
-            let exact = i128::from(p[0]) * i128::from(q[1]) - i128::from(p[1]) * i128::from(q[0]);
-            prop_assert_eq!(i128::from(cross(p[0], p[1], q[0], q[1])), exact);
+            for p in [p, [p[0] >> 15, p[1] >> 15]] {
+                let q = if p[0].unsigned_abs() < 1 << 15 { [q[0] >> 1, q[1] >> 1] } else { q };
+                let exact = i128::from(p[0]) * i128::from(q[1]) - i128::from(p[1]) * i128::from(q[0]);
+                prop_assert_eq!(i128::from(cross(p[0], p[1], q[0], q[1])), exact);
+                prop_assert_eq!(i128::from(cross_by_halves(p[0], p[1], q[0], q[1])), exact);
+            }
         }
 
         #[test]
