@@ -10,7 +10,6 @@
 use crate::front::fixed_point::{fraction_bits, unit_q15};
 use crate::front::geometry::Vec3;
 use crate::front::scene::FaceInfo;
-use crate::raster::wide::mul_i32;
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 
 /// How faces are coloured.
@@ -93,8 +92,7 @@ impl Lambert {
     /// The colour of one face.
     pub fn color(&self, face: &FaceInfo) -> Rgb888 {
         if let Some(n) = face.normal_q15() {
-            let l = self.light_q15;
-            let dot: i64 = (0..3).map(|k| mul_i32(n[k], l[k])).sum();
+            let dot = dot_q15(n, self.light_q15);
             let dot = if face.front { dot } else { -dot };
             // Below 2^15 · (1 + 2^-10) for the normals a quantized mesh
             // accepts; clamped for any other input.
@@ -112,6 +110,16 @@ impl Lambert {
         let k = self.ambient + (1.0 - self.ambient) * n.dot(self.light).max(0.0);
         scale(self.base, k)
     }
+}
+
+/// `n·l` for a view normal `n` from
+/// [`FixedFrame::view_normal`](crate::front::fixed_point::FixedFrame::view_normal)
+/// (`|n_k| <= 2^16`: an `i32` shifted right by 15) and a light direction
+/// from [`unit_q15`] (`|l_k| <= 32767`). Each product is below `2^31` in
+/// magnitude, so a 32-bit multiply does (one cycle on a Cortex-M0+, where
+/// an `i64` product is a long call); the sum takes `i64`.
+fn dot_q15(n: [i32; 3], l: [i32; 3]) -> i64 {
+    (0..3).map(|k| i64::from(n[k].wrapping_mul(l[k]))).sum()
 }
 
 impl Shading {
@@ -182,6 +190,24 @@ mod tests {
         assert_eq!(s.color(&flipped), Rgb888::new(200, 100, 50));
         let grazing = face(Vec3::new(1.0, 0.0, 0.0), true, 3.0);
         assert_eq!(s.color(&grazing), Rgb888::new(50, 25, 13));
+    }
+
+    /// The light's dot product at the ends of its operands' ranges.
+    #[test]
+    fn light_dot_products_at_the_extremes() {
+        let ns = [-(1 << 16), -(1 << 16) + 1, -1, 0, 1, (1 << 16) - 1];
+        let ls = [-32767, -1, 0, 1, 32767];
+        for &n0 in &ns {
+            for &n1 in &ns {
+                for &l0 in &ls {
+                    for &l1 in &ls {
+                        let (n, l) = ([n0, n1, n0], [l0, l1, l1]);
+                        let exact: i64 = (0..3).map(|k| i64::from(n[k]) * i64::from(l[k])).sum();
+                        assert_eq!(dot_q15(n, l), exact, "{n:?} {l:?}");
+                    }
+                }
+            }
+        }
     }
 
     #[test]

@@ -88,17 +88,8 @@ fn cross_by_halves(px: i32, py: i32, qx: i32, qy: i32) -> i64 {
     }
 }
 
-/// `a·b` for signed 32-bit operands (`|a·b| <= 2^62`, always in `i64`).
-#[inline(always)]
-pub(crate) fn mul_i32(a: i32, b: i32) -> i64 {
-    if HALVES {
-        mul_i32_by_halves(a, b)
-    } else {
-        i64::from(a) * i64::from(b)
-    }
-}
-
-/// [`mul_i32`] from 16-bit halves. With `A = a mod 2^32`, `B = b mod
+/// `a·b` for signed 32-bit operands (`|a·b| <= 2^62`, always in `i64`)
+/// from 16-bit halves. With `A = a mod 2^32`, `B = b mod
 /// 2^32`: `A·B = a·b + 2^32·([a<0]·b + [b<0]·a) (mod 2^64)`, so the high
 /// word only needs two subtractions.
 #[inline(always)]
@@ -333,7 +324,6 @@ mod tests {
                 let (sa, sb) = (a as i32, b as i32);
                 let exact = i64::from(sa) * i64::from(sb);
                 assert_eq!(mul_i32_by_halves(sa, sb), exact, "{sa} * {sb}");
-                assert_eq!(mul_i32(sa, sb), exact);
                 assert_eq!(mul_u32_i32(a, sb), i64::from(a) * i64::from(sb));
             }
         }
