@@ -253,37 +253,6 @@ impl Plane {
     }
 }
 
-/// A triangle's depth gradients and the corner they are anchored at: the
-/// set-up the scanner steps, made with no reciprocal and no 128-bit
-/// product, so that it is cheap on a 32-bit core without a divider.
-///
-/// With the corners relative to `o`, `c = px·qy - py·qx` (twice the area),
-/// `a = py·qz - pz·qy`, `b = pz·qx - px·qz`, and each gradient
-/// `round(-a·2^24 / c)` (plane units per pixel) comes from two exact
-/// divisions by `c`: `-a·2^8 = n·c + r` (`0 <= r < c`), then
-/// `n·2^16 + round(r·2^16 / c)`. That is the same rounding as
-/// [`Plane::gradients`], to the unit.
-///
-/// The row value at column 0 is anchored at `o` itself, where the plane's
-/// value is `z_o` exactly: `z_o·2^16 + round((dz_dx·(128 - o.x) +
-/// dz_dy·(y_s - o.y)) / 256)` for the sample line `y_s` of the row. A
-/// pixel `x` then stores `row value + dz_dx·x`, off the exact plane by at
-/// most `2^-17·(1 + |x - o_x| + |y - o_y|)` depth steps (pixels from the
-/// corner), plus `2^-17` for the final shift; and the value at a row is
-/// exactly the value at an earlier row plus `dz_dy` per row, so stepping
-/// and bands agree.
-///
-/// # Ranges
-/// Taken when the triangle fits (else [`Plane`] does it):
-/// | quantity | bound | held in |
-/// |---|---|---|
-/// | `px, py, qx, qy` | `< 2^16` (triangles under 256 px each way) | `i32` |
-/// | `c` | `< 2^31`, non-zero | `i32` / `i64` |
-/// | `a, b` (`|dz| < 2^24`) | `< 2^41` | `i64` |
-/// | `-a·2^8`, `-b·2^8` | `< 2^49` | `i64` |
-/// | `r·2^17 + c` | `< 2^48` | `i64` |
-/// | gradient (else steep: `None`) | `< 2^40` | `i64` |
-/// | `dz_dx·(128 - o.x)`, `dz_dy·(y_s - o.y)` (`|o| < 2^21`) | `< 2^61.01` each, `< 2^62.01` summed | `i64` |
 /// How [`TrianglePlane`] divides by a triangle's doubled area. Every path
 /// gives the same results exactly.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -414,6 +383,37 @@ fn div_rem_by_bytes(n: u64, d: u32) -> (u64, u64) {
     (q, u64::from(r))
 }
 
+/// A triangle's depth gradients and the corner they are anchored at: the
+/// set-up the scanner steps, made with no reciprocal and no 128-bit
+/// product, so that it is cheap on a 32-bit core without a divider.
+///
+/// With the corners relative to `o`, `c = px·qy - py·qx` (twice the area),
+/// `a = py·qz - pz·qy`, `b = pz·qx - px·qz`, and each gradient
+/// `round(-a·2^24 / c)` (plane units per pixel) comes from two exact
+/// divisions by `c`: `-a·2^8 = n·c + r` (`0 <= r < c`), then
+/// `n·2^16 + round(r·2^16 / c)`. That is the same rounding as
+/// [`Plane::gradients`], to the unit.
+///
+/// The row value at column 0 is anchored at `o` itself, where the plane's
+/// value is `z_o` exactly: `z_o·2^16 + round((dz_dx·(128 - o.x) +
+/// dz_dy·(y_s - o.y)) / 256)` for the sample line `y_s` of the row. A
+/// pixel `x` then stores `row value + dz_dx·x`, off the exact plane by at
+/// most `2^-17·(1 + |x - o_x| + |y - o_y|)` depth steps (pixels from the
+/// corner), plus `2^-17` for the final shift; and the value at a row is
+/// exactly the value at an earlier row plus `dz_dy` per row, so stepping
+/// and bands agree.
+///
+/// # Ranges
+/// Taken when the triangle fits (else [`Plane`] does it):
+/// | quantity | bound | held in |
+/// |---|---|---|
+/// | `px, py, qx, qy` | `< 2^16` (triangles under 256 px each way) | `i32` |
+/// | `c` | `< 2^31`, non-zero | `i32` / `i64` |
+/// | `a, b` (`|dz| < 2^24`) | `< 2^41` | `i64` |
+/// | `-a·2^8`, `-b·2^8` | `< 2^49` | `i64` |
+/// | `r·2^17 + c` | `< 2^48` | `i64` |
+/// | gradient (else steep: `None`) | `< 2^40` | `i64` |
+/// | `dz_dx·(128 - o.x)`, `dz_dy·(y_s - o.y)` (`|o| < 2^21`) | `< 2^61.01` each, `< 2^62.01` summed | `i64` |
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct TrianglePlane {
     pub dz_dx: i64,

@@ -188,7 +188,7 @@ pub enum Admission {
     /// The caller's `decide` closure declined it.
     Declined,
     /// It faces away from the viewer, and was offered by
-    /// [`PolygonTables::offer_front_triangle`](crate::raster::PolygonTables::offer_front_triangle).
+    /// [`PolygonTables::offer_front_triangle`].
     BackFace,
 }
 
