@@ -41,7 +41,7 @@ use crate::raster::fixed::{
     SUBPIXEL_BITS, SUBPIXEL_STEPS,
 };
 use crate::raster::vertex::ScreenVertex;
-use crate::raster::wide::{cross, mul_i32_small, mul_i64_i32};
+use crate::raster::wide::{cross, mul_i64_i32, mul_sub_small};
 
 /// A gradient of this magnitude (plane units per pixel) or more changes
 /// depth by the whole depth range within one pixel: such a polygon is
@@ -454,8 +454,8 @@ impl TrianglePlane {
         // Depths are below 2^24: their differences fit i32, and each
         // product is below 2^40.
         let (pz, qz) = (p.z as i32 - o.z as i32, q.z as i32 - o.z as i32);
-        let a = mul_i32_small(qz, py) - mul_i32_small(pz, qy);
-        let b = mul_i32_small(pz, qx) - mul_i32_small(qz, px);
+        let a = mul_sub_small(qz, py, pz, qy);
+        let b = mul_sub_small(pz, qx, qz, px);
         let d = c.unsigned_abs();
         let mut divisor = GradientDivisor::with_path(d as u32, path);
         let mut gradient = |coef: i64| {

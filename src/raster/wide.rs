@@ -176,15 +176,28 @@ fn mul_i64_by_magnitude(a: i64, b: i32, low_product: impl Fn(u32, u32) -> u64) -
     if b < 0 { p.wrapping_neg() } else { p }
 }
 
-/// `a·b` for a 32-bit `a` and a small `b` (`|b| < 2^16`, so the product
-/// is below `2^47`): two 16-bit products instead of four.
+/// `a·s - b·t` for 32-bit `a`, `b` and small `s`, `t` (`|s|, |t| <
+/// 2^16`, so each product is below `2^47`): on a core without a long
+/// multiply, in 32 bits when all four lie in `[-2^15, 2^15)` (as for
+/// [`cross`]), else each from two 16-bit products.
 #[inline(always)]
-pub(crate) fn mul_i32_small(a: i32, b: i32) -> i64 {
-    debug_assert!(b.unsigned_abs() < 1 << 16);
+pub(crate) fn mul_sub_small(a: i32, s: i32, b: i32, t: i32) -> i64 {
     if HALVES {
-        mul_i32_small_by_halves(a, b)
+        mul_sub_small_by_halves(a, s, b, t)
     } else {
-        i64::from(a) * i64::from(b)
+        i64::from(a) * i64::from(s) - i64::from(b) * i64::from(t)
+    }
+}
+
+/// [`mul_sub_small`] on a core without a long multiply.
+#[inline(always)]
+fn mul_sub_small_by_halves(a: i32, s: i32, b: i32, t: i32) -> i64 {
+    debug_assert!(s.unsigned_abs() < 1 << 16 && t.unsigned_abs() < 1 << 16);
+    let short = |x: i32| x.wrapping_add(1 << 15) as u32;
+    if (short(a) | short(s) | short(b) | short(t)) < 1 << 16 {
+        i64::from(a * s - b * t)
+    } else {
+        mul_i32_small_by_halves(a, s) - mul_i32_small_by_halves(b, t)
     }
 }
 
@@ -196,8 +209,9 @@ fn umul32_small(a: u32, m: u32) -> u64 {
     u64::from(low) + (u64::from(high) << 16)
 }
 
-/// [`mul_i32_small`] from the magnitudes (see `mul_i64_i32_by_halves` for
-/// why not a correction).
+/// `a·b` for a 32-bit `a` and a small `b` (`|b| < 2^16`, so the product
+/// is below `2^47`) from two 16-bit products of the magnitudes, not four
+/// (see `mul_i64_i32_by_halves` for why not a correction).
 #[inline(always)]
 fn mul_i32_small_by_halves(a: i32, b: i32) -> i64 {
     let p = umul32_small(a.unsigned_abs(), b.unsigned_abs()) as i64;
@@ -363,7 +377,6 @@ mod tests {
             for &b in &smalls {
                 let exact = i64::from(a) * i64::from(b);
                 assert_eq!(mul_i32_small_by_halves(a, b), exact, "{a} * {b}");
-                assert_eq!(mul_i32_small(a, b), exact);
             }
         }
         for a in [
@@ -451,6 +464,50 @@ mod tests {
         }
         for k in 0..64 {
             assert_eq!(leading_zeros_u64(1 << k), 63 - k);
+        }
+    }
+
+    /// `mul_sub_small` on both paths, at the edges of the 32-bit one.
+    #[test]
+    fn small_differences_at_the_short_bounds() {
+        let wide = [
+            i32::MIN,
+            -(1 << 24),
+            -(1 << 15) - 1,
+            -(1 << 15),
+            -1,
+            0,
+            1,
+            (1 << 15) - 1,
+            1 << 15,
+            1 << 24,
+            i32::MAX,
+        ];
+        let small = [
+            -(1 << 16) + 1,
+            -(1 << 15) - 1,
+            -(1 << 15),
+            -1,
+            0,
+            1,
+            (1 << 15) - 1,
+            1 << 15,
+            (1 << 16) - 1,
+        ];
+        for a in wide {
+            for s in small {
+                for b in wide {
+                    for t in small {
+                        let exact = i64::from(a) * i64::from(s) - i64::from(b) * i64::from(t);
+                        assert_eq!(
+                            mul_sub_small_by_halves(a, s, b, t),
+                            exact,
+                            "{a} {s} {b} {t}"
+                        );
+                        assert_eq!(mul_sub_small(a, s, b, t), exact);
+                    }
+                }
+            }
         }
     }
 
