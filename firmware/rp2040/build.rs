@@ -24,6 +24,7 @@ use std::process::ExitCode;
 
 use zline::front::mesh::{Mesh, StaticMesh};
 use zline::front::scene::{MAX_FACE_CORNERS, VertexCache, bounding_sphere};
+use zline::front::shade::Shading;
 use zline::host::{
     HostMesh, QuantizedHostMesh, ScanVecs, TableVecs, host_renderer, quantized_mesh_source, shapes,
 };
@@ -199,6 +200,7 @@ fn measure_views(mesh: &HostMesh, origin: &str) -> Result<String, String> {
     let mut cache: Box<VertexCache<65536>> = Box::default();
     // The firmware computes the sphere once at start-up, the same way.
     let sphere = bounding_sphere(&quantized).map_err(|e| format!("{origin}: {e}"))?;
+    let shading = Shading::lambert();
     let mut peak = FrameStats::default();
     let mut crcs = Vec::new();
     for step in 0..YAW_STEPS {
@@ -207,6 +209,7 @@ fn measure_views(mesh: &HostMesh, origin: &str) -> Result<String, String> {
             &mut host,
             &mut cache,
             &quantized,
+            &shading,
             sphere,
             (yaw_deg(step), PITCH_DEG),
             &mut crc,

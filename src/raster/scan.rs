@@ -713,7 +713,10 @@ impl<C: Copy> ScanState<'_, '_, C> {
         let start = polygon.corner_start as usize;
         let (corners, vertices) = (self.tables.corners, self.tables.vertices);
         let ids = [corners[start], corners[start + 1], corners[start + 2]];
-        let [a, b, c] = ids.map(|id| vertices[usize::from(id)]);
+        // Not `ids.map`: on a Cortex-M0+ that became a loop through
+        // `try_from_fn`, 90 cycles for three loads.
+        let vertex = |k: usize| vertices[usize::from(ids[k])];
+        let [a, b, c] = [vertex(0), vertex(1), vertex(2)];
         let shared = polygon.shared_plane().is_some();
         if !shared && polygon.end_row == row + 1 && self.draw_tiny_row(a, b, c, &polygon, row, rows)
         {

@@ -29,13 +29,16 @@ pub fn wire(c: Rgb565) -> WireColor {
 }
 
 /// Draws `mesh` (bounding sphere `(centre, radius)`, computed once) in the
-/// reference view at `yaw`/`pitch` degrees, Lambert-shaded with back faces
+/// reference view at `yaw`/`pitch` degrees, shaded by `shading` (made
+/// once: its light's unit vector takes a square root) with back faces
 /// culled, and sends the frame to `sink` row by row, in wire order
 /// ([`WireColor`]).
+#[allow(clippy::too_many_arguments)]
 pub fn render_frame<T, S, K, M, const VM: usize>(
     renderer: &mut Renderer<T, S>,
     cache: &mut VertexCache<VM>,
     mesh: &M,
+    shading: &Shading,
     (centre, radius): (Vec3, f32),
     (yaw, pitch): (f32, f32),
     sink: &mut K,
@@ -49,7 +52,6 @@ where
     renderer.clear();
     let model = reference_model_around(centre, radius, yaw, pitch);
     let camera = Camera::reference(renderer.width(), renderer.height());
-    let shading = Shading::lambert();
     let draw = draw_mesh(renderer, cache, mesh, &model, &camera, Cull::Back, |f| {
         wire(Rgb565::from(shading.color(f)))
     })?;

@@ -31,6 +31,7 @@ use rp2040_hal as hal;
 use static_cell::ConstStaticCell;
 use zline::front::geometry::Vec3;
 use zline::front::scene::{VertexCache, bounding_sphere};
+use zline::front::shade::Shading;
 use zline::raster::{ScanArrays, TableArrays};
 use zline::{Depth16, FrameStats, RenderError, Renderer};
 
@@ -165,6 +166,8 @@ fn run() -> Result<core::convert::Infallible, Fault> {
             (Vec3::default(), 0.0)
         }
     };
+    // So is the shading: its light's unit vector is made once.
+    let shading = Shading::lambert();
     let mut step = 0u32;
     let mut last_start = None;
     loop {
@@ -179,7 +182,7 @@ fn run() -> Result<core::convert::Infallible, Fault> {
         // The same yaw angles build.rs sized the tables for.
         let yaw = step as f32 * sizes::YAW_STEP_DEG;
         step = (step + 1) % sizes::YAW_STEPS;
-        match draw_frame(renderer, cache, &mut rows, sphere, yaw) {
+        match draw_frame(renderer, cache, &mut rows, (&shading, sphere), yaw) {
             Ok(stats) => {
                 FRAMES.store(FRAMES.load(Ordering::Relaxed) + 1, Ordering::Relaxed);
                 POLYGONS.store(stats.polygons, Ordering::Relaxed);
@@ -205,13 +208,14 @@ fn draw_frame(
     renderer: &mut Zr,
     cache: &mut Cache,
     rows: &mut LcdRows,
-    sphere: (Vec3, f32),
+    (shading, sphere): (&Shading, (Vec3, f32)),
     yaw: f32,
 ) -> Result<FrameStats, FrameError> {
     frame::render_frame(
         renderer,
         cache,
         &MESH,
+        shading,
         sphere,
         (yaw, sizes::PITCH_DEG),
         rows,
