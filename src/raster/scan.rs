@@ -970,11 +970,11 @@ fn fill_and_step_triangle<C: Copy, D: DepthFormat>(
     row: u16,
     rows: &mut RowBuffers<'_, C, D>,
 ) -> Option<bool> {
+    // Fields are read where they are used, not copied out first: on a
+    // Cortex-M0+ the copies were spilled to the stack on every row.
     let SpanDepth::Stepped {
-        dz_dx,
-        dz_dy,
-        row_value,
         accumulator: Some(step),
+        ..
     } = polygon.depth
     else {
         return None;
@@ -983,13 +983,19 @@ fn fill_and_step_triangle<C: Copy, D: DepthFormat>(
         return None;
     }
     let (start, end) = polygon.triangle_span();
+    let SpanDepth::Stepped {
+        dz_dx, row_value, ..
+    } = &polygon.depth
+    else {
+        return None;
+    };
     if rows.fill_in_range(
         start,
         end,
         polygon.key,
         polygon.color,
-        row_value,
-        dz_dx,
+        *row_value,
+        *dz_dx,
         step,
     ) {
         stats.spans += 1;
@@ -1000,8 +1006,11 @@ fn fill_and_step_triangle<C: Copy, D: DepthFormat>(
         return Some(false);
     }
     polygon.advance_triangle(next_row);
-    if let SpanDepth::Stepped { row_value, .. } = &mut polygon.depth {
-        *row_value += dz_dy;
+    if let SpanDepth::Stepped {
+        row_value, dz_dy, ..
+    } = &mut polygon.depth
+    {
+        *row_value += *dz_dy;
     }
     Some(true)
 }
