@@ -930,6 +930,19 @@ impl<C: Copy> ScanState<'_, '_, C> {
         let next_row = row + 1;
         let mut slot = 0;
         let (tables, pool, stats) = (self.tables, &mut self.pool, &mut self.stats);
+        // The three rows cut to one length here, once a row, so that each
+        // span's slices need one bounds check, not three.
+        let width = rows.depth.len();
+        let (Some(color), Some(key)) = (rows.color.get_mut(..width), rows.key.get_mut(..width))
+        else {
+            return Err(Error::BadFrameSize);
+        };
+        let rows = &mut RowBuffers::<C, D> {
+            depth: &mut *rows.depth,
+            color,
+            key,
+            write: rows.write,
+        };
         let items = self.active.as_mut_slice();
         let mut len = items.len();
         while let Some(polygon) = items[..len].get_mut(slot) {
