@@ -48,6 +48,7 @@ use crate::front::mesh::{Mesh, SharedPlane};
 use crate::front::quantized::{NORMAL_SCALE, QuantizedView};
 use crate::raster::fixed::MAX_POLYGON_CORNERS;
 use crate::raster::vertex::{Outline, OutlineBuilder, ScreenVertex};
+use crate::raster::wide::cross;
 use crate::raster::{Admission, PolygonTables};
 
 /// Most corners a mesh face may have: clipping adds at most one corner per
@@ -690,19 +691,17 @@ where
             // The common case: a triangle whose corners are all projected.
             let ids = [self.slot(i0)?, self.slot(i1)?, self.slot(i2)?];
             if ids.iter().all(|&id| id < NON_FINITE) {
+                if self.frame.cull == Cull::Back && self.faces_away(ids) {
+                    // Culled before the tables' frame and sample tests, and
+                    // their call into the shading closure.
+                    self.stats.back_faces += 1;
+                    return Ok(());
+                }
                 let (frame, mesh, stats) = (self.frame, self.mesh, &mut *self.stats);
                 let shade = &mut *self.shade;
-                let decide = |outline: &Outline| {
+                let admission = self.tables.offer_triangle(ids, |outline| {
                     shade_front_face(frame, mesh, face, corners, outline, stats, shade)
-                };
-                // With culling, a back face leaves the tables before their
-                // frame and sample tests and the call into the shading
-                // closure.
-                let admission = if frame.cull == Cull::Back {
-                    self.tables.offer_front_triangle(ids, decide)?
-                } else {
-                    self.tables.offer_triangle(ids, decide)?
-                };
+                })?;
                 self.count(face, admission)?;
                 return Ok(());
             }
@@ -732,6 +731,22 @@ where
         self.count(face, admission)
     }
 
+    /// Whether the triangle of these vertex-table entries runs clockwise
+    /// on screen, a back face: the sign `shade_front_face` tests, of the
+    /// same exact cross product the tables take (zero area is not a back
+    /// face: the tables count it as degenerate).
+    #[inline]
+    fn faces_away(&self, ids: [u16; 3]) -> bool {
+        let vertex = |id: u16| self.tables.get_vertex(id);
+        let (Some(a), Some(b), Some(c)) = (vertex(ids[0]), vertex(ids[1]), vertex(ids[2])) else {
+            // Not in the table: the tables report it.
+            return false;
+        };
+        // Table vertices lie inside the guard band: differences below
+        // 2^23, products below 2^46.
+        cross(b.x - a.x, b.y - a.y, c.x - a.x, c.y - a.y) > 0
+    }
+
     /// Counts what became of a polygon of `face`; a queued one whose face
     /// shares a plane takes that plane.
     #[inline(always)]
@@ -743,7 +758,6 @@ where
             Admission::Queued(_) => self.stats.queued += 1,
             Admission::OffScreen => self.stats.off_screen += 1,
             Admission::Degenerate => self.stats.degenerate += 1,
-            Admission::BackFace => self.stats.back_faces += 1,
             Admission::Declined => {}
         }
         Ok(())

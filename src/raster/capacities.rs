@@ -289,14 +289,6 @@ impl<T: TableStorage, S: ScanStorage<Color = T::Color>> PolygonTables<T::Color> 
         self.tables.offer_triangle(corners, decide)
     }
 
-    fn offer_front_triangle(
-        &mut self,
-        corners: [u16; 3],
-        decide: impl FnOnce(&Outline) -> Option<T::Color>,
-    ) -> Result<Admission, Error> {
-        self.tables.offer_front_triangle(corners, decide)
-    }
-
     fn share_plane(&mut self, plane: [u16; 3]) -> Result<bool, Error> {
         self.tables.share_plane(plane)
     }

@@ -43,7 +43,6 @@ pub use tables::{
 
 use crate::error::Error;
 use vertex::{Outline, ScreenVertex};
-use wide::cross;
 
 /// What scene building needs from a renderer: its frame, its vertex table
 /// and its polygon table. [`Renderer`] implements it for every
@@ -90,26 +89,6 @@ pub trait PolygonTables<C> {
         decide: impl FnOnce(&Outline) -> Option<C>,
     ) -> Result<Admission, Error> {
         self.offer_polygon(corners, decide)
-    }
-    /// [`Self::offer_triangle`] for a triangle that is left out, as
-    /// [`Admission::BackFace`], when it faces away from the viewer: its
-    /// corners run clockwise on screen (with `y` down, the cross product
-    /// `(b - a) × (c - a)` of its exact sub-pixel corners is positive).
-    /// That is tested first, before any other test and before `decide`;
-    /// a triangle of zero area is not a back face. The default takes the
-    /// corners from [`Self::get_vertex`].
-    fn offer_front_triangle(
-        &mut self,
-        corners: [u16; 3],
-        decide: impl FnOnce(&Outline) -> Option<C>,
-    ) -> Result<Admission, Error> {
-        let vertex = |k: usize| self.get_vertex(corners[k]);
-        if let (Some(a), Some(b), Some(c)) = (vertex(0), vertex(1), vertex(2))
-            && cross(b.x - a.x, b.y - a.y, c.x - a.x, c.y - a.y) > 0
-        {
-            return Ok(Admission::BackFace);
-        }
-        self.offer_triangle(corners, decide)
     }
     /// Gives the polygon queued by the call just before the depth plane
     /// through three vertices; see [`Tables::share_plane`].

@@ -174,10 +174,8 @@ impl<C: Copy, const V: usize, const P: usize, const E: usize> TableStorage
     }
 }
 
-/// What happened to a polygon offered to the tables. More outcomes may
-/// come, so a `match` needs a wildcard arm.
+/// What happened to a polygon offered to the tables.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[non_exhaustive]
 pub enum Admission {
     /// It entered the polygon table; its id is the given value.
     Queued(u32),
@@ -185,11 +183,8 @@ pub enum Admission {
     OffScreen,
     /// Its projected area is zero: it cannot cover a sample.
     Degenerate,
-    /// The caller's `decide` closure declined it.
+    /// The caller's `decide` closure declined it (for example a back face).
     Declined,
-    /// It faces away from the viewer, and was offered by
-    /// [`PolygonTables::offer_front_triangle`].
-    BackFace,
 }
 
 /// Counts kept by the tables, beside the lists' lengths.
@@ -388,9 +383,7 @@ impl<S: TableStorage> Tables<S> {
             return Err(Error::TooManyCorners);
         }
         match *corners {
-            [a, b, c] => self
-                .view()
-                .offer_triangle_with::<false>([a, b, c], |_| Some(color)),
+            [a, b, c] => self.view().offer_triangle([a, b, c], |_| Some(color)),
             _ => self
                 .view()
                 .offer_polygon(corners.iter().copied(), |_| Some(color)),
@@ -415,7 +408,7 @@ impl<S: TableStorage> Tables<S> {
             let mark = t.vertices.len();
             let ids = (t.push_vertex(a), t.push_vertex(b), t.push_vertex(c));
             let result = match ids {
-                (Ok(a), Ok(b), Ok(c)) => t.offer_triangle_with::<false>([a, b, c], |_| Some(color)),
+                (Ok(a), Ok(b), Ok(c)) => t.offer_triangle([a, b, c], |_| Some(color)),
                 (Err(e), _, _) | (_, Err(e), _) | (_, _, Err(e)) => Err(e),
             };
             if !matches!(result, Ok(Admission::Queued(_))) {
@@ -465,33 +458,9 @@ impl<S: TableStorage> Tables<S> {
     }
 
     /// [`Self::offer_polygon`] for a triangle, with no iterator: the hot
-    /// path of every mesh; see [`PolygonTables::offer_triangle`].
+    /// path of every mesh, written straight on the storage.
     #[inline]
     pub fn offer_triangle(
-        &mut self,
-        ids: [u16; 3],
-        decide: impl FnOnce(&Outline) -> Option<S::Color>,
-    ) -> Result<Admission, Error> {
-        self.offer_triangle_with::<false>(ids, decide)
-    }
-
-    /// [`Self::offer_triangle`] for a triangle that is left out if it
-    /// faces away; see [`PolygonTables::offer_front_triangle`].
-    #[inline]
-    pub fn offer_front_triangle(
-        &mut self,
-        ids: [u16; 3],
-        decide: impl FnOnce(&Outline) -> Option<S::Color>,
-    ) -> Result<Admission, Error> {
-        self.offer_triangle_with::<true>(ids, decide)
-    }
-
-    /// [`TablesMut::offer_triangle_with`] written straight on the storage,
-    /// for the owner of the tables: the same tests in the same order, with
-    /// no view to build (on a Cortex-M0+, building one per triangle costs
-    /// more than the back-face test).
-    #[inline(always)]
-    fn offer_triangle_with<const CULL_BACK: bool>(
         &mut self,
         ids: [u16; 3],
         decide: impl FnOnce(&Outline) -> Option<S::Color>,
@@ -513,9 +482,6 @@ impl<S: TableStorage> Tables<S> {
         let (px, py) = (b.x - a.x, b.y - a.y);
         let (qx, qy) = (c.x - a.x, c.y - a.y);
         let twice_area = cross(px, py, qx, qy);
-        if CULL_BACK && twice_area > 0 {
-            return Ok(Admission::BackFace);
-        }
         if twice_area == 0 {
             st.counts.degenerate += 1;
             return Ok(Admission::Degenerate);
@@ -679,14 +645,6 @@ impl<S: TableStorage> PolygonTables<S::Color> for Tables<S> {
         Tables::offer_triangle(self, corners, decide)
     }
 
-    fn offer_front_triangle(
-        &mut self,
-        corners: [u16; 3],
-        decide: impl FnOnce(&Outline) -> Option<S::Color>,
-    ) -> Result<Admission, Error> {
-        Tables::offer_front_triangle(self, corners, decide)
-    }
-
     fn share_plane(&mut self, plane: [u16; 3]) -> Result<bool, Error> {
         Tables::share_plane(self, plane)
     }
@@ -759,12 +717,8 @@ impl<C: Copy> TablesMut<'_, C> {
         Ok(self.queue(start, outline.corners, rows, color))
     }
 
-    /// Offers a triangle (see [`PolygonTables::offer_triangle`]); with
-    /// `CULL_BACK`, a back face is left out first
-    /// ([`PolygonTables::offer_front_triangle`]). The hot path of every
-    /// mesh, for every table type.
-    #[inline(always)]
-    fn offer_triangle_with<const CULL_BACK: bool>(
+    #[inline]
+    fn offer_triangle(
         &mut self,
         ids: [u16; 3],
         decide: impl FnOnce(&Outline) -> Option<C>,
@@ -779,34 +733,36 @@ impl<C: Copy> TablesMut<'_, C> {
         let (Some(a), Some(b), Some(c)) = (vertex(0), vertex(1), vertex(2)) else {
             return Err(Error::VertexOutOfRange);
         };
-        // Table vertices lie inside the guard band: differences below
-        // 2^23, products below 2^46.
-        let twice_area = cross(b.x - a.x, b.y - a.y, c.x - a.x, c.y - a.y);
-        if CULL_BACK && twice_area > 0 {
-            return Ok(Admission::BackFace);
-        }
-        if twice_area == 0 {
-            self.counts.degenerate += 1;
-            return Ok(Admission::Degenerate);
-        }
-        let rect = ScreenRect {
-            x0: a.x.min(b.x).min(c.x),
-            x1: a.x.max(b.x).max(c.x),
-            y0: a.y.min(b.y).min(c.y),
-            y1: a.y.max(b.y).max(c.y),
+        let (px, py) = (
+            i64::from(b.x) - i64::from(a.x),
+            i64::from(b.y) - i64::from(a.y),
+        );
+        let (qx, qy) = (
+            i64::from(c.x) - i64::from(a.x),
+            i64::from(c.y) - i64::from(a.y),
+        );
+        let outline = Outline {
+            corners: 3,
+            twice_area: px * qy - py * qx,
+            rect: Some(ScreenRect {
+                x0: a.x.min(b.x).min(c.x),
+                x1: a.x.max(b.x).max(c.x),
+                y0: a.y.min(b.y).min(c.y),
+                y1: a.y.max(b.y).max(c.y),
+            }),
         };
-        let covered = rect
-            .samples(self.counts.width, self.counts.height)
+        if let Err(admission) = self.judge(&outline)? {
+            return Ok(admission);
+        }
+        let covered = outline
+            .rect
+            .and_then(|r| r.samples(self.counts.width, self.counts.height))
             .and_then(|(columns, rows)| covered_rows(a, b, c, columns, rows));
         let Some(rows) = covered else {
             self.counts.off_screen += 1;
             return Ok(Admission::OffScreen);
         };
-        let outline = Outline {
-            corners: 3,
-            twice_area,
-            rect: Some(rect),
-        };
+        let rows = (rows.start, rows.end);
         let Some(color) = decide(&outline) else {
             return Ok(Admission::Declined);
         };
@@ -820,7 +776,7 @@ impl<C: Copy> TablesMut<'_, C> {
         for id in ids {
             self.corners.push(id).map_err(|_| Error::EdgeTableFull)?;
         }
-        Ok(self.queue(start, 3, (rows.start, rows.end), color))
+        Ok(self.queue(start, 3, rows, color))
     }
 
     /// The core's verdict on an outline: `Ok(Ok(rows))` when it can cover
