@@ -319,7 +319,7 @@ impl GradientDivisor {
             DivisionPath::Native => (n / u64::from(d), n % u64::from(d)),
             DivisionPath::Words => match u32::try_from(n) {
                 Ok(n) => ((n / d).into(), (n % d).into()),
-                Err(_) if d < 1 << 23 => div_rem_by_bytes(n, d),
+                Err(_) if self.bytewise() => div_rem_by_bytes(n, d),
                 Err(_) => return self.divisor().div_rem(n),
             },
         };

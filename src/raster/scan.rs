@@ -984,7 +984,9 @@ fn fill_and_step_triangle<C: Copy, D: DepthFormat>(
     rows: &mut RowBuffers<'_, C, D>,
 ) -> Option<bool> {
     // Fields are read where they are used, not copied out first: on a
-    // Cortex-M0+ the copies were spilled to the stack on every row.
+    // Cortex-M0+ the copies were spilled to the stack on every row. (One
+    // match binding all three by reference measured 0.8 % slower there
+    // than this pair: the second match cannot fail.)
     let SpanDepth::Stepped {
         accumulator: Some(step),
         ..

@@ -74,12 +74,19 @@ pub(crate) fn cross(px: i32, py: i32, qx: i32, qy: i32) -> i64 {
     }
 }
 
+/// Whether every one of `xs` lies in `[-2^15, 2^15)`, so that a product
+/// of two is at most `2^30` and a difference of two products fits `i32`.
+#[inline(always)]
+fn all_short(xs: [i32; 4]) -> bool {
+    // x + 2^15 < 2^16 as u32 exactly when -2^15 <= x < 2^15.
+    let short = |x: i32| x.wrapping_add(1 << 15) as u32;
+    (short(xs[0]) | short(xs[1]) | short(xs[2]) | short(xs[3])) < 1 << 16
+}
+
 /// [`cross`] on a core without a long multiply.
 #[inline(always)]
 fn cross_by_halves(px: i32, py: i32, qx: i32, qy: i32) -> i64 {
-    // x + 2^15 < 2^16 as u32 exactly when -2^15 <= x < 2^15.
-    let short = |x: i32| x.wrapping_add(1 << 15) as u32;
-    if (short(px) | short(py) | short(qx) | short(qy)) < 1 << 16 {
+    if all_short([px, py, qx, qy]) {
         i64::from(px * qy - py * qx)
     } else if qx.unsigned_abs() < 1 << 16 && qy.unsigned_abs() < 1 << 16 {
         mul_i32_small_by_halves(px, qy) - mul_i32_small_by_halves(py, qx)
@@ -193,8 +200,7 @@ pub(crate) fn mul_sub_small(a: i32, s: i32, b: i32, t: i32) -> i64 {
 #[inline(always)]
 fn mul_sub_small_by_halves(a: i32, s: i32, b: i32, t: i32) -> i64 {
     debug_assert!(s.unsigned_abs() < 1 << 16 && t.unsigned_abs() < 1 << 16);
-    let short = |x: i32| x.wrapping_add(1 << 15) as u32;
-    if (short(a) | short(s) | short(b) | short(t)) < 1 << 16 {
+    if all_short([a, s, b, t]) {
         i64::from(a * s - b * t)
     } else {
         mul_i32_small_by_halves(a, s) - mul_i32_small_by_halves(b, t)
