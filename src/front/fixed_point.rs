@@ -57,7 +57,8 @@ use crate::front::scene::CLIP_BAND_PX;
 use crate::raster::fixed::{DEPTH_MAX, SUBPIXEL_STEPS};
 use crate::raster::vertex::ScreenVertex;
 use crate::raster::wide::{
-    dot3_i32_i16, leading_zeros_u64, mul_i64_i32, mul_u32, mul_u32_i32, shl_i64, shr_i64,
+    DOT3_COEFFICIENT_MAX, dot3_plus, leading_zeros_u64, mul_i64_i32, mul_u32, mul_u32_i32, shl_i64,
+    shr_i64,
 };
 
 /// Smallest scale exponent `T` the integer front end works with: below it
@@ -75,7 +76,8 @@ pub type FixedClip = [i64; 4];
 #[derive(Debug, Clone, Copy)]
 pub struct FixedFrame {
     a: [[i32; 3]; 4],
-    b: [i32; 4],
+    /// `b[i] · 2^15`, the translation column in clip units.
+    offset: [i64; 4],
     width: i64,
     height: i64,
     /// `2 · CLIP_BAND_PX - width`: `abs(x) · width <= guard_x · w` inside
@@ -318,6 +320,14 @@ impl FixedFrame {
             q as i32
         };
         let a = linear.map(|row| row.map(coefficient));
+        // At most 2^44 / 32767 < 2^30 by the choice of T; `clip` relies on
+        // it, so it is checked rather than only argued.
+        if a.iter()
+            .flatten()
+            .any(|c| c.unsigned_abs() > DOT3_COEFFICIENT_MAX.unsigned_abs())
+        {
+            return None;
+        }
         let b = offset.map(|(sum, base)| scale_round(sum, base + t - 15) as i32);
         let (w, h) = (i64::from(width), i64::from(height));
         let band = 2 * CLIP_BAND_PX as i64;
@@ -328,7 +338,7 @@ impl FixedFrame {
         }
         Some(Self {
             a,
-            b,
+            offset: b.map(|b| i64::from(b) << 15),
             width: w,
             height: h,
             guard_x: band - w,
@@ -346,9 +356,9 @@ impl FixedFrame {
     /// Clip coordinates of a quantized position (units of `2^-T`).
     #[inline]
     pub fn clip(&self, q: [i16; 3]) -> FixedClip {
-        // Each product of an i32 coefficient and an i16 coordinate is
-        // below 2^46, each row below 2^48.
-        let row = |i: usize| dot3_i32_i16(self.a[i], q) + (i64::from(self.b[i]) << 15);
+        // Each coefficient is at most 2^30 = DOT3_COEFFICIENT_MAX, so each
+        // product is at most 2^45, and each row below 2^47.
+        let row = |i: usize| dot3_plus(self.a[i], q, self.offset[i]);
         [row(0), row(1), row(2), row(3)]
     }
 
@@ -704,7 +714,7 @@ mod tests {
         // A coefficient at the 2^30 limit on every entry.
         let f = FixedFrame {
             a: [[1 << 30; 3]; 4],
-            b: [1 << 30; 4],
+            offset: [1 << 45; 4],
             width: 1,
             height: 1,
             guard_x: 8191,

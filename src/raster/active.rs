@@ -6,6 +6,7 @@
 //! spans come out of a merge of the inline pair and the list: no buffer
 //! per polygon, whatever its number of corners.
 
+use super::depth::NarrowRow;
 use super::edge::ActiveEdge;
 use super::slots::Slots;
 
@@ -27,6 +28,10 @@ pub(crate) enum SpanDepth {
         /// and its spans need no range check.
         accumulator: Option<i64>,
     },
+    /// An in-range triangle of a [`NARROW`](crate::raster::depth::DepthFormat::NARROW)
+    /// depth format: its 32-bit accumulator at column 0 of the current row
+    /// and its steps, stepped once a row.
+    Narrow(NarrowRow),
     /// A polygon sharing a plane with others
     /// ([`Tables::share_plane`](crate::raster::Tables::share_plane)): the
     /// plane's own affine function in plane units, anchored where the

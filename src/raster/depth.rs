@@ -27,7 +27,7 @@ pub trait DepthFormat {
     /// What one depth-row entry stores.
     type Value: Copy + Ord + core::fmt::Debug;
     /// The per-pixel accumulator stepped along a span.
-    type Accum: Copy;
+    type Accum: Copy + From<i32>;
     /// Value the row is cleared to: the far plane.
     const CLEAR: Self::Value;
     /// Short name used in reports ("z16", "z24").
@@ -69,14 +69,68 @@ pub trait DepthFormat {
         step: i64,
         column: i32,
     ) -> (Self::Accum, Self::Accum);
+
+    /// Whether an in-range triangle steps a 32-bit row accumulator
+    /// ([`NarrowRow`], from [`DepthFormat::narrow_row`]) rather than its
+    /// plane value in plane units: a format whose accumulator is an `i32`.
+    const NARROW: bool = false;
+
+    /// The [`NarrowRow`] of an in-range triangle (every value it covers in
+    /// [`IN_RANGE`] depth steps) on the row `rows` rows below its first,
+    /// the plane value at column 0 of that first row being `first_value`
+    /// and the gradients `dz_dx`, `dz_dy` (`|first_value| < 2^62`,
+    /// `|dz_dx|, |dz_dy| < 2^40`, `0 <= rows < 2^12`); `None` when a
+    /// gradient does not fit, or for a format that is not
+    /// [`NARROW`](DepthFormat::NARROW). The result depends on the first
+    /// row's value and `rows` only, so a scan that starts below a
+    /// triangle's first row (a band) steps it exactly as one that starts
+    /// there.
+    fn narrow_row(first_value: i64, dz_dx: i64, dz_dy: i64, rows: i32) -> Option<NarrowRow> {
+        let _ = (first_value, dz_dx, dz_dy, rows);
+        None
+    }
+
+    /// The accumulator at `column` of a [`NarrowRow`], and its step.
+    #[inline(always)]
+    fn narrow_at(row: &NarrowRow, column: i32) -> (Self::Accum, Self::Accum) {
+        (
+            Self::Accum::from(row.acc.wrapping_add(row.step.wrapping_mul(column))),
+            Self::Accum::from(row.step),
+        )
+    }
+}
+
+/// A [`NARROW`](DepthFormat::NARROW) format's row state for an in-range
+/// triangle: the accumulator at column 0 of the current row and its steps
+/// per row and per pixel, all modulo 2^32 (column 0 may lie far outside
+/// the triangle; the value at a covered pixel is in range). Stepping it
+/// costs one 32-bit addition a row, where the plane value in plane units
+/// takes 64-bit arithmetic.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct NarrowRow {
+    /// The accumulator at column 0 of the current row.
+    pub(crate) acc: i32,
+    /// Its step from one row to the next.
+    pub(crate) row_step: i32,
+    /// Its step from one pixel to the next.
+    pub(crate) step: i32,
+}
+
+impl NarrowRow {
+    /// Steps down one row.
+    #[inline(always)]
+    pub(crate) fn next_row(&mut self) {
+        self.acc = self.acc.wrapping_add(self.row_step);
+    }
 }
 
 /// Depths (input steps) of a triangle's corners for which its spans take
 /// the accumulator with no per-span range check: a pixel covered by the
 /// triangle lies inside it, so its exact plane value is a convex
-/// combination of the corners' depths, and the stepped value is within a
-/// tenth of a step of it; the margin of 256 steps covers that and the
-/// [`Depth16`] rounding (a depth above `2^24 - 128` would round to 2^16).
+/// combination of the corners' depths, and the stepped value is within an
+/// eighth of a step of it ([`Depth16::narrow_row`]); the margin of 256
+/// steps covers that and the [`Depth16`] rounding (a depth above
+/// `2^24 - 128` would round to 2^16).
 pub const IN_RANGE: core::ops::RangeInclusive<u32> = 1..=crate::raster::fixed::DEPTH_MAX - 256;
 
 /// 16-bit depth: `u16` entries (480 bytes for a 240-pixel row); one step is
@@ -176,6 +230,34 @@ impl DepthFormat for Depth16 {
         let at_zero =
             (shift_round(row_value, Z16_SHIFT) as i32).wrapping_add(1 << (Z16_ACC_FRAC - 1));
         (at_zero.wrapping_add(step.wrapping_mul(column)), step)
+    }
+
+    const NARROW: bool = true;
+
+    /// The first row's column-0 value rounded to the accumulator's unit,
+    /// plus `rows` row steps, each step rounded to the unit too.
+    ///
+    /// Error: at `column` of the row `rows` below the first, the
+    /// accumulator is the exact `plane / 2^9 + 2^14` off by at most half a
+    /// unit for the first value, half a unit per row step and half a unit
+    /// per pixel step: `(1 + rows + column)/2` units, below `2^12` units,
+    /// which is `2^-3` step, for rows and columns below 2^12. Inside
+    /// [`IN_RANGE`] the exact accumulator lies in `[2^14 + 2^7, 2^31 -
+    /// 2^15 + 2^14 - 2^7]`, at least `2^13` units from either end of
+    /// `[0, 2^31)`: so the value at a covered pixel, computed modulo 2^32,
+    /// is in range, and the stored depth is within `1/2 + 1/8` step of the
+    /// exact plane.
+    #[inline]
+    fn narrow_row(first_value: i64, dz_dx: i64, dz_dy: i64, rows: i32) -> Option<NarrowRow> {
+        let step = i32::try_from(shift_round(dz_dx, Z16_SHIFT)).ok()?;
+        let row_step = i32::try_from(shift_round(dz_dy, Z16_SHIFT)).ok()?;
+        let first =
+            (shift_round(first_value, Z16_SHIFT) as i32).wrapping_add(1 << (Z16_ACC_FRAC - 1));
+        Some(NarrowRow {
+            acc: first.wrapping_add(row_step.wrapping_mul(rows)),
+            row_step,
+            step,
+        })
     }
 }
 
@@ -344,5 +426,71 @@ mod tests {
         }
         // Most random gradients fit the Depth16 step: the bound was tested.
         assert!(cases > 100_000, "{cases}");
+    }
+
+    /// `Depth16::narrow_row` against the exact plane, at the extremes: the
+    /// value at `column` of the row `rows` below the first is within the
+    /// stated `(1 + rows + column)/2` units, inside `[0, 2^31)` wherever the
+    /// exact depth is in `IN_RANGE`, even where column 0 of the first row
+    /// is far outside the accumulator's range; and entering `rows` below
+    /// the first row gives the state that stepping `rows` times gives.
+    #[test]
+    fn narrow_rows_are_within_their_bound_and_step_like_a_late_start() {
+        let (lo, hi) = (*IN_RANGE.start(), *IN_RANGE.end());
+        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        let gradient = |round: u64, r: u64| match round % 5 {
+            0 => (1i64 << 40) - 1 - (r % 512) as i64,
+            1 => -(1i64 << 40) + 1 + (r % 512) as i64,
+            _ => (r % (1 << 41)) as i64 - (1 << 40),
+        };
+        let mut cases = 0;
+        for round in 0..200_000u64 {
+            let depth = match round % 4 {
+                0 => lo,
+                1 => hi,
+                _ => lo + (next() % u64::from(hi - lo)) as u32,
+            };
+            let value = (i64::from(depth) << PLANE_FRAC_BITS) + (next() % (1 << 16)) as i64;
+            let (column, rows) = match round % 3 {
+                0 => (4095, 4095),
+                1 => (0, (next() % 4096) as i32),
+                _ => ((next() % 4096) as i32, (next() % 4096) as i32),
+            };
+            let (dz_dx, dz_dy) = (gradient(round, next()), gradient(round / 5, next()));
+            // The first row's column-0 value that puts `value` there.
+            let first = value - dz_dx * i64::from(column) - dz_dy * i64::from(rows);
+            let Some(narrow) = Depth16::narrow_row(first, dz_dx, dz_dy, rows) else {
+                continue;
+            };
+            let (acc, step) = Depth16::narrow_at(&narrow, column);
+            assert_eq!(i64::from(step), Depth16::accumulator_step(dz_dx).unwrap());
+            let exact = i128::from(value) + (1 << (Z16_SHIFT + Z16_ACC_FRAC - 1));
+            let error = (i128::from(acc) << Z16_SHIFT) - exact;
+            let bound = (1 + i128::from(rows) + i128::from(column)) << (Z16_SHIFT - 1);
+            assert!(error.abs() <= bound, "{first} {dz_dx} {dz_dy} {rows} {column}: {error}");
+            assert!(acc >= 0, "{first} {dz_dx} {dz_dy} {rows} {column}: {acc}");
+            // The stored depth: within 1/2 + 1/8 step of the exact one.
+            let stored = f64::from(Depth16::value(acc));
+            let exact_depth = value as f64 / f64::from(1u32 << (PLANE_FRAC_BITS + 8));
+            assert!((stored - exact_depth).abs() <= 0.625, "{stored} {exact_depth}");
+            // A late start (a band) equals stepping from the first row.
+            if round % 16 == 0 {
+                let mut stepped = Depth16::narrow_row(first, dz_dx, dz_dy, 0).unwrap();
+                for _ in 0..rows {
+                    stepped.next_row();
+                }
+                assert_eq!(stepped, narrow);
+            }
+            cases += 1;
+        }
+        assert!(cases > 50_000, "{cases}");
+        // Depth24 keeps the exact plane value: no narrow rows.
+        assert_eq!(Depth24::narrow_row(0, 1, 1, 0), None);
     }
 }

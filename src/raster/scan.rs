@@ -322,16 +322,13 @@ impl<C: Copy, D: DepthFormat> RowBuffers<'_, C, D> {
     /// of line: the profile's "spans" stage.)
     #[cfg_attr(feature = "profile", inline(never))]
     #[cfg_attr(not(feature = "profile"), inline(always))]
-    #[allow(clippy::too_many_arguments)]
     fn fill_in_range(
         &mut self,
         start: i32,
         end: i32,
         key: u32,
         color: C,
-        row_value: i64,
-        dz_dx: i64,
-        accumulator_step: i64,
+        accumulator_at: impl FnOnce(i32) -> (D::Accum, D::Accum),
     ) -> bool {
         let width = self.depth.len() as i32;
         let (start, end) = (start.max(0), end.min(width));
@@ -344,7 +341,7 @@ impl<C: Copy, D: DepthFormat> RowBuffers<'_, C, D> {
             &mut self.key[first..last],
             &mut self.color[first..last],
         );
-        let (mut acc, step) = D::accumulator_at(row_value, dz_dx, accumulator_step, start);
+        let (mut acc, step) = accumulator_at(start);
         if self.write != PixelWrite::NearerOrFirstAdded {
             // The other methods' rules, out of line: the scanline's span
             // loop stays as it was.
@@ -725,11 +722,27 @@ impl<C: Copy> ScanState<'_, '_, C> {
         // The plane passes through the corners: in range when they are
         // (see IN_RANGE).
         let in_range = [a.z, b.z, c.z].iter().all(|z| IN_RANGE.contains(z));
-        let stepped = |dz_dx: i64, dz_dy: i64, row_value: i64| SpanDepth::Stepped {
-            dz_dx,
-            dz_dy,
-            row_value,
-            accumulator: in_range.then(|| D::accumulator_step(dz_dx)).flatten(),
+        // `first` is the plane's value at column 0 of the triangle's first
+        // row; each row's is that plus a step of `dz_dy` per row, exactly.
+        // A band's scan may activate it further down.
+        let rows_below = i32::from(row) - i32::from(polygon.first_row);
+        let stepped = |dz_dx: i64, dz_dy: i64, first: i64| {
+            if D::NARROW && in_range {
+                if let Some(narrow) = D::narrow_row(first, dz_dx, dz_dy, rows_below) {
+                    return SpanDepth::Narrow(narrow);
+                }
+            }
+            SpanDepth::Stepped {
+                dz_dx,
+                dz_dy,
+                // 0 <= rows_below < 2^12, |dz_dy| < 2^40.
+                row_value: if rows_below == 0 {
+                    first
+                } else {
+                    first + mul_i64_small(dz_dy, rows_below)
+                },
+                accumulator: in_range.then(|| D::accumulator_step(dz_dx)).flatten(),
+            }
         };
         let own_plane = if shared {
             None
@@ -738,7 +751,7 @@ impl<C: Copy> ScanState<'_, '_, C> {
         };
         let depth = match own_plane {
             // The common case: two exact divisions per gradient.
-            Some(plane) => stepped(plane.dz_dx, plane.dz_dy, plane.row_start(row)),
+            Some(plane) => stepped(plane.dz_dx, plane.dz_dy, plane.row_start(polygon.first_row)),
             // Large (256 px or more) or steep: the general plane.
             None if shared => match shared_plane_of(&polygon, corners, vertices) {
                 Some(plane) => shared_depth(&plane, self.tables.width, self.tables.height),
@@ -746,11 +759,11 @@ impl<C: Copy> ScanState<'_, '_, C> {
             },
             None => match Plane::triangle(a, b, c) {
                 Some(plane) => match plane.gradients() {
-                    Some((dz_dx, dz_dy)) => stepped(
-                        dz_dx,
-                        dz_dy,
-                        plane.row_start((dz_dx, dz_dy), self.tables.width, polygon.first_row, row),
-                    ),
+                    Some((dz_dx, dz_dy)) => {
+                        let (width, first_row) = (self.tables.width, polygon.first_row);
+                        let first = plane.row_start((dz_dx, dz_dy), width, first_row, first_row);
+                        stepped(dz_dx, dz_dy, first)
+                    }
                     None => SpanDepth::Exact,
                 },
                 None => return Ok(()), // Zero area was left out when it was queued.
@@ -983,6 +996,28 @@ fn fill_and_step_triangle<C: Copy, D: DepthFormat>(
     row: u16,
     rows: &mut RowBuffers<'_, C, D>,
 ) -> Option<bool> {
+    if !polygon.is_triangle() {
+        return None;
+    }
+    if D::NARROW {
+        // A 32-bit row accumulator (Depth16): one addition a row.
+        let SpanDepth::Narrow(narrow) = polygon.depth else {
+            return None;
+        };
+        let (start, end) = polygon.triangle_span();
+        if rows.fill_in_range(start, end, polygon.key, polygon.color, |column| {
+            D::narrow_at(&narrow, column)
+        }) {
+            stats.spans += 1;
+        }
+        if !step_triangle(polygon, pool, row) {
+            return Some(false);
+        }
+        if let SpanDepth::Narrow(narrow) = &mut polygon.depth {
+            narrow.next_row();
+        }
+        return Some(true);
+    }
     // Fields are read where they are used, not copied out first: on a
     // Cortex-M0+ the copies were spilled to the stack on every row. (One
     // match binding all three by reference measured 0.8 % slower there
@@ -994,9 +1029,6 @@ fn fill_and_step_triangle<C: Copy, D: DepthFormat>(
     else {
         return None;
     };
-    if !polygon.is_triangle() {
-        return None;
-    }
     let (start, end) = polygon.triangle_span();
     let SpanDepth::Stepped {
         dz_dx, row_value, ..
@@ -1004,23 +1036,15 @@ fn fill_and_step_triangle<C: Copy, D: DepthFormat>(
     else {
         return None;
     };
-    if rows.fill_in_range(
-        start,
-        end,
-        polygon.key,
-        polygon.color,
-        *row_value,
-        *dz_dx,
-        step,
-    ) {
+    let (row_value, dz_dx) = (*row_value, *dz_dx);
+    if rows.fill_in_range(start, end, polygon.key, polygon.color, |column| {
+        D::accumulator_at(row_value, dz_dx, step, column)
+    }) {
         stats.spans += 1;
     }
-    let next_row = row + 1;
-    if polygon.end_row <= next_row {
-        pool.live -= 2;
+    if !step_triangle(polygon, pool, row) {
         return Some(false);
     }
-    polygon.advance_triangle(next_row);
     if let SpanDepth::Stepped {
         row_value, dz_dy, ..
     } = &mut polygon.depth
@@ -1028,6 +1052,23 @@ fn fill_and_step_triangle<C: Copy, D: DepthFormat>(
         *row_value += *dz_dy;
     }
     Some(true)
+}
+
+/// Steps a triangle's edges down from `row`; `false` (its edges freed)
+/// when it ends there.
+#[inline(always)]
+fn step_triangle<C: Copy>(
+    polygon: &mut ActivePolygon<C>,
+    pool: &mut EdgePool<'_>,
+    row: u16,
+) -> bool {
+    let next_row = row + 1;
+    if polygon.end_row <= next_row {
+        pool.live -= 2;
+        return false;
+    }
+    polygon.advance_triangle(next_row);
+    true
 }
 
 /// A triangle reaching its middle corner's row: its lower short edge
@@ -1089,7 +1130,9 @@ fn fill_and_step_general<C: Copy, D: DepthFormat>(
             accumulator,
         },
         SpanDepth::Shared { .. } => return fill_shared_and_step(polygon, pool, stats, row, rows),
-        SpanDepth::Exact => {
+        // A narrow row is only ever a triangle's, which the fast path takes;
+        // were one here, the exact plane would still draw it.
+        SpanDepth::Narrow(_) | SpanDepth::Exact => {
             // Edge-on: the plane, exactly, at each pixel (rare).
             let entry = &tables.polygons[polygon.position as usize];
             match polygon_plane(entry, tables.corners, tables.vertices) {

@@ -126,29 +126,43 @@ pub(crate) fn mul_u32_i32(a: u32, b: i32) -> i64 {
     }
 }
 
-/// `a·q`, the dot product of three `i32` coefficients with three 16-bit
-/// coordinates (`|a·q| < 3·2^46`).
+/// Largest coefficient magnitude [`dot3_plus`] takes: `2^30`.
+pub(crate) const DOT3_COEFFICIENT_MAX: i32 = 1 << 30;
+
+/// `a·q + offset`: the dot product of three coefficients with three 16-bit
+/// coordinates, plus an offset. Every `|a[k]|` is at most
+/// [`DOT3_COEFFICIENT_MAX`], so `|a·q| <= 3·2^45`, and `|offset| < 2^62`
+/// keeps the sum in `i64`.
 #[inline(always)]
-pub(crate) fn dot3_i32_i16(a: [i32; 3], q: [i16; 3]) -> i64 {
+pub(crate) fn dot3_plus(a: [i32; 3], q: [i16; 3], offset: i64) -> i64 {
     if HALVES {
-        dot3_by_halves(a, q)
+        dot3_plus_by_halves(a, q, offset)
     } else {
-        (0..3).map(|k| i64::from(a[k]) * i64::from(q[k])).sum()
+        (0..3)
+            .map(|k| i64::from(a[k]) * i64::from(q[k]))
+            .sum::<i64>()
+            + offset
     }
 }
 
-/// [`dot3_i32_i16`] from two 32-bit products per term: `a = h·2^16 + l`
-/// (`h = a >> 16` signed, `l` in `[0, 2^16)`), and `|h·q| <= 2^30`,
-/// `|l·q| < 2^31` each fit `i32`; their sums are taken in `i64`.
+/// [`dot3_plus`] in 32-bit products: each coefficient is split as
+/// `a = h·2^16 + l` (`h = a >> 16`, `l` in `[0, 2^16)`), and as
+/// `|a| <= 2^30`, `|h| <= 2^14`:
+///
+/// | quantity | range | held in |
+/// |---|---|---|
+/// | `h·q` | `[-2^29, 2^29]` | `i32` |
+/// | `Σ h·q` (three terms) | `[-3·2^29, 3·2^29]` | `i32` |
+/// | `l·q` | `(-2^31, 2^31)` | `i32` |
+/// | `Σ l·q` | `(-3·2^31, 3·2^31)` | `i64` |
+///
+/// and `Σ h·q · 2^16 + Σ l·q + offset` in `i64`.
 #[inline(always)]
-fn dot3_by_halves(a: [i32; 3], q: [i16; 3]) -> i64 {
-    let (mut high, mut low) = (0i64, 0i64);
-    for k in 0..3 {
-        let q = i32::from(q[k]);
-        high += i64::from((a[k] >> 16) * q);
-        low += i64::from((a[k] & 0xFFFF) * q);
-    }
-    (high << 16) + low
+fn dot3_plus_by_halves(a: [i32; 3], q: [i16; 3], offset: i64) -> i64 {
+    let q = q.map(i32::from);
+    let high = (a[0] >> 16) * q[0] + (a[1] >> 16) * q[1] + (a[2] >> 16) * q[2];
+    let low = |k: usize| i64::from((a[k] & 0xFFFF) * q[k]);
+    (i64::from(high) << 16) + low(0) + low(1) + low(2) + offset
 }
 
 /// `a·b` for a 64-bit and a signed 32-bit operand, when the product fits
@@ -416,15 +430,54 @@ mod tests {
 
     #[test]
     fn dot_products_at_the_extremes() {
-        let ends = [i32::MIN, i32::MIN + 1, -1, 0, 1, 0xFFFF, 0x1_0000, i32::MAX];
-        let coords = [i16::MIN, -1, 0, 1, i16::MAX];
-        for &a in &ends {
-            for &q in &coords {
-                let (a3, q3) = ([a, a, a], [q, q, q]);
-                let exact = 3 * i64::from(a) * i64::from(q);
-                assert_eq!(dot3_by_halves(a3, q3), exact, "{a} * {q}");
-                assert_eq!(dot3_i32_i16(a3, q3), exact);
+        let m = DOT3_COEFFICIENT_MAX;
+        let ends = [
+            -m,
+            -m + 1,
+            -(1 << 16) - (1 << 15),
+            -(1 << 15) - 1,
+            -(1 << 15),
+            -(1 << 15) + 1,
+            -1,
+            0,
+            1,
+            (1 << 15) - 1,
+            1 << 15,
+            (1 << 15) + 1,
+            0xFFFF,
+            0x1_0000,
+            m - 1,
+            m,
+        ];
+        let coords = [i16::MIN, i16::MIN + 1, -1, 0, 1, i16::MAX - 1, i16::MAX];
+        let offsets = [0, 1 << 45, -(1 << 61), (1 << 61) + 12345];
+        let mut terms = [(0i32, 0i16); 16 * 7];
+        for (k, term) in terms.iter_mut().enumerate() {
+            *term = (ends[k / 7], coords[k % 7]);
+        }
+        // Every extreme term in every place, with a spread of partners.
+        for (k, &(a0, q0)) in terms.iter().enumerate() {
+            for &(a1, q1) in terms.iter().skip(k % 7).step_by(7) {
+                for &(a2, q2) in terms.iter().skip(k % 5).step_by(5) {
+                    for &offset in &offsets {
+                        let (a3, q3) = ([a0, a1, a2], [q0, q1, q2]);
+                        let exact: i64 = (0..3).map(|j| i64::from(a3[j]) * i64::from(q3[j])).sum();
+                        let got = dot3_plus_by_halves(a3, q3, offset);
+                        assert_eq!(got, exact + offset, "{a3:?} {q3:?}");
+                        assert_eq!(dot3_plus(a3, q3, offset), exact + offset);
+                    }
+                }
             }
+        }
+        // The largest sums of each part: every `h·q` and `l·q` at its end.
+        for (a, q) in [
+            (m, i16::MIN),
+            (-m, i16::MIN),
+            (1 << 15, i16::MIN),
+            (-(1 << 15) + 1, i16::MIN),
+        ] {
+            let exact = 3 * i64::from(a) * i64::from(q);
+            assert_eq!(dot3_plus_by_halves([a; 3], [q; 3], 0), exact, "{a} {q}");
         }
     }
 
@@ -571,9 +624,13 @@ mod tests {
         }
 
         #[test]
-        fn dot_products_are_exact(a: [i32; 3], q: [i16; 3]) {
+        fn dot_products_are_exact(
+            a in prop::array::uniform3(-DOT3_COEFFICIENT_MAX..=DOT3_COEFFICIENT_MAX),
+            q: [i16; 3],
+            offset in -(1i64 << 61)..(1i64 << 61),
+        ) {
             let exact: i64 = (0..3).map(|k| i64::from(a[k]) * i64::from(q[k])).sum();
-            prop_assert_eq!(dot3_by_halves(a, q), exact);
+            prop_assert_eq!(dot3_plus_by_halves(a, q, offset), exact + offset);
         }
 
         #[test]
