@@ -86,7 +86,7 @@ pub use raster::{
     Admission, Capacities, FrameStats, PolygonTables, Renderer, ScanArrays, ScanStorage, Scanner,
     TableArrays, TableStorage, Tables, scan,
 };
-pub use sink::{Crc32Sink, DrawTargetSink, FnSink, RowSink};
+pub use sink::{Crc32Sink, DrawTargetSink, FnSink, LentRow, RowSink};
 
 /// Compiles the README's code examples as doctests.
 #[cfg(doctest)]

@@ -1,6 +1,10 @@
 //! Row sinks: where finished scanlines go (tiny-skia would call this the
-//! blitter). The renderer calls [`RowSink::write_row`] exactly once per
-//! scanline, top to bottom, with the final colours and depths of that row.
+//! blitter). The renderer hands over each scanline exactly once, top to
+//! bottom, with the final colours and depths of that row: by
+//! [`RowSink::write_row`], or, for a sink that lends the scanner its own
+//! row buffers (a display driver's DMA buffers), by
+//! [`RowSink::send_lent_row`] for the row drawn into the buffer
+//! [`RowSink::lend_row`] lent.
 
 use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::geometry::{Point, Size};
@@ -16,6 +20,44 @@ pub trait RowSink<C, Z> {
     /// Takes row `y` (0 is the top): its colours and its depths, both
     /// `W` long.
     fn write_row(&mut self, y: u16, colors: &[C], depths: &[Z]) -> Result<(), Self::Error>;
+
+    /// Lends the buffer that row `y`'s `width` colours are to be drawn
+    /// into, for a sink that sends rows from its own memory: the scanner
+    /// then draws the row there (filling it with `background` first unless
+    /// [`LentRow::filled`] says it holds that already) and hands it back
+    /// with [`RowSink::send_lent_row`], so the row is never copied. The
+    /// default, `Ok(None)`: the scanner draws into its own colour row and
+    /// calls [`RowSink::write_row`]. A buffer shorter than `width` is an
+    /// error ([`Error::BadFrameSize`](crate::Error::BadFrameSize)).
+    fn lend_row(
+        &mut self,
+        y: u16,
+        width: usize,
+        background: C,
+    ) -> Result<Option<LentRow<'_, C>>, Self::Error> {
+        let _ = (y, width, background);
+        Ok(None)
+    }
+
+    /// Takes row `y`, drawn into the buffer [`RowSink::lend_row`] lent for
+    /// it, and its `depths`. Called once after each lent row; the default
+    /// does nothing.
+    fn send_lent_row(&mut self, y: u16, depths: &[Z]) -> Result<(), Self::Error> {
+        let _ = (y, depths);
+        Ok(())
+    }
+}
+
+/// A row buffer a sink lends the scanner ([`RowSink::lend_row`]).
+#[derive(Debug)]
+pub struct LentRow<'a, C> {
+    /// Where the row's colours go: at least as long as the row.
+    pub colors: &'a mut [C],
+    /// Whether the first `width` entries already hold the background
+    /// colour the scanner asked for (a sink that clears its buffers as they
+    /// come back from the wire, by DMA for one); when `false` the scanner
+    /// fills them.
+    pub filled: bool,
 }
 
 /// The standard sink: writes each row into an embedded-graphics

@@ -473,12 +473,18 @@ mod tests {
             let exact = i128::from(value) + (1 << (Z16_SHIFT + Z16_ACC_FRAC - 1));
             let error = (i128::from(acc) << Z16_SHIFT) - exact;
             let bound = (1 + i128::from(rows) + i128::from(column)) << (Z16_SHIFT - 1);
-            assert!(error.abs() <= bound, "{first} {dz_dx} {dz_dy} {rows} {column}: {error}");
+            assert!(
+                error.abs() <= bound,
+                "{first} {dz_dx} {dz_dy} {rows} {column}: {error}"
+            );
             assert!(acc >= 0, "{first} {dz_dx} {dz_dy} {rows} {column}: {acc}");
             // The stored depth: within 1/2 + 1/8 step of the exact one.
             let stored = f64::from(Depth16::value(acc));
             let exact_depth = value as f64 / f64::from(1u32 << (PLANE_FRAC_BITS + 8));
-            assert!((stored - exact_depth).abs() <= 0.625, "{stored} {exact_depth}");
+            assert!(
+                (stored - exact_depth).abs() <= 0.625,
+                "{stored} {exact_depth}"
+            );
             // A late start (a band) equals stepping from the first row.
             if round % 16 == 0 {
                 let mut stepped = Depth16::narrow_row(first, dz_dx, dz_dy, 0).unwrap();

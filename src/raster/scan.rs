@@ -31,7 +31,7 @@ use crate::raster::slots::Slots;
 use crate::raster::tables::{PolygonEntry, Prepared};
 use crate::raster::vertex::{ScreenVertex, TriangleTest};
 use crate::raster::wide::{cross, mul_i64_small};
-use crate::sink::RowSink;
+use crate::sink::{LentRow, RowSink};
 
 /// Where a scanner's arrays live: the active polygon table, the edge pool
 /// and the two rows. [`ScanArrays`] holds them in fixed arrays; the host's
@@ -240,12 +240,11 @@ fn scan_rows<C: Copy, D: DepthFormat, K: RowSink<C, D::Value>>(
             ..FrameStats::default()
         },
     };
-    let mut row_buffers = RowBuffers::<C, D> {
-        depth: &mut parts.depth_row[..width],
-        color: &mut parts.color_row[..width],
-        key: &mut parts.key_row[..width],
-        write: PixelWrite::NearerOrFirstAdded,
-    };
+    let (depth_row, own_colors, key_row) = (
+        &mut parts.depth_row[..width],
+        &mut parts.color_row[..width],
+        &mut parts.key_row[..width],
+    );
     let (first, end) = (rows.start.min(tables.height), rows.end.min(tables.height));
     let polygons = tables.polygons;
     let mut next_polygon = polygons.partition_point(|p| p.first_row < first);
@@ -256,8 +255,34 @@ fn scan_rows<C: Copy, D: DepthFormat, K: RowSink<C, D::Value>>(
         // The key row needs no clearing: a key is compared only where the
         // stored depth equals the new one and is not CLEAR, that is where
         // this row has written it (see `fill_span`).
-        row_buffers.depth.fill(D::CLEAR);
-        clear_color_row(row_buffers.color, background);
+        depth_row.fill(D::CLEAR);
+        // The sink's own buffer when it lends one (no copy of the row),
+        // else the scanner's colour row.
+        let lent = sink
+            .lend_row(row, width, background)
+            .map_err(RenderError::Sink)?;
+        let is_lent = lent.is_some();
+        let color = match lent {
+            Some(LentRow { colors, filled }) => {
+                let colors = colors
+                    .get_mut(..width)
+                    .ok_or(RenderError::Table(Error::BadFrameSize))?;
+                if !filled {
+                    clear_color_row(colors, background);
+                }
+                colors
+            }
+            None => {
+                clear_color_row(own_colors, background);
+                &mut *own_colors
+            }
+        };
+        let mut row_buffers = RowBuffers::<C, D> {
+            depth: &mut *depth_row,
+            color,
+            key: &mut *key_row,
+            write: PixelWrite::NearerOrFirstAdded,
+        };
         if row == first {
             // Polygons that started above the band and reach into it enter
             // at its first row, with the edges covering it.
@@ -287,8 +312,12 @@ fn scan_rows<C: Copy, D: DepthFormat, K: RowSink<C, D::Value>>(
         }
         state.note_peaks();
         state.scan_row(row, &mut row_buffers)?;
-        sink.write_row(row, row_buffers.color, row_buffers.depth)
-            .map_err(RenderError::Sink)?;
+        if is_lent {
+            sink.send_lent_row(row, depth_row)
+        } else {
+            sink.write_row(row, own_colors, depth_row)
+        }
+        .map_err(RenderError::Sink)?;
     }
     Ok(state.stats)
 }

@@ -206,6 +206,6 @@ pub fn init() -> Result<(LcdRows, hal::Timer), Fault> {
     let (device, dc) = interface.release();
     let (spi, cs) = device.into_parts();
     let dma = pac.DMA.split(&mut pac.RESETS);
-    let rows = LcdRows::new(spi, cs, dc, dma.ch0).ok_or(Fault::Display)?;
+    let rows = LcdRows::new(spi, cs, dc, dma.ch0, dma.ch1).ok_or(Fault::Display)?;
     Ok((rows, timer))
 }

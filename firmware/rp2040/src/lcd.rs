@@ -2,27 +2,34 @@
 //! row sink.
 //!
 //! A frame opens the LCD's whole window (CASET, RASET, RAMWR) once; then
-//! each finished row, already in the wire's byte order (the renderer
-//! stores [`WireColor`] pixels), is copied into a free row buffer and
-//! queued. DMA channel 0 feeds the queued rows to SPI0's transmit FIFO at
-//! the wire's pace, one after another: its completion interrupt
-//! (`DMA_IRQ_0`) frees the row just sent and starts the next one, so the
-//! wire keeps going whatever the CPU does, building the next frame's scene
-//! included. The CPU waits only when it is [`ROW_BUFFERS`] rows ahead of
-//! the wire, and at a frame's start until the last frame's rows are out.
+//! the renderer draws each row straight into a free row buffer the sink
+//! lends it ([`RowSink::lend_row`]), already in the wire's byte order (it
+//! stores [`WireColor`] pixels), and the finished row is queued: no copy.
+//! DMA channel 0 feeds the queued rows to SPI0's transmit FIFO at the
+//! wire's pace, one after another. A buffer that has been sent is cleared
+//! to black by DMA channel 1 (from a row of zeros in flash) before it is
+//! free again, so the renderer never clears a row's colours itself.
+//! Channel 0's completion interrupt (`DMA_IRQ_0`) moves buffers on (sent →
+//! cleared → free) and starts the next transfers, so the wire keeps going
+//! whatever the CPU does, building the next frame's scene included; a
+//! finished clearing is collected there or at the sink's next call (its
+//! own interrupt would cost more than it saves: clearing a row takes a
+//! fraction of sending one). The CPU waits only when it is
+//! [`ROW_BUFFERS`] rows ahead of the wire, and at a frame's start until
+//! the last frame's rows are out.
 
 use core::cell::RefCell;
 
 use cortex_m::interrupt::{Mutex, free as without_interrupts};
 use embedded_hal::digital::OutputPin;
 use embedded_hal::spi::SpiBus;
-use rp2040_hal::dma::{CH0, Channel, SingleChannel, single_buffer};
+use rp2040_hal::dma::{CH0, CH1, Channel, SingleChannel, single_buffer};
 use rp2040_hal::pac::{self, interrupt};
 use static_cell::ConstStaticCell;
-use zline::RowSink;
+use zline::{LentRow, RowSink};
 
 use crate::board::{LcdCs, LcdDc, LcdSpi, OFFSET};
-use crate::frame::WireColor;
+use crate::frame::{WIRE_BLACK, WireColor};
 use crate::sizes::{HEIGHT, ROW_BUFFERS, WIDTH};
 
 /// Bytes of one row on the wire.
@@ -34,6 +41,14 @@ type RowBuf = &'static mut [u8; ROW_BYTES];
 type Dma = Channel<CH0>;
 /// A row on its way out.
 type Transfer = single_buffer::Transfer<Dma, RowBuf, LcdSpi>;
+/// The DMA channel that clears sent rows.
+type ClearDma = Channel<CH1>;
+/// A sent row being cleared.
+type Clearing = single_buffer::Transfer<ClearDma, &'static [u8; ROW_BYTES], RowBuf>;
+
+/// A black row ([`WIRE_BLACK`] is all zero bits), the source of the
+/// clearing channel.
+static BLACK_ROW: [u8; ROW_BYTES] = [0; ROW_BYTES];
 
 /// A row buffer, word-aligned so that copying a row into it goes a word at
 /// a time (the boot ROM's memcpy copies byte by byte between buffers of
@@ -98,28 +113,57 @@ fn wrap(index: usize) -> usize {
     }
 }
 
+/// Where the clearing channel is.
+enum Clearer {
+    Idle(ClearDma),
+    Clearing(Clearing),
+}
+
 /// What the sink and the DMA interrupt share: the bus, the rows queued
-/// for it and the free buffers.
+/// for it, the sent buffers waiting to be cleared and the free (black)
+/// ones.
 struct Queue {
     /// `None` only while the sink sends commands with the SPI.
     bus: Option<Bus>,
     queued: Ring,
+    sent: Ring,
     free: Ring,
+    /// `None` only inside [`Queue::advance`].
+    clearer: Option<Clearer>,
 }
 
 impl Queue {
-    /// Takes back the buffer of a finished transfer (clearing its
-    /// interrupt), then starts the next queued row if the bus is idle.
+    /// Takes back the buffers of finished transfers (clearing their
+    /// interrupts): a sent row goes to be cleared, a cleared one is free.
+    /// Then starts the next clearing if that channel is idle, and the next
+    /// queued row if the bus is.
     fn advance(&mut self) {
         self.bus = match self.bus.take() {
             Some(Bus::Sending(transfer)) if transfer.is_done() => {
                 let (mut dma, buf, spi) = transfer.wait();
                 dma.check_irq0();
-                self.free.push(buf);
+                self.sent.push(buf);
                 Some(Bus::Idle { dma, spi })
             }
             other => other,
         };
+        self.clearer = match self.clearer.take() {
+            Some(Clearer::Clearing(transfer)) if transfer.is_done() => {
+                let (mut dma, _, buf) = transfer.wait();
+                dma.check_irq0();
+                self.free.push(buf);
+                Some(Clearer::Idle(dma))
+            }
+            other => other,
+        };
+        if let Some(Clearer::Idle(_)) = self.clearer
+            && let Some(buf) = self.sent.pop()
+            && let Some(Clearer::Idle(dma)) = self.clearer.take()
+        {
+            self.clearer = Some(Clearer::Clearing(
+                single_buffer::Config::new(dma, &BLACK_ROW, buf).start(),
+            ));
+        }
         if let Some(Bus::Idle { .. }) = self.bus
             && let Some(buf) = self.queued.pop()
             && let Some(Bus::Idle { dma, spi }) = self.bus.take()
@@ -151,6 +195,8 @@ fn DMA_IRQ_0() {
 pub struct LcdRows {
     cs: LcdCs,
     dc: LcdDc,
+    /// The buffer lent to the renderer for the row being drawn.
+    lent: Option<RowBuf>,
 }
 
 /// The SPI or a pin failed.
@@ -159,9 +205,17 @@ pub struct LcdError;
 
 impl LcdRows {
     /// Takes over SPI0 (8-bit frames, the LCD initialised), its chip
-    /// select and data/command pins, and DMA channel 0 with its
-    /// interrupt. `None` if the row buffers were taken already.
-    pub fn new(spi: LcdSpi, cs: LcdCs, dc: LcdDc, mut dma: Dma) -> Option<Self> {
+    /// select and data/command pins, and DMA channels 0 (rows out, with
+    /// its interrupt) and 1 (clearing). `None` if the row buffers were
+    /// taken already.
+    pub fn new(
+        spi: LcdSpi,
+        cs: LcdCs,
+        dc: LcdDc,
+        mut dma: Dma,
+        clear_dma: ClearDma,
+    ) -> Option<Self> {
+        // The buffers start zeroed (`.bss`): black, so free.
         let mut free = Ring::new();
         for row in ROWS.try_take()? {
             free.push(&mut row.0);
@@ -171,13 +225,15 @@ impl LcdRows {
             QUEUE.borrow(cs).borrow_mut().replace(Queue {
                 bus: Some(Bus::Idle { dma, spi }),
                 queued: Ring::new(),
+                sent: Ring::new(),
                 free,
+                clearer: Some(Clearer::Idle(clear_dma)),
             })
         });
         // SAFETY: the handler only touches `QUEUE`, inside a critical
         // section; unmasking cannot break a critical section in progress.
         unsafe { pac::NVIC::unmask(pac::Interrupt::DMA_IRQ_0) };
-        Some(Self { cs, dc })
+        Some(Self { cs, dc, lent: None })
     }
 
     /// Sends one command over the SPI (DC low for the command byte, high
@@ -240,35 +296,80 @@ impl LcdRows {
     }
 }
 
+/// A free buffer; when every buffer is queued or being cleared, waits for
+/// the wire.
+fn free_buffer() -> Result<RowBuf, LcdError> {
+    loop {
+        if let Some(buf) = with_queue(|q| {
+            q.advance();
+            q.free.pop()
+        })
+        .ok_or(LcdError)?
+        {
+            return Ok(buf);
+        }
+        core::hint::spin_loop();
+    }
+}
+
+/// Queues a finished row for the wire.
+fn queue_row(buf: RowBuf) -> Result<(), LcdError> {
+    with_queue(|q| {
+        q.queued.push(buf);
+        q.advance();
+    })
+    .ok_or(LcdError)
+}
+
 impl RowSink<WireColor, u16> for LcdRows {
     type Error = LcdError;
 
+    /// A row from the renderer's own colour row: copied into a buffer.
+    /// (The renderer takes [`Self::lend_row`] instead; this serves any
+    /// other caller.)
     fn write_row(&mut self, y: u16, colors: &[WireColor], _depths: &[u16]) -> Result<(), LcdError> {
         if y == 0 {
             self.begin_frame()?;
         }
-        // A free buffer; when every buffer is queued, wait for the wire.
-        let buf = loop {
-            if let Some(buf) = with_queue(|q| {
-                q.advance();
-                q.free.pop()
-            })
-            .ok_or(LcdError)?
-            {
-                break buf;
-            }
-            core::hint::spin_loop();
-        };
+        let buf = free_buffer()?;
         // The row's bytes are already big-endian Rgb565, as the ST7789
         // takes it over SPI: one copy (a row longer than the buffer is
         // cut, as the panel's window would cut it).
         let bytes: &[u8] = bytemuck::cast_slice(colors);
         let len = bytes.len().min(buf.len());
         buf[..len].copy_from_slice(&bytes[..len]);
-        with_queue(|q| {
-            q.queued.push(buf);
-            q.advance();
-        })
-        .ok_or(LcdError)
+        queue_row(buf)
+    }
+
+    /// Lends a free buffer, black already: the renderer draws the row in
+    /// place. (A row wider than the buffer is the renderer's error.)
+    fn lend_row(
+        &mut self,
+        y: u16,
+        _width: usize,
+        background: WireColor,
+    ) -> Result<Option<LentRow<'_, WireColor>>, LcdError> {
+        if y == 0 {
+            self.begin_frame()?;
+        }
+        if let Some(buf) = self.lent.take() {
+            // A row lent and never sent (an error cut the last frame
+            // short): cleared, not sent.
+            with_queue(|q| {
+                q.sent.push(buf);
+                q.advance();
+            })
+            .ok_or(LcdError)?;
+        }
+        let buf = self.lent.insert(free_buffer()?);
+        let colors = bytemuck::try_cast_slice_mut(&mut buf[..]).map_err(|_| LcdError)?;
+        Ok(Some(LentRow {
+            colors,
+            filled: background == WIRE_BLACK,
+        }))
+    }
+
+    fn send_lent_row(&mut self, _y: u16, _depths: &[u16]) -> Result<(), LcdError> {
+        queue_row(self.lent.take().ok_or(LcdError)?)
     }
 }
