@@ -95,6 +95,7 @@ impl Ring {
         self.len += 1;
     }
 
+    #[inline]
     fn pop(&mut self) -> Option<RowBuf> {
         let buf = self.slots[self.head].take()?;
         self.head = wrap(self.head + 1);
@@ -297,12 +298,15 @@ impl LcdRows {
 }
 
 /// A free buffer; when every buffer is queued or being cleared, waits for
-/// the wire.
+/// the wire. (The queue moves on only when none is free: the interrupt
+/// moves it on as each row leaves.)
 fn free_buffer() -> Result<RowBuf, LcdError> {
     loop {
         if let Some(buf) = with_queue(|q| {
-            q.advance();
-            q.free.pop()
+            q.free.pop().or_else(|| {
+                q.advance();
+                q.free.pop()
+            })
         })
         .ok_or(LcdError)?
         {
@@ -312,11 +316,14 @@ fn free_buffer() -> Result<RowBuf, LcdError> {
     }
 }
 
-/// Queues a finished row for the wire.
+/// Queues a finished row for the wire, starting it if the bus is idle
+/// (while it is busy, the interrupt starts the next row).
 fn queue_row(buf: RowBuf) -> Result<(), LcdError> {
     with_queue(|q| {
         q.queued.push(buf);
-        q.advance();
+        if let Some(Bus::Idle { .. }) = q.bus {
+            q.advance();
+        }
     })
     .ok_or(LcdError)
 }
