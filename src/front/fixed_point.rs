@@ -184,7 +184,7 @@ fn exact_sum(terms: &[Exact]) -> (i128, i32) {
 /// nine times, and inlined that was 29 KB of a Cortex-M0+ firmware's
 /// flash for no speed.
 #[inline(never)]
-fn div_round_i128(n: i128, d: i128) -> i128 {
+pub(crate) fn div_round_i128(n: i128, d: i128) -> i128 {
     const LIMIT: u128 = 1 << 61;
     if n.unsigned_abs() < LIMIT && d.unsigned_abs() < LIMIT {
         let (n, d) = (n as i64, d as i64);
@@ -351,6 +351,15 @@ impl FixedFrame {
     /// The scale exponent `T` of this draw's coefficients.
     pub fn scale_bits(&self) -> i32 {
         self.scale_bits
+    }
+
+    /// The rows that give clip `x`, `y` and `w`: coefficients (each at most
+    /// `2^30`) and offsets (`b · 2^15`, at most `2^45`).
+    pub(crate) fn xyw_rows(&self) -> ([[i32; 3]; 3], [i64; 3]) {
+        (
+            [self.a[0], self.a[1], self.a[3]],
+            [self.offset[0], self.offset[1], self.offset[3]],
+        )
     }
 
     /// Clip coordinates of a quantized position (units of `2^-T`).

@@ -15,7 +15,10 @@
 //!   positions, unit face normals), kept in flash.
 //! * [`fixed_point`]: the integer front end: transform, clip tests,
 //!   projection and normals without floating point.
+//! * [`backface`]: the integer front end's back-face test in model space,
+//!   before a triangle's corners are transformed.
 
+pub mod backface;
 pub mod clip;
 pub mod fixed_point;
 pub mod geometry;

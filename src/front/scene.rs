@@ -41,6 +41,7 @@ use core::cell::OnceCell;
 use core::fmt;
 
 use crate::error::Error;
+use crate::front::backface::{EyeTest, Side};
 use crate::front::clip::{self, ClipPoint, ClipVertex, Clipper};
 use crate::front::fixed_point::FixedFrame;
 use crate::front::geometry::{Mat4, Vec3, Vec4, newell_normal, radians};
@@ -621,13 +622,20 @@ where
         faces: mesh.face_count() as u32,
         ..DrawStats::default()
     };
+    let positions = quantized
+        .filter(|_| frame.fixed.is_some())
+        .map(|q| q.positions);
+    // The model-space back-face test, for the integer front end.
+    let eye = match (&frame.fixed, positions) {
+        (Some(fixed), Some(_)) if cull == Cull::Back => EyeTest::new(fixed),
+        _ => None,
+    };
     let mut draw = Draw {
         tables,
         cache,
         mesh,
-        positions: quantized
-            .filter(|_| frame.fixed.is_some())
-            .map(|q| q.positions),
+        positions,
+        eye,
         frame: &frame,
         stats: &mut stats,
         shade: &mut shade,
@@ -650,6 +658,9 @@ struct Draw<'a, T: ?Sized, M: ?Sized, S, const VM: usize> {
     /// The quantized positions, when the integer front end transforms
     /// this mesh.
     positions: Option<&'a [[i16; 3]]>,
+    /// The eye for the model-space back-face test (integer front end,
+    /// back faces culled).
+    eye: Option<EyeTest>,
     frame: &'a Frame,
     stats: &'a mut DrawStats,
     shade: &'a mut S,
@@ -673,25 +684,47 @@ where
             self.stats.degenerate += 1;
             return Ok(());
         }
+        let mut side = Side::Unsure;
+        if let (Some(eye), Some(positions), &[i0, i1, i2]) = (&self.eye, self.positions, corners)
+            && let (Some(q0), Some(q1), Some(q2)) = (
+                positions.get(usize::from(i0)),
+                positions.get(usize::from(i1)),
+                positions.get(usize::from(i2)),
+            )
+        {
+            side = eye.side(q0, q1, q2);
+            if side == Side::Back {
+                // Turned away beyond doubt: no corner is transformed for
+                // it.
+                self.stats.back_faces += 1;
+                return Ok(());
+            }
+        }
         if corners.len() > 3 && !self.mesh.face_is_planar(face) {
             self.stats.split += 1;
             for k in 1..corners.len() - 1 {
-                self.part(face, &[corners[0], corners[k], corners[k + 1]])?;
+                self.part(
+                    face,
+                    &[corners[0], corners[k], corners[k + 1]],
+                    Side::Unsure,
+                )?;
             }
             Ok(())
         } else {
-            self.part(face, corners)
+            self.part(face, corners, side)
         }
     }
 
     /// Draws one polygon of a face: the face itself, or one triangle of
     /// its fan.
-    fn part(&mut self, face: usize, corners: &[u16]) -> Result<(), Error> {
+    fn part(&mut self, face: usize, corners: &[u16], side: Side) -> Result<(), Error> {
         if let &[i0, i1, i2] = corners {
             // The common case: a triangle whose corners are all projected.
             let ids = [self.slot(i0)?, self.slot(i1)?, self.slot(i2)?];
             if ids.iter().all(|&id| id < NON_FINITE) {
-                if self.frame.cull == Cull::Back && self.faces_away(ids) {
+                // (A front face beyond doubt skips the early test: the
+                // tables test its rounded corners anyway.)
+                if self.frame.cull == Cull::Back && side != Side::Front && self.faces_away(ids) {
                     // Culled before the tables' frame and sample tests, and
                     // their call into the shading closure.
                     self.stats.back_faces += 1;
