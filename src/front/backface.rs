@@ -38,6 +38,12 @@
 //!   |n|_1 + |v|_1 + 6` (`σ = sign(det A)`) makes `σ N·(e_exact - q0)`
 //!   positive: the exact projection is turned away; and `σ s < -(2
 //!   |n|_1 + |v|_1 + 6)` makes it negative: turned towards the eye.
+//!   `|v|_1` is bounded once per draw, for every `q0` a quantized mesh
+//!   can hold.
+//! * `n` depends on the triangle alone ([`exact_normal`]): a quantized
+//!   mesh may carry them in a table, checked when it is made
+//!   ([`QuantizedMesh::with_exact_normals`]), so a draw reads three
+//!   numbers a face instead of working them out.
 //!
 //! A back face is left out at once. A front face skips the early
 //! screen-space test on its projected (rounded) corners, which the tables
@@ -47,6 +53,8 @@
 //! rounded corners would have turned by a hair).
 
 use crate::front::fixed_point::FixedFrame;
+#[cfg(doc)]
+use crate::front::quantized::QuantizedMesh;
 
 /// Largest eye coordinate, in quantized units, the test accepts.
 const EYE_MAX: u64 = 1 << 28;
@@ -61,7 +69,7 @@ pub struct EyeTest {
     /// `sign(det A)`: `1` or `-1`.
     sign: i32,
     /// A bound on `|v|_1` for every quantized `q0` (`Σ_k floor((|e_k| +
-    /// 2^15) / 2^h) + 1`), plus 12: see [`EyeTest::side`].
+    /// 2^15) / 2^h) + 1`), plus 6: see [`EyeTest::side_of`].
     slack: i32,
 }
 
@@ -162,54 +170,35 @@ impl EyeTest {
             eye: eye.map(|e| e >> shift),
             shift,
             sign: sign as i32,
-            slack: v_bound as i32 + 12,
+            slack: v_bound as i32 + 6,
         })
     }
 
     /// Which side of the triangle of quantized corners `q0 q1 q2` the eye
-    /// is on, beyond doubt (see the module notes), or [`Side::Unsure`]; a
-    /// triangle with an edge component outside `[-2^15, 2^15)` is not
-    /// tested. With `|n|_1 <= 3 ((max_k |N_k| >> m) + 1)` and `|v|_1`
-    /// bounded once per draw, the doubt is `6 (max_k |N_k| >> m) + slack`.
-    ///
-    /// Out of line, and written out component by component: inlined into
-    /// the draw loop, or with closures and `array::map`, a Cortex-M0+
-    /// spilled nearly every value to the stack.
+    /// is on: [`EyeTest::side_of`] with the triangle's [`exact_normal`]
+    /// (for a mesh without a table of them).
     #[inline(never)]
     pub fn side(&self, q0: &[i16; 3], q1: &[i16; 3], q2: &[i16; 3]) -> Side {
-        let ([x0, y0, z0], [x1, y1, z1], [x2, y2, z2]) = (*q0, *q1, *q2);
-        let (x0, y0, z0) = (i32::from(x0), i32::from(y0), i32::from(z0));
-        let (ax, ay, az) = (i32::from(x1) - x0, i32::from(y1) - y0, i32::from(z1) - z0);
-        let (bx, by, bz) = (i32::from(x2) - x0, i32::from(y2) - y0, i32::from(z2) - z0);
-        // Every edge component in [-2^15, 2^15): x + 2^15 below 2^16 as
-        // u32 exactly then, so the `or` of all six is too.
-        let short = |x: i32| x.wrapping_add(1 << 15) as u32;
-        if (short(ax) | short(ay) | short(az) | short(bx) | short(by) | short(bz)) >= 1 << 16 {
-            return Side::Unsure;
-        }
-        let (nx, ny, nz) = (ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx);
-        // The `or` of the magnitudes: at least the largest, below the same
-        // powers of two.
-        let big = nx.unsigned_abs() | ny.unsigned_abs() | nz.unsigned_abs();
-        let m = if big < 1 << 14 {
-            0
-        } else if big < 1 << 22 {
-            8
-        } else if big < 1 << 30 {
-            16
-        } else {
-            17
-        };
-        let (nx, ny, nz) = (nx >> m, ny >> m, nz >> m);
+        self.side_of(&exact_normal(*q0, *q1, *q2), q0)
+    }
+
+    /// Which side of a triangle the eye is on, beyond doubt (see the module
+    /// notes), or [`Side::Unsure`], from the triangle's shifted exact
+    /// normal `n` ([`exact_normal`]: zero for a triangle not tested) and its
+    /// first corner `q0`: `s = σ n·v` against the doubt `2 |n|_1 + slack`.
+    /// Every product is below `2^29` and `s` below `3·2^29`.
+    #[inline]
+    pub fn side_of(&self, n: &[i16; 3], q0: &[i16; 3]) -> Side {
+        let (nx, ny, nz) = (i32::from(n[0]), i32::from(n[1]), i32::from(n[2]));
         let h = self.shift;
         let (vx, vy, vz) = (
-            self.eye[0] - (x0 >> h),
-            self.eye[1] - (y0 >> h),
-            self.eye[2] - (z0 >> h),
+            self.eye[0] - (i32::from(q0[0]) >> h),
+            self.eye[1] - (i32::from(q0[1]) >> h),
+            self.eye[2] - (i32::from(q0[2]) >> h),
         );
         let s = self.sign * (nx * vx + ny * vy + nz * vz);
-        // big >> m < 2^14: the doubt is below 2^18.
-        let doubt = 6 * (big >> m) as i32 + self.slack;
+        // |n|_1 < 3·2^14: the doubt is below 2^18.
+        let doubt = 2 * (nx.abs() + ny.abs() + nz.abs()) + self.slack;
         if s > doubt {
             Side::Back
         } else if s < -doubt {
@@ -220,11 +209,52 @@ impl EyeTest {
     }
 }
 
+/// The exact normal `N = (q1 - q0) x (q2 - q0)` of a triangle of quantized
+/// corners, shifted right (by 0, 8, 16 or 17 bits, rounding down) until
+/// every component is below `2^14` in magnitude: what
+/// [`EyeTest::side_of`] takes. Zero, which no test calls, when an edge
+/// component lies outside `[-2^15, 2^15)`: `N` is exact in `i32` only
+/// inside (each product at most `2^30`, each difference of two below
+/// `2^31 - 2^15` in magnitude). `const`, so that a flash mesh's table
+/// ([`QuantizedMesh::with_exact_normals`]) is checked at compile time.
+pub const fn exact_normal(q0: [i16; 3], q1: [i16; 3], q2: [i16; 3]) -> [i16; 3] {
+    let (x0, y0, z0) = (q0[0] as i32, q0[1] as i32, q0[2] as i32);
+    let (ax, ay, az) = (q1[0] as i32 - x0, q1[1] as i32 - y0, q1[2] as i32 - z0);
+    let (bx, by, bz) = (q2[0] as i32 - x0, q2[1] as i32 - y0, q2[2] as i32 - z0);
+    // x + 2^15 below 2^16 as u32 exactly for x in [-2^15, 2^15), so the
+    // `or` of all six is too.
+    let short = (ax + (1 << 15)) as u32
+        | (ay + (1 << 15)) as u32
+        | (az + (1 << 15)) as u32
+        | (bx + (1 << 15)) as u32
+        | (by + (1 << 15)) as u32
+        | (bz + (1 << 15)) as u32;
+    if short >= 1 << 16 {
+        return [0; 3];
+    }
+    let (nx, ny, nz) = (ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx);
+    // The `or` of the magnitudes: at least the largest, below the same
+    // powers of two.
+    let big = nx.unsigned_abs() | ny.unsigned_abs() | nz.unsigned_abs();
+    let m = if big < 1 << 14 {
+        0
+    } else if big < 1 << 22 {
+        8
+    } else if big < 1 << 30 {
+        16
+    } else {
+        17
+    };
+    [(nx >> m) as i16, (ny >> m) as i16, (nz >> m) as i16]
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::front::fixed_point::FixedFrame;
     use crate::front::geometry::Mat4;
+    #[cfg(doc)]
+    use crate::front::quantized::QuantizedMesh;
     use crate::front::scene::Camera;
     use proptest::prelude::*;
 

@@ -102,6 +102,14 @@ pub enum MeshError {
         /// The offending entry.
         index: usize,
     },
+    /// A quantized mesh's table of exact normals: not one per face (`face:
+    /// None`), or one that is not its triangle's
+    /// [`exact_normal`](crate::front::backface::exact_normal) (`face:
+    /// Some(f)`; zero for a face that is not a triangle).
+    BadExactNormals {
+        /// The offending face, if one.
+        face: Option<usize>,
+    },
 }
 
 /// A mesh over borrowed slices: `'static` ones live in flash.

@@ -14,6 +14,7 @@
 //! without an FPU it costs no floating point per vertex or per face, and
 //! every target computes the same frame bit for bit.
 
+use crate::front::backface::exact_normal;
 use crate::front::geometry::Vec3;
 use crate::front::mesh::{Mesh, MeshError, SharedPlane, check_shared_planes, face_of, is_planar};
 use crate::front::scene::MAX_FACE_CORNERS;
@@ -47,6 +48,10 @@ pub struct QuantizedView<'a> {
     pub centre: [f32; 3],
     /// Radius of the quantization sphere (positive, finite).
     pub radius: f32,
+    /// Each face's [`exact_normal`] (zero for a face that is not a
+    /// triangle), or empty: the model-space back-face test then works
+    /// them out.
+    pub exact_normals: &'a [[i16; 3]],
 }
 
 impl QuantizedView<'_> {
@@ -147,6 +152,7 @@ impl<'a> QuantizedMesh<'a> {
                 normals,
                 centre,
                 radius,
+                exact_normals: &[],
             },
             corners,
             face_starts,
@@ -163,6 +169,45 @@ impl<'a> QuantizedMesh<'a> {
             return Err(e);
         }
         Ok(Self { shared, ..self })
+    }
+
+    /// The same mesh with a table of each face's [`exact_normal`] (zero
+    /// for a face that is not a triangle), which the model-space back-face
+    /// test ([`crate::front::backface`]) reads instead of working them out
+    /// each draw. `const`, so a flash mesh's table is checked entry by
+    /// entry at compile time.
+    pub const fn with_exact_normals(self, table: &'a [[i16; 3]]) -> Result<Self, MeshError> {
+        if table.len() != self.face_starts.len() {
+            return Err(MeshError::BadExactNormals { face: None });
+        }
+        let positions = self.view.positions;
+        let mut f = 0;
+        while f < table.len() {
+            let start = self.face_starts[f] as usize;
+            let end = if f + 1 < self.face_starts.len() {
+                self.face_starts[f + 1] as usize
+            } else {
+                self.corners.len()
+            };
+            let expected = if end - start == 3 {
+                let c = self.corners;
+                exact_normal(
+                    positions[c[start] as usize],
+                    positions[c[start + 1] as usize],
+                    positions[c[start + 2] as usize],
+                )
+            } else {
+                [0; 3]
+            };
+            let got = table[f];
+            if got[0] != expected[0] || got[1] != expected[1] || got[2] != expected[2] {
+                return Err(MeshError::BadExactNormals { face: Some(f) });
+            }
+            f += 1;
+        }
+        let mut view = self.view;
+        view.exact_normals = table;
+        Ok(Self { view, ..self })
     }
 
     /// The integer data.
@@ -262,6 +307,38 @@ mod tests {
 
     const Q: [[i16; 3]; 4] = [[0, 0, 0], [32767, 0, 0], [32767, 32767, 0], [0, 32767, 0]];
     const N: [[i16; 3]; 2] = [[0, 0, 32767], [0, 0, 32767]];
+
+    #[test]
+    fn exact_normal_tables_are_checked_entry_by_entry() {
+        // A triangle with short edges, a quad, a triangle with a long edge.
+        let q = [
+            [0, 0, 0],
+            [300, 0, 0],
+            [0, 200, 0],
+            [300, 200, 0],
+            [-20000, 0, 0],
+            [20000, 5, 0],
+        ];
+        let n = [[0, 0, 32767]; 3];
+        let corners = [0, 1, 2, 0, 1, 3, 2, 4, 5, 0];
+        let m = QuantizedMesh::new(&q, &n, &corners, &[0, 3, 7], &[0b111], [0.0; 3], 1.0).unwrap();
+        // (300, 0, 0) x (0, 200, 0) = (0, 0, 60000), shifted by 8: 234.
+        let good = [[0, 0, 234], [0; 3], [0; 3]];
+        let with = m.with_exact_normals(&good).unwrap();
+        assert_eq!(with.view().exact_normals, &good);
+        for (table, face) in [
+            (&[[0, 0, 235], [0; 3], [0; 3]][..], Some(0)),
+            (&[[0, 0, 234], [0, 0, 1], [0; 3]][..], Some(1)),
+            (&[[0, 0, 234], [0; 3], [0, 0, -1]][..], Some(2)),
+            (&[[0, 0, 234], [0; 3]][..], None),
+        ] {
+            assert_eq!(
+                m.with_exact_normals(table).err(),
+                Some(MeshError::BadExactNormals { face })
+            );
+        }
+        assert!(m.view().exact_normals.is_empty());
+    }
 
     #[test]
     fn validates_and_reads_back() {

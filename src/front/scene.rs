@@ -636,6 +636,7 @@ where
         mesh,
         positions,
         eye,
+        exact_normals: quantized.map_or(&[][..], |q| q.exact_normals),
         frame: &frame,
         stats: &mut stats,
         shade: &mut shade,
@@ -661,6 +662,8 @@ struct Draw<'a, T: ?Sized, M: ?Sized, S, const VM: usize> {
     /// The eye for the model-space back-face test (integer front end,
     /// back faces culled).
     eye: Option<EyeTest>,
+    /// The quantized mesh's exact normals, if it has them.
+    exact_normals: &'a [[i16; 3]],
     frame: &'a Frame,
     stats: &'a mut DrawStats,
     shade: &'a mut S,
@@ -692,7 +695,10 @@ where
                 positions.get(usize::from(i2)),
             )
         {
-            side = eye.side(q0, q1, q2);
+            side = match self.exact_normals.get(face) {
+                Some(n) => eye.side_of(n, q0),
+                None => eye.side(q0, q1, q2),
+            };
             if side == Side::Back {
                 // Turned away beyond doubt: no corner is transformed for
                 // it.

@@ -3,6 +3,7 @@
 //! `Vec`s and lent out as a [`QuantizedMesh`].
 
 use crate::error::Error;
+use crate::front::backface::exact_normal;
 use crate::front::mesh::{Mesh, MeshError, SharedPlane, planar_face_bits};
 use crate::front::quantized::{QuantizedMesh, quantize_normal, quantize_position};
 use crate::front::scene::bounding_sphere;
@@ -28,6 +29,9 @@ pub struct QuantizedHostMesh {
     pub radius: f32,
     /// The original mesh's shared planes (quantizing keeps the vertices).
     pub shared_planes: Vec<SharedPlane>,
+    /// Each face's [`exact_normal`] from the quantized positions (zero for
+    /// a face that is not a triangle).
+    pub exact_normals: Vec<[i16; 3]>,
 }
 
 impl QuantizedHostMesh {
@@ -41,7 +45,7 @@ impl QuantizedHostMesh {
             f64::from(centre.y),
             f64::from(centre.z),
         ];
-        let positions = mesh
+        let positions: Vec<[i16; 3]> = mesh
             .positions
             .iter()
             .map(|p| quantize_position(p.map(f64::from), c, f64::from(radius)))
@@ -56,7 +60,9 @@ impl QuantizedHostMesh {
                 )
             })
             .collect();
+        let exact_normals = exact_normals(mesh, &positions);
         Ok(Self {
+            exact_normals,
             positions,
             normals,
             corners: mesh.corners.clone(),
@@ -79,6 +85,25 @@ impl QuantizedHostMesh {
             self.centre,
             self.radius,
         )?
-        .with_shared_planes(&self.shared_planes)
+        .with_shared_planes(&self.shared_planes)?
+        .with_exact_normals(&self.exact_normals)
     }
+}
+
+/// Each face's [`exact_normal`] over the quantized `positions` (zero for a
+/// face that is not a triangle, or that names a vertex beyond them).
+fn exact_normals(mesh: &HostMesh, positions: &[[i16; 3]]) -> Vec<[i16; 3]> {
+    (0..mesh.face_count())
+        .map(|f| match mesh.face(f) {
+            &[a, b, c] => match (
+                positions.get(usize::from(a)),
+                positions.get(usize::from(b)),
+                positions.get(usize::from(c)),
+            ) {
+                (Some(&a), Some(&b), Some(&c)) => exact_normal(a, b, c),
+                _ => [0; 3],
+            },
+            _ => [0; 3],
+        })
+        .collect()
 }

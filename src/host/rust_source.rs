@@ -78,8 +78,9 @@ pub fn static_mesh_source(mesh: &HostMesh, name: &str, origin: &str) -> Result<S
 
 /// Rust source for a [`QuantizedMesh`](crate::front::quantized::QuantizedMesh)
 /// of `mesh` named `name` (see [`QuantizedHostMesh`]): 6 bytes a vertex
-/// and 6 a face in flash instead of 12 a vertex, and the integer front end
-/// draws it with no floating point per vertex or face.
+/// and 12 a face (its unit normal and its exact normal) in flash instead of
+/// 12 a vertex, and the integer front end draws it with no floating point
+/// per vertex or face.
 pub fn quantized_mesh_source(mesh: &HostMesh, name: &str, origin: &str) -> Result<String, String> {
     check_name(name)?;
     let origin = origin.replace(char::is_control, "?");
@@ -130,12 +131,21 @@ pub fn quantized_mesh_source(mesh: &HostMesh, name: &str, origin: &str) -> Resul
     shared_planes_source(&mut out, name, &q.shared_planes);
     let _ = writeln!(
         out,
+        "// Each face's exact normal, for the model-space back-face test.\n\
+         static {name}_EXACT_NORMALS: [[i16; 3]; {}] = [\n{}];\n",
+        q.exact_normals.len(),
+        rows(&q.exact_normals, 4, triple)
+    );
+    let _ = writeln!(
+        out,
         "/// Mesh from {origin}, quantized, checked at compile time.\n\
          pub static {name}: zline::front::quantized::QuantizedMesh<'static> = match zline::front::quantized::QuantizedMesh::new(\n    \
          &{name}_POSITIONS,\n    &{name}_NORMALS,\n    &{name}_CORNERS,\n    &{name}_FACE_STARTS,\n    &{name}_PLANAR,\n    \
          [{:?}, {:?}, {:?}],\n    {:?},\n) {{\n    \
          Ok(mesh) => match mesh.with_shared_planes(&{name}_SHARED) {{\n        \
-         Ok(mesh) => mesh,\n        Err(_) => panic!(\"{name}: invalid shared planes\"),\n    }},\n    \
+         Ok(mesh) => match mesh.with_exact_normals(&{name}_EXACT_NORMALS) {{\n            \
+         Ok(mesh) => mesh,\n            Err(_) => panic!(\"{name}: invalid exact normals\"),\n        }},\n        \
+         Err(_) => panic!(\"{name}: invalid shared planes\"),\n    }},\n    \
          Err(_) => panic!(\"{name}: invalid mesh\"),\n}};",
         q.centre[0], q.centre[1], q.centre[2], q.radius
     );
