@@ -62,6 +62,16 @@ const SPI_BUFFER: usize = 2 * WIDTH as usize;
 /// rows ahead of the wire, which covers the light rows above and below a
 /// mesh, where it outruns the wire.
 const ROW_BUFFERS: usize = 48;
+/// Rows per DMA buffer (`src/lcd.rs`): each buffer holds this many rows,
+/// sent and cleared by one transfer each, so the per-transfer work is paid
+/// once per four rows. It divides both `HEIGHT` and `ROW_BUFFERS`.
+const ROWS_PER_BUFFER: usize = if HEIGHT % 4 == 0 {
+    4
+} else if HEIGHT % 2 == 0 {
+    2
+} else {
+    1
+};
 
 fn main() -> ExitCode {
     match run() {
@@ -278,7 +288,7 @@ fn measure_views(mesh: &HostMesh, origin: &str) -> Result<String, String> {
         s,
         "// Estimated RAM (renderer + cache + SPI buffer + DMA row queue): {ram} bytes.\n"
     );
-    let items: [(&str, &str, String); 8] = [
+    let items: [(&str, &str, String); 9] = [
         ("WIDTH", "u16", WIDTH.to_string()),
         ("HEIGHT", "u16", HEIGHT.to_string()),
         ("YAW_STEPS", "u32", YAW_STEPS.to_string()),
@@ -286,6 +296,7 @@ fn measure_views(mesh: &HostMesh, origin: &str) -> Result<String, String> {
         ("PITCH_DEG", "f32", format!("{PITCH_DEG:?}")),
         ("SPI_BUFFER", "usize", SPI_BUFFER.to_string()),
         ("ROW_BUFFERS", "usize", ROW_BUFFERS.to_string()),
+        ("ROWS_PER_BUFFER", "usize", ROWS_PER_BUFFER.to_string()),
         ("MESH_VERTICES", "usize", mesh_vertices.to_string()),
     ];
     for (name, ty, value) in items {

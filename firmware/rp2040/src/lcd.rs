@@ -2,19 +2,22 @@
 //! row sink.
 //!
 //! A frame opens the LCD's whole window (CASET, RASET, RAMWR) once; then
-//! the renderer draws each row straight into a free row buffer the sink
-//! lends it ([`RowSink::lend_row`]), already in the wire's byte order (it
-//! stores [`WireColor`] pixels), and the finished row is queued: no copy.
-//! DMA channel 0 feeds the queued rows to SPI0's transmit FIFO at the
-//! wire's pace, one after another. A buffer that has been sent is cleared
-//! to black by DMA channel 1 (from a row of zeros in flash) before it is
-//! free again, so the renderer never clears a row's colours itself.
+//! the renderer draws each row straight into the next row of a free
+//! buffer the sink lends it ([`RowSink::lend_row`]), already in the wire's
+//! byte order (it stores [`WireColor`] pixels): no copy. Each buffer holds
+//! [`ROWS_PER_BUFFER`] rows (4 for a 240-row panel), and a full one is
+//! queued. DMA channel 0 feeds the queued buffers to SPI0's transmit FIFO
+//! at the wire's pace, one after another. A buffer that has been sent is
+//! cleared to black by DMA channel 1 (from black rows in flash) before it
+//! is free again, so the renderer never clears a row's colours itself.
 //! Channel 0's completion interrupt (`DMA_IRQ_0`) moves buffers on (sent →
 //! cleared → free) and starts the next transfers, so the wire keeps going
 //! whatever the CPU does, building the next frame's scene included; a
 //! finished clearing is collected there or at the sink's next call (its
-//! own interrupt would cost more than it saves: clearing a row takes a
-//! fraction of sending one). The CPU waits only when it is
+//! own interrupt would cost more than it saves: clearing a buffer takes a
+//! fraction of sending one). Moving a buffer on costs a few hundred
+//! cycles (the queue's critical sections, the transfers' set-up), which
+//! is why a buffer holds several rows. The CPU waits only when it is
 //! [`ROW_BUFFERS`] rows ahead of the wire, and at a frame's start until
 //! the last frame's rows are out.
 
@@ -30,13 +33,17 @@ use zline::{LentRow, RowSink};
 
 use crate::board::{LcdCs, LcdDc, LcdSpi, OFFSET};
 use crate::frame::{WIRE_BLACK, WireColor};
-use crate::sizes::{HEIGHT, ROW_BUFFERS, WIDTH};
+use crate::sizes::{HEIGHT, ROW_BUFFERS, ROWS_PER_BUFFER, WIDTH};
 
 /// Bytes of one row on the wire.
 pub const ROW_BYTES: usize = 2 * WIDTH as usize;
+/// Bytes of one buffer: [`ROWS_PER_BUFFER`] rows.
+const BUFFER_BYTES: usize = ROWS_PER_BUFFER * ROW_BYTES;
+/// Buffers in the ring: [`ROW_BUFFERS`] rows of them.
+const BUFFERS: usize = ROW_BUFFERS / ROWS_PER_BUFFER;
 
-/// One row buffer, lent to DMA while it is sent.
-type RowBuf = &'static mut [u8; ROW_BYTES];
+/// One buffer of rows, lent to DMA while it is sent.
+type RowBuf = &'static mut [u8; BUFFER_BYTES];
 /// The DMA channel rows go out on.
 type Dma = Channel<CH0>;
 /// A row on its way out.
@@ -44,21 +51,21 @@ type Transfer = single_buffer::Transfer<Dma, RowBuf, LcdSpi>;
 /// The DMA channel that clears sent rows.
 type ClearDma = Channel<CH1>;
 /// A sent row being cleared.
-type Clearing = single_buffer::Transfer<ClearDma, &'static [u8; ROW_BYTES], RowBuf>;
+type Clearing = single_buffer::Transfer<ClearDma, &'static [u8; BUFFER_BYTES], RowBuf>;
 
-/// A black row ([`WIRE_BLACK`] is all zero bits), the source of the
+/// Black rows ([`WIRE_BLACK`] is all zero bits), the source of the
 /// clearing channel.
-static BLACK_ROW: [u8; ROW_BYTES] = [0; ROW_BYTES];
+static BLACK_ROWS: [u8; BUFFER_BYTES] = [0; BUFFER_BYTES];
 
-/// A row buffer, word-aligned so that copying a row into it goes a word at
-/// a time (the boot ROM's memcpy copies byte by byte between buffers of
-/// different alignment).
+/// A buffer of rows, word-aligned so that a row is lent as `u16` pixels
+/// and copied into it a word at a time (the boot ROM's memcpy copies byte
+/// by byte between buffers of different alignment).
 #[repr(C, align(4))]
-struct RowBytes([u8; ROW_BYTES]);
+struct RowBytes([u8; BUFFER_BYTES]);
 
 /// The row buffers, in `.bss`.
-static ROWS: ConstStaticCell<[RowBytes; ROW_BUFFERS]> =
-    ConstStaticCell::new([const { RowBytes([0; ROW_BYTES]) }; ROW_BUFFERS]);
+static ROWS: ConstStaticCell<[RowBytes; BUFFERS]> =
+    ConstStaticCell::new([const { RowBytes([0; BUFFER_BYTES]) }; BUFFERS]);
 
 /// ST7789 commands.
 const CASET: u8 = 0x2A;
@@ -74,7 +81,7 @@ enum Bus {
 
 /// A first-in first-out ring of row buffers.
 struct Ring {
-    slots: [Option<RowBuf>; ROW_BUFFERS],
+    slots: [Option<RowBuf>; BUFFERS],
     head: usize,
     len: usize,
 }
@@ -82,15 +89,15 @@ struct Ring {
 impl Ring {
     const fn new() -> Self {
         Self {
-            slots: [const { None }; ROW_BUFFERS],
+            slots: [const { None }; BUFFERS],
             head: 0,
             len: 0,
         }
     }
 
-    /// Appends `buf` (never full: there are `ROW_BUFFERS` buffers in all).
+    /// Appends `buf` (never full: there are `BUFFERS` buffers in all).
     fn push(&mut self, buf: RowBuf) {
-        debug_assert!(self.len < ROW_BUFFERS);
+        debug_assert!(self.len < BUFFERS);
         self.slots[wrap(self.head + self.len)] = Some(buf);
         self.len += 1;
     }
@@ -104,11 +111,11 @@ impl Ring {
     }
 }
 
-/// `index mod ROW_BUFFERS` for `index < 2·ROW_BUFFERS`, by a compare: `%`
+/// `index mod BUFFERS` for `index < 2·BUFFERS`, by a compare: `%`
 /// would be a call to the divider on every row.
 fn wrap(index: usize) -> usize {
-    if index >= ROW_BUFFERS {
-        index - ROW_BUFFERS
+    if index >= BUFFERS {
+        index - BUFFERS
     } else {
         index
     }
@@ -162,7 +169,7 @@ impl Queue {
             && let Some(Clearer::Idle(dma)) = self.clearer.take()
         {
             self.clearer = Some(Clearer::Clearing(
-                single_buffer::Config::new(dma, &BLACK_ROW, buf).start(),
+                single_buffer::Config::new(dma, &BLACK_ROWS, buf).start(),
             ));
         }
         if let Some(Bus::Idle { .. }) = self.bus
@@ -196,8 +203,9 @@ fn DMA_IRQ_0() {
 pub struct LcdRows {
     cs: LcdCs,
     dc: LcdDc,
-    /// The buffer lent to the renderer for the row being drawn.
-    lent: Option<RowBuf>,
+    /// The buffer being filled, row after row, and how many of its rows
+    /// are done.
+    filling: Option<(RowBuf, usize)>,
 }
 
 /// The SPI or a pin failed.
@@ -234,7 +242,11 @@ impl LcdRows {
         // SAFETY: the handler only touches `QUEUE`, inside a critical
         // section; unmasking cannot break a critical section in progress.
         unsafe { pac::NVIC::unmask(pac::Interrupt::DMA_IRQ_0) };
-        Some(Self { cs, dc, lent: None })
+        Some(Self {
+            cs,
+            dc,
+            filling: None,
+        })
     }
 
     /// Sends one command over the SPI (DC low for the command byte, high
@@ -316,8 +328,8 @@ fn free_buffer() -> Result<RowBuf, LcdError> {
     }
 }
 
-/// Queues a finished row for the wire, starting it if the bus is idle
-/// (while it is busy, the interrupt starts the next row).
+/// Queues a finished buffer of rows for the wire, starting it if the bus
+/// is idle (while it is busy, the interrupt starts the next one).
 fn queue_row(buf: RowBuf) -> Result<(), LcdError> {
     with_queue(|q| {
         q.queued.push(buf);
@@ -328,6 +340,43 @@ fn queue_row(buf: RowBuf) -> Result<(), LcdError> {
     .ok_or(LcdError)
 }
 
+impl LcdRows {
+    /// The buffer row `y` goes into, and the byte offset of its row there:
+    /// at a frame's start the window is opened and a buffer left over from
+    /// a frame an error cut short is cleared, not sent; a full buffer
+    /// makes way for a free one.
+    fn row_slot(&mut self, y: u16) -> Result<(&mut [u8; BUFFER_BYTES], usize), LcdError> {
+        if y == 0 {
+            self.begin_frame()?;
+            if let Some((buf, _)) = self.filling.take() {
+                with_queue(|q| {
+                    q.sent.push(buf);
+                    q.advance();
+                })
+                .ok_or(LcdError)?;
+            }
+        }
+        let (buf, done) = match self.filling.take() {
+            Some((buf, done)) if done < ROWS_PER_BUFFER => (buf, done),
+            _ => (free_buffer()?, 0),
+        };
+        let (buf, done) = self.filling.insert((buf, done));
+        Ok((buf, *done * ROW_BYTES))
+    }
+
+    /// Row done: a full buffer is queued for the wire.
+    fn row_done(&mut self) -> Result<(), LcdError> {
+        match self.filling.take() {
+            Some((buf, done)) if done + 1 == ROWS_PER_BUFFER => queue_row(buf),
+            Some((buf, done)) => {
+                self.filling = Some((buf, done + 1));
+                Ok(())
+            }
+            None => Err(LcdError),
+        }
+    }
+}
+
 impl RowSink<WireColor, u16> for LcdRows {
     type Error = LcdError;
 
@@ -335,41 +384,28 @@ impl RowSink<WireColor, u16> for LcdRows {
     /// (The renderer takes [`Self::lend_row`] instead; this serves any
     /// other caller.)
     fn write_row(&mut self, y: u16, colors: &[WireColor], _depths: &[u16]) -> Result<(), LcdError> {
-        if y == 0 {
-            self.begin_frame()?;
-        }
-        let buf = free_buffer()?;
+        let (buf, at) = self.row_slot(y)?;
         // The row's bytes are already big-endian Rgb565, as the ST7789
-        // takes it over SPI: one copy (a row longer than the buffer is
-        // cut, as the panel's window would cut it).
+        // takes it over SPI: one copy (a row longer than the buffer's row
+        // is cut, as the panel's window would cut it).
         let bytes: &[u8] = bytemuck::cast_slice(colors);
-        let len = bytes.len().min(buf.len());
-        buf[..len].copy_from_slice(&bytes[..len]);
-        queue_row(buf)
+        let len = bytes.len().min(ROW_BYTES);
+        buf[at..at + len].copy_from_slice(&bytes[..len]);
+        self.row_done()
     }
 
-    /// Lends a free buffer, black already: the renderer draws the row in
-    /// place. (A row wider than the buffer is the renderer's error.)
+    /// Lends the next row of a buffer, black already: the renderer draws
+    /// the row in place. (A row wider than the buffer's row is the
+    /// renderer's error.)
     fn lend_row(
         &mut self,
         y: u16,
         _width: usize,
         background: WireColor,
     ) -> Result<Option<LentRow<'_, WireColor>>, LcdError> {
-        if y == 0 {
-            self.begin_frame()?;
-        }
-        if let Some(buf) = self.lent.take() {
-            // A row lent and never sent (an error cut the last frame
-            // short): cleared, not sent.
-            with_queue(|q| {
-                q.sent.push(buf);
-                q.advance();
-            })
-            .ok_or(LcdError)?;
-        }
-        let buf = self.lent.insert(free_buffer()?);
-        let colors = bytemuck::try_cast_slice_mut(&mut buf[..]).map_err(|_| LcdError)?;
+        let (buf, at) = self.row_slot(y)?;
+        let colors =
+            bytemuck::try_cast_slice_mut(&mut buf[at..at + ROW_BYTES]).map_err(|_| LcdError)?;
         Ok(Some(LentRow {
             colors,
             filled: background == WIRE_BLACK,
@@ -377,6 +413,6 @@ impl RowSink<WireColor, u16> for LcdRows {
     }
 
     fn send_lent_row(&mut self, _y: u16, _depths: &[u16]) -> Result<(), LcdError> {
-        queue_row(self.lent.take().ok_or(LcdError)?)
+        self.row_done()
     }
 }
