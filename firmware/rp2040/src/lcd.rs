@@ -5,7 +5,7 @@
 //! the renderer draws each row straight into the next row of a free
 //! buffer the sink lends it ([`RowSink::lend_row`]), already in the wire's
 //! byte order (it stores [`WireColor`] pixels): no copy. Each buffer holds
-//! [`ROWS_PER_BUFFER`] rows (4 for a 240-row panel), and a full one is
+//! [`ROWS_PER_BUFFER`] rows (8 for a 240-row panel), and a full one is
 //! queued. DMA channel 0 feeds the queued buffers to SPI0's transmit FIFO
 //! at the wire's pace, one after another. A buffer that has been sent is
 //! cleared to black by DMA channel 1 (from black rows in flash) before it
