@@ -194,11 +194,34 @@ pub(crate) fn div_round_i128(n: i128, d: i128) -> i128 {
             -((-2 * n + d) / (2 * d))
         });
     }
+    if let Ok(small) = u16::try_from(d) {
+        // A divisor below 2^16 (the dequantization's 32767): long division
+        // in 16-bit digits, each step a 32-bit division.
+        let (q, r) = div_rem_by_u16(n.unsigned_abs(), small);
+        let q = q + u128::from(2 * u32::from(r) >= u32::from(small));
+        return if n >= 0 { q as i128 } else { -(q as i128) };
+    }
     if n >= 0 {
         (2 * n + d) / (2 * d)
     } else {
         -((-2 * n + d) / (2 * d))
     }
+}
+
+/// `n / d` and `n % d` for `d > 0`, by 16-bit digits from the top: each
+/// partial dividend is `r·2^16 + digit < d·2^16 <= 2^32`, so every step is
+/// one 32-bit division (on an RP2040, its 8-cycle divider; a `u128`
+/// division is a long library call).
+fn div_rem_by_u16(n: u128, d: u16) -> (u128, u16) {
+    let d = u32::from(d);
+    let (mut q, mut r) = (0u128, 0u32);
+    let digits = (128 - n.leading_zeros()).div_ceil(16);
+    for k in (0..digits).rev() {
+        let partial = (r << 16) | ((n >> (16 * k)) as u32 & 0xFFFF);
+        q = (q << 16) | u128::from(partial / d);
+        r = partial % d;
+    }
+    (q, r as u16)
 }
 
 /// `floor(sqrt(v))`, bit by bit.
@@ -478,7 +501,10 @@ pub fn unit_q15(v: [f32; 3]) -> Option<[i32; 3]> {
     if top == i32::MIN / 2 {
         return None;
     }
-    let base = top - 60;
+    // Each entry to about 30 bits: far finer than the 2^-15 result, and
+    // the quotients below then take 64-bit divisions (`x·2^15 < 2^46`,
+    // the length below 2^32).
+    let base = top - 30;
     let x = e.map(|x| scale_round(x.m, x.e - base));
     let length = isqrt((x[0] * x[0] + x[1] * x[1] + x[2] * x[2]).unsigned_abs()) as i128;
     if length == 0 {
@@ -499,8 +525,9 @@ pub fn fraction_bits(v: f32, bits: i32) -> i32 {
 /// The rotation of a model-view matrix that is a rotation times a uniform
 /// scale (columns of equal length and orthogonal, to `2^-14` of their
 /// squared length), in units of `2^-15`; `None` for any other matrix. In
-/// exact integer arithmetic from the `f32` entries (aligned 60 bits below
-/// the largest), with an integer square root: the same on every target.
+/// integer arithmetic from the `f32` entries (each rounded to a multiple
+/// of `2^-30` of the largest: well below the result's `2^-15`), with an
+/// integer square root: the same on every target.
 fn view_rotation(m: &Mat4) -> Option<[[i32; 3]; 3]> {
     let mut entries = [[Exact { m: 0, e: 0 }; 3]; 3];
     for (i, row) in entries.iter_mut().enumerate() {
@@ -512,7 +539,10 @@ fn view_rotation(m: &Mat4) -> Option<[[i32; 3]; 3]> {
     if top == i32::MIN / 2 {
         return None;
     }
-    let base = top - 60;
+    // Each entry to about 30 bits: far finer than the 2^-15 result, and
+    // the quotients below then take 64-bit divisions (`x·2^15 < 2^46`,
+    // the length below 2^32).
+    let base = top - 30;
     let v = entries.map(|row| row.map(|x| scale_round(x.m, x.e - base)));
     let col = |j: usize| [v[0][j], v[1][j], v[2][j]];
     let dot = |a: [i128; 3], b: [i128; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
@@ -662,6 +692,14 @@ mod tests {
     }
 
     proptest::proptest! {
+        #[test]
+        fn rounded_division_by_a_short_divisor_matches_its_definition(
+            n in proptest::prelude::any::<i128>().prop_map(|n| n >> 2),
+            d in 1i128..(1i128 << 16),
+        ) {
+            proptest::prop_assert_eq!(div_round_i128(n, d), div_round_wide(n, d));
+        }
+
         #[test]
         fn rounded_division_matches_its_definition(
             n in -(1i128 << 62)..(1i128 << 62),
