@@ -18,6 +18,9 @@
 //! | | [`front::clip`] | streaming homogeneous clipping in `f64` |
 //! | | [`front::scene`] | [`draw_mesh`](front::scene::draw_mesh): transform, cull, clip, project, shade, offer each face to the tables |
 //! | | [`front::shade`] | one colour per face: flat, Lambert, depth grey, face id |
+//! | | [`front::quantized`] | meshes quantized for the integer front end: `i16` positions, unit and exact face normals, in flash |
+//! | | [`front::fixed_point`] | the integer front end: transform, clip tests, projection and normals without floating point |
+//! | | [`front::backface`] | the integer front end's back-face test in model space, before a triangle's corners are transformed |
 //! | core | [`raster`] | the scanline z-buffer: screen polygons in, finished rows out |
 //! | | [`raster::fixed`] | the sub-pixel grid, input depth, guard band, exact rounding and division |
 //! | | [`raster::vertex`] | [`ScreenVertex`], the outline and bounding rectangle a polygon is judged by, the fill rule's sample test |
@@ -27,7 +30,7 @@
 //! | | [`raster::zbuffer`] | the z-buffer of K rows (a band, or the whole frame) on the same tables, formats and fill rule |
 //! | | [`raster::capacities`] | [`Capacities`] by name, and the [`Renderer`] bundle of tables and scanner |
 //! | | `raster::plane`, `raster::edge`, `raster::active`, `raster::slots`, `raster::wide` (internal) | the plane set-up, the exact edge DDA, the active tables, the capacity-erased list they live in, exact 32x32→64 products for cores without a long multiply |
-//! | blitter | [`sink`] | finished rows to a `DrawTarget` ([`DrawTargetSink`]), a closure ([`FnSink`]) or a checksum ([`Crc32Sink`]) |
+//! | blitter | [`sink`] | finished rows to a `DrawTarget` ([`DrawTargetSink`]), a closure ([`FnSink`]) or a checksum ([`Crc32Sink`]); or drawn straight into a sink's own buffers ([`LentRow`]) |
 //! | | [`error`] | what can go wrong, by name |
 //! | comparison (feature `std`) | [`methods`] | the renderers and checks zline is measured against: every method behind one input and output ([`methods::Method`], [`methods::MethodRenderer`]), the interval scanline, the painter's algorithm, the float64 reference, the exact oracle |
 //! | | `methods::reference` | the float64 ray-cast reference ([`methods::ReferenceFrame`]) |

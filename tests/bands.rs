@@ -3,13 +3,15 @@
 //! of rows (on threads or not), send exactly the rows one scanner sends;
 //! array-backed and `Vec`-backed storage give the same frames.
 
+mod common;
+
 use proptest::prelude::*;
-use zline::host::{ScanVecs, TableVecs};
-use zline::raster::fixed::{DEPTH_MAX, SUBPIXEL_STEPS};
+use zline::host::ScanVecs;
+use zline::raster::fixed::SUBPIXEL_STEPS;
 use zline::raster::{ScanArrays, TableArrays};
 use zline::{
     Capacities, Depth16, Depth24, DepthFormat, FnSink, Renderer, ScanStorage, Scanner,
-    ScreenVertex, Tables, scan,
+    ScreenVertex, scan,
 };
 
 const W: u16 = 48;
@@ -25,35 +27,8 @@ const CAPS: Capacities = Capacities {
     pooled_edges: 64,
 };
 
-/// Triangles and polygons of up to 7 corners (concave ones too) from well
-/// off-screen to inside, any depth.
-fn polygon() -> impl Strategy<Value = Vec<ScreenVertex>> {
-    prop::collection::vec(
-        (
-            -10 * S..(i32::from(W) + 10) * S,
-            -10 * S..(i32::from(H) + 10) * S,
-            0..=DEPTH_MAX,
-        ),
-        3..=7,
-    )
-    .prop_map(|corners| {
-        corners
-            .into_iter()
-            .map(|(x, y, z)| ScreenVertex { x, y, z })
-            .collect()
-    })
-}
-
 /// The frame as rows of (colour, depth), row by row as the sink got them.
 type Rows = Vec<(u16, Vec<u32>, Vec<u64>)>;
-
-fn tables(scene: &[Vec<ScreenVertex>]) -> Tables<TableVecs<u32>> {
-    let mut tables = Tables::new(TableVecs::new(&CAPS, 0), W, H).unwrap();
-    for (k, poly) in scene.iter().enumerate() {
-        tables.push_polygon_vertices(poly, k as u32 + 1).unwrap();
-    }
-    tables
-}
 
 fn scan_band<S: ScanStorage<Color = u32>>(
     prepared: &zline::raster::Prepared<'_, u32>,
@@ -83,7 +58,7 @@ fn check_bands<D: DepthFormat>(scene: &[Vec<ScreenVertex>], cuts: &[u16])
 where
     D::Value: Into<u64>,
 {
-    let mut tables = tables(scene);
+    let mut tables = common::scene_tables(scene, &CAPS, W, H);
     let prepared = tables.prepare();
     let mut whole = Scanner::new(ScanVecs::<u32, D>::new(&CAPS, 0), 0);
     let one = scan_band(&prepared, &mut whole, 0..H);
@@ -117,7 +92,7 @@ proptest! {
 
     #[test]
     fn bands_on_threads_equal_one_scan(
-        scene in prop::collection::vec(polygon(), 1..=10),
+        scene in prop::collection::vec(common::random_polygon(W, H, 10, 7), 1..=10),
         cuts in prop::collection::vec(0u16..=H, 0..4),
     ) {
         check_bands::<Depth16>(&scene, &cuts);

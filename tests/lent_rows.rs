@@ -3,27 +3,20 @@
 //! black (`filled`) or hold an old row, whatever the scene, whole or in
 //! bands; a buffer too short for the row is an error, not a cut row.
 
+mod common;
+
 use proptest::prelude::*;
-use zline::host::{ScanVecs, TableVecs};
-use zline::raster::fixed::{DEPTH_MAX, SUBPIXEL_STEPS};
+use zline::host::ScanVecs;
+use zline::raster::fixed::SUBPIXEL_STEPS;
 use zline::{
-    Capacities, Depth16, Depth24, DepthFormat, Error, FnSink, LentRow, RenderError, RowSink,
-    Scanner, ScreenVertex, Tables, scan,
+    Depth16, Depth24, DepthFormat, Error, FnSink, LentRow, RenderError, RowSink, Scanner,
+    ScreenVertex, scan,
 };
 
 const W: u16 = 40;
 const H: u16 = 32;
 const S: i32 = SUBPIXEL_STEPS;
 const BACKGROUND: u32 = 0xB1AC;
-
-const CAPS: Capacities = Capacities {
-    width: W as usize,
-    vertices: 256,
-    polygons: 32,
-    corners: 256,
-    active_polygons: 32,
-    pooled_edges: 64,
-};
 
 /// Rows as a sink received them: `(y, colours, depths)`.
 type Rows = Vec<(u16, Vec<u32>, Vec<u64>)>;
@@ -90,33 +83,6 @@ impl<Z: Copy + Into<u64>> RowSink<u32, Z> for Lender {
     }
 }
 
-/// Triangles and polygons of up to 6 corners, off-screen to inside, any
-/// depth.
-fn polygon() -> impl Strategy<Value = Vec<ScreenVertex>> {
-    prop::collection::vec(
-        (
-            -8 * S..(i32::from(W) + 8) * S,
-            -8 * S..(i32::from(H) + 8) * S,
-            0..=DEPTH_MAX,
-        ),
-        3..=6,
-    )
-    .prop_map(|corners| {
-        corners
-            .into_iter()
-            .map(|(x, y, z)| ScreenVertex { x, y, z })
-            .collect()
-    })
-}
-
-fn tables(scene: &[Vec<ScreenVertex>]) -> Tables<TableVecs<u32>> {
-    let mut tables = Tables::new(TableVecs::new(&CAPS, 0), W, H).unwrap();
-    for (k, poly) in scene.iter().enumerate() {
-        tables.push_polygon_vertices(poly, k as u32 + 1).unwrap();
-    }
-    tables
-}
-
 /// The rows of `band` through a copying sink, and through a lending one.
 fn both<D: DepthFormat>(
     scene: &[Vec<ScreenVertex>],
@@ -126,10 +92,13 @@ fn both<D: DepthFormat>(
 where
     D::Value: Into<u64>,
 {
-    let mut tables = tables(scene);
+    let mut tables = common::scene_tables(scene, &common::small_caps(W), W, H);
     let prepared = tables.prepare();
     let mut copied = Vec::new();
-    let mut scanner = Scanner::new(ScanVecs::<u32, D>::new(&CAPS, 0), BACKGROUND);
+    let mut scanner = Scanner::new(
+        ScanVecs::<u32, D>::new(&common::small_caps(W), 0),
+        BACKGROUND,
+    );
     scan(
         &prepared,
         &mut scanner,
@@ -142,7 +111,10 @@ where
     .unwrap();
     // A buffer longer than the row: only the row's part is used.
     let mut lender = Lender::new(usize::from(W) + 3, filled);
-    let mut scanner = Scanner::new(ScanVecs::<u32, D>::new(&CAPS, 0), BACKGROUND);
+    let mut scanner = Scanner::new(
+        ScanVecs::<u32, D>::new(&common::small_caps(W), 0),
+        BACKGROUND,
+    );
     scan(&prepared, &mut scanner, band, &mut lender).unwrap();
     assert_eq!(lender.lent, None, "a lent row was never sent");
     (copied, lender.rows)
@@ -153,7 +125,7 @@ proptest! {
 
     #[test]
     fn lent_rows_equal_copied_rows(
-        scene in prop::collection::vec(polygon(), 1..=10),
+        scene in prop::collection::vec(common::random_polygon(W, H, 8, 6), 1..=10),
         start in 0u16..H,
         filled: bool,
     ) {
@@ -204,9 +176,12 @@ fn a_buffer_shorter_than_the_row_is_an_error() {
         ScreenVertex::new(30 * S, 2 * S, 100).unwrap(),
         ScreenVertex::new(9 * S, 20 * S, 100).unwrap(),
     ]];
-    let mut tables = tables(&scene);
+    let mut tables = common::scene_tables(&scene, &common::small_caps(W), W, H);
     let prepared = tables.prepare();
-    let mut scanner = Scanner::new(ScanVecs::<u32, Depth16>::new(&CAPS, 0), BACKGROUND);
+    let mut scanner = Scanner::new(
+        ScanVecs::<u32, Depth16>::new(&common::small_caps(W), 0),
+        BACKGROUND,
+    );
     let mut lender = Lender::new(usize::from(W) - 1, true);
     let result = scan(&prepared, &mut scanner, 0..H, &mut lender);
     assert!(matches!(

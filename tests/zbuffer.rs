@@ -8,10 +8,9 @@ mod common;
 
 use common::{Rows, scanline_rows, zbuffer_rows};
 use proptest::prelude::*;
-use zline::host::TableVecs;
-use zline::raster::fixed::{DEPTH_MAX, SUBPIXEL_STEPS};
+use zline::raster::fixed::SUBPIXEL_STEPS;
 use zline::raster::zbuffer::DepthTest;
-use zline::{Capacities, Depth16, Depth24, DepthFormat, ScreenVertex, Tables};
+use zline::{Capacities, Depth16, Depth24, DepthFormat, ScreenVertex};
 
 const W: u16 = 40;
 const H: u16 = 32;
@@ -26,35 +25,11 @@ const CAPS: Capacities = Capacities {
     pooled_edges: 64,
 };
 
-fn polygon() -> impl Strategy<Value = Vec<ScreenVertex>> {
-    prop::collection::vec(
-        (
-            -10 * S..(i32::from(W) + 10) * S,
-            -10 * S..(i32::from(H) + 10) * S,
-            0..=DEPTH_MAX,
-        ),
-        3..=6,
-    )
-    .prop_map(|c| {
-        c.into_iter()
-            .map(|(x, y, z)| ScreenVertex { x, y, z })
-            .collect()
-    })
-}
-
-fn tables(scene: &[Vec<ScreenVertex>]) -> Tables<TableVecs<u32>> {
-    let mut t = Tables::new(TableVecs::new(&CAPS, 0), W, H).unwrap();
-    for (k, poly) in scene.iter().enumerate() {
-        t.push_polygon_vertices(poly, k as u32 + 1).unwrap();
-    }
-    t
-}
-
 fn scanline<D: DepthFormat>(scene: &[Vec<ScreenVertex>]) -> Rows
 where
     D::Value: Into<u64>,
 {
-    scanline_rows::<D, { W as usize }>(&tables(scene).prepare())
+    scanline_rows::<D, { W as usize }>(&common::scene_tables(scene, &CAPS, W, H).prepare())
 }
 
 fn bands<D: DepthFormat>(
@@ -66,7 +41,12 @@ fn bands<D: DepthFormat>(
 where
     D::Value: Into<u64>,
 {
-    zbuffer_rows::<D>(&tables(scene).in_drawing_order(), k, test, order)
+    zbuffer_rows::<D>(
+        &common::scene_tables(scene, &CAPS, W, H).in_drawing_order(),
+        k,
+        test,
+        order,
+    )
 }
 
 proptest! {
@@ -74,7 +54,7 @@ proptest! {
 
     #[test]
     fn every_band_height_equals_the_scanline(
-        scene in prop::collection::vec(polygon(), 1..=10),
+        scene in prop::collection::vec(common::random_polygon(W, H, 10, 6), 1..=10),
         k in prop::sample::select(vec![1u16, 2, 5, 8, 32]),
     ) {
         let want24 = scanline::<Depth24>(&scene);

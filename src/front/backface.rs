@@ -59,7 +59,7 @@ use crate::front::quantized::QuantizedMesh;
 /// Largest eye coordinate, in quantized units, the test accepts.
 const EYE_MAX: u64 = 1 << 28;
 
-/// The eye of a draw's integer frame, ready for [`EyeTest::faces_away`].
+/// The eye of a draw's integer frame, ready for [`EyeTest::side_of`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct EyeTest {
     /// The eye in quantized units, rounded, shifted right by `shift`.

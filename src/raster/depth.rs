@@ -372,6 +372,28 @@ mod tests {
         assert!(Depth16::span(start * 256, step * 256, 401).is_none());
     }
 
+    /// A plane value (with a random fraction) whose depth step is in
+    /// `IN_RANGE`: its lower end, its upper end or between, by `round`.
+    fn in_range_value(round: u64, next: &mut impl FnMut() -> u64) -> i64 {
+        let (lo, hi) = (*IN_RANGE.start(), *IN_RANGE.end());
+        let depth = match round % 4 {
+            0 => lo,
+            1 => hi,
+            _ => lo + (next() % u64::from(hi - lo)) as u32,
+        };
+        (i64::from(depth) << PLANE_FRAC_BITS) + (next() % (1 << 16)) as i64
+    }
+
+    /// A xorshift64 generator from `seed`.
+    fn xorshift(mut seed: u64) -> impl FnMut() -> u64 {
+        move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        }
+    }
+
     /// `accumulator_at` against the exact plane, at the extremes: steep
     /// gradients, far columns (where the column-0 value is far outside the
     /// accumulator's range), both ends of `IN_RANGE`. The Depth16
@@ -379,23 +401,12 @@ mod tests {
     /// value; the Depth24 one is exact.
     #[test]
     fn accumulator_at_is_within_its_bound_where_column_zero_overflows() {
-        let (lo, hi) = (*IN_RANGE.start(), *IN_RANGE.end());
-        let mut seed = 0x2545_f491_4f6c_dd1du64;
-        let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
-        };
+        let (_lo, _hi) = (*IN_RANGE.start(), *IN_RANGE.end());
+        let mut next = xorshift(0x2545_f491_4f6c_dd1d);
         let mut cases = 0;
         for round in 0..200_000u64 {
-            let depth = match round % 4 {
-                0 => lo,
-                1 => hi,
-                _ => lo + (next() % u64::from(hi - lo)) as u32,
-            };
-            // The value at `column`, in plane units, with a random fraction.
-            let value = (i64::from(depth) << PLANE_FRAC_BITS) + (next() % (1 << 16)) as i64;
+            // The value at `column`, in plane units.
+            let value = in_range_value(round, &mut next);
             let column = match round % 3 {
                 0 => 4095,
                 1 => 0,
@@ -436,14 +447,8 @@ mod tests {
     /// the first row gives the state that stepping `rows` times gives.
     #[test]
     fn narrow_rows_are_within_their_bound_and_step_like_a_late_start() {
-        let (lo, hi) = (*IN_RANGE.start(), *IN_RANGE.end());
-        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
-        };
+        let (_lo, _hi) = (*IN_RANGE.start(), *IN_RANGE.end());
+        let mut next = xorshift(0x9e37_79b9_7f4a_7c15);
         let gradient = |round: u64, r: u64| match round % 5 {
             0 => (1i64 << 40) - 1 - (r % 512) as i64,
             1 => -(1i64 << 40) + 1 + (r % 512) as i64,
@@ -451,12 +456,7 @@ mod tests {
         };
         let mut cases = 0;
         for round in 0..200_000u64 {
-            let depth = match round % 4 {
-                0 => lo,
-                1 => hi,
-                _ => lo + (next() % u64::from(hi - lo)) as u32,
-            };
-            let value = (i64::from(depth) << PLANE_FRAC_BITS) + (next() % (1 << 16)) as i64;
+            let value = in_range_value(round, &mut next);
             let (column, rows) = match round % 3 {
                 0 => (4095, 4095),
                 1 => (0, (next() % 4096) as i32),

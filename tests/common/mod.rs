@@ -268,3 +268,58 @@ where
     .unwrap();
     rows
 }
+
+/// Screen polygons of 3 to `max_corners` corners (concave ones too), from
+/// `margin` pixels off a `width` x `height` frame to inside, any depth.
+pub fn random_polygon(
+    width: u16,
+    height: u16,
+    margin: i32,
+    max_corners: usize,
+) -> impl proptest::strategy::Strategy<Value = Vec<ScreenVertex>> {
+    use proptest::prelude::*;
+    let s = zline::raster::fixed::SUBPIXEL_STEPS;
+    prop::collection::vec(
+        (
+            -margin * s..(i32::from(width) + margin) * s,
+            -margin * s..(i32::from(height) + margin) * s,
+            0..=zline::raster::fixed::DEPTH_MAX,
+        ),
+        3..=max_corners,
+    )
+    .prop_map(|corners| {
+        corners
+            .into_iter()
+            .map(|(x, y, z)| ScreenVertex { x, y, z })
+            .collect()
+    })
+}
+
+/// `Vec`-backed tables of `caps` holding `scene`, polygon `k` coloured
+/// `k + 1`.
+pub fn scene_tables(
+    scene: &[Vec<ScreenVertex>],
+    caps: &zline::Capacities,
+    width: u16,
+    height: u16,
+) -> zline::Tables<zline::host::TableVecs<u32>> {
+    let mut tables =
+        zline::Tables::new(zline::host::TableVecs::new(caps, 0), width, height).unwrap();
+    for (k, poly) in scene.iter().enumerate() {
+        tables.push_polygon_vertices(poly, k as u32 + 1).unwrap();
+    }
+    tables
+}
+
+/// Capacities for small random scenes on a `width`-pixel frame: room for
+/// ten polygons of up to seven corners, clipped.
+pub fn small_caps(width: u16) -> zline::Capacities {
+    zline::Capacities {
+        width: usize::from(width),
+        vertices: 256,
+        polygons: 32,
+        corners: 256,
+        active_polygons: 32,
+        pooled_edges: 64,
+    }
+}
