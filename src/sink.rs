@@ -49,6 +49,47 @@ pub trait RowSink<C, Z> {
 }
 
 /// A row buffer a sink lends the scanner ([`RowSink::lend_row`]).
+///
+/// A sink that sends rows from its own memory lends it, and gets each row
+/// back drawn in place:
+///
+/// ```
+/// use zline::raster::{Renderer, ScanArrays, TableArrays};
+/// use zline::{Depth16, LentRow, RowSink, ScreenVertex};
+///
+/// /// Sends rows from one buffer of its own (a DMA buffer, say).
+/// struct Wire {
+///     buffer: [u16; 8],
+///     sent: Vec<[u16; 8]>,
+/// }
+///
+/// impl RowSink<u16, u16> for Wire {
+///     type Error = ();
+///     fn write_row(&mut self, _: u16, colors: &[u16], _: &[u16]) -> Result<(), ()> {
+///         self.buffer.copy_from_slice(colors); // only when not lending
+///         self.sent.push(self.buffer);
+///         Ok(())
+///     }
+///     fn lend_row(&mut self, _: u16, _: usize, _: u16) -> Result<Option<LentRow<'_, u16>>, ()> {
+///         // It holds the last row: the scanner fills it with the background first.
+///         Ok(Some(LentRow { colors: &mut self.buffer, filled: false }))
+///     }
+///     fn send_lent_row(&mut self, _: u16, _: &[u16]) -> Result<(), ()> {
+///         self.sent.push(self.buffer);
+///         Ok(())
+///     }
+/// }
+///
+/// type Zr = Renderer<TableArrays<u16, 3, 1, 3>, ScanArrays<u16, Depth16, 8, 1, 0>>;
+/// let mut renderer = Zr::with_size(8, 4, 0).unwrap();
+/// let v = |x, y| ScreenVertex::from_f32(x, y, 0.5).unwrap();
+/// renderer.push_polygon_vertices(&[v(0.0, 0.0), v(8.0, 0.0), v(0.0, 4.0)], 7).unwrap();
+/// let mut wire = Wire { buffer: [0; 8], sent: Vec::new() };
+/// renderer.render(&mut wire).unwrap();
+/// assert_eq!(wire.sent.len(), 4);
+/// assert_eq!(wire.sent[0], [7, 7, 7, 7, 7, 7, 7, 0]);
+/// assert_eq!(wire.sent[3], [7, 0, 0, 0, 0, 0, 0, 0]);
+/// ```
 #[derive(Debug)]
 pub struct LentRow<'a, C> {
     /// Where the row's colours go: at least as long as the row.
