@@ -401,7 +401,6 @@ mod tests {
     /// value; the Depth24 one is exact.
     #[test]
     fn accumulator_at_is_within_its_bound_where_column_zero_overflows() {
-        let (_lo, _hi) = (*IN_RANGE.start(), *IN_RANGE.end());
         let mut next = xorshift(0x2545_f491_4f6c_dd1d);
         let mut cases = 0;
         for round in 0..200_000u64 {
@@ -447,7 +446,6 @@ mod tests {
     /// the first row gives the state that stepping `rows` times gives.
     #[test]
     fn narrow_rows_are_within_their_bound_and_step_like_a_late_start() {
-        let (_lo, _hi) = (*IN_RANGE.start(), *IN_RANGE.end());
         let mut next = xorshift(0x9e37_79b9_7f4a_7c15);
         let gradient = |round: u64, r: u64| match round % 5 {
             0 => (1i64 << 40) - 1 - (r % 512) as i64,
