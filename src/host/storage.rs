@@ -60,6 +60,7 @@ impl<C: Copy> TableStorage for TableVecs<C> {
 #[derive(Debug, Clone)]
 pub struct ScanVecs<C, D: DepthFormat> {
     active: Vec<ActivePolygon<C>>,
+    order: Vec<u16>,
     pool: Vec<ActiveEdge>,
     depth_row: Vec<D::Value>,
     color_row: Vec<C>,
@@ -72,6 +73,7 @@ impl<C: Copy, D: DepthFormat> ScanVecs<C, D> {
     pub fn new(caps: &Capacities, filler: C) -> Self {
         Self {
             active: vec![ActivePolygon::filler(filler); caps.active_polygons],
+            order: vec![0; caps.active_polygons],
             pool: vec![ActiveEdge::EMPTY; caps.pooled_edges],
             depth_row: vec![D::CLEAR; caps.width],
             color_row: vec![filler; caps.width],
@@ -87,6 +89,7 @@ impl<C: Copy, D: DepthFormat> ScanStorage for ScanVecs<C, D> {
     fn parts_mut(&mut self) -> ScanParts<'_, C, D> {
         ScanParts {
             active: &mut self.active,
+            order: &mut self.order,
             pool: &mut self.pool,
             depth_row: &mut self.depth_row,
             color_row: &mut self.color_row,

@@ -173,14 +173,25 @@ impl<C: Copy> ActivePolygon<C> {
         (self.pair[0].x, self.pair[1].x)
     }
 
-    /// Steps a triangle's two edges to `next_row` (an edge that ends there
-    /// stays until its polygon ends or its switch replaces it).
+    /// Steps a triangle's two edges to `next_row`, with no test of their
+    /// own end rows: while the triangle goes on (it ends at its `end_row`,
+    /// and is not stepped then), an edge ends before it only at the switch
+    /// row, where [`switch_triangle`](crate::raster::scan) replaces the
+    /// upper short edge with the lower one right after this step. The
+    /// long edge and the lower short edge end with the triangle, and the
+    /// upper short edge does too when there is no switch (the middle corner
+    /// lies at or below the last row). The one extra step of an edge that
+    /// has ended stays in range: a stepped edge spans at least one row
+    /// (256 sub-pixel steps), so inside the guard band its step is below
+    /// 2^15 pixels, and its crossing is never used.
     #[inline]
     pub(crate) fn advance_triangle(&mut self, next_row: u16) {
         for edge in &mut self.pair {
-            if edge.end_row > next_row {
-                edge.advance();
-            }
+            debug_assert!(
+                edge.end_row > next_row || self.switch_row == next_row,
+                "an edge ends at row {next_row} before its triangle"
+            );
+            edge.advance();
         }
     }
 

@@ -79,7 +79,7 @@ impl Capacities {
             + self.vertices * size_of::<ScreenVertex>()
             + self.polygons * size_of::<PolygonEntry<C>>()
             + self.corners * (size_of::<u16>() + size_of::<EdgeEntry>())
-            + self.active_polygons * size_of::<ActivePolygon<C>>()
+            + self.active_polygons * (size_of::<ActivePolygon<C>>() + size_of::<u16>())
             + self.pooled_edges * size_of::<ActiveEdge>()
     }
 }

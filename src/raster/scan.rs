@@ -27,7 +27,7 @@ use crate::raster::depth::{DepthFormat, IN_RANGE};
 use crate::raster::edge::ActiveEdge;
 use crate::raster::fixed::first_sample_at_or_after;
 use crate::raster::plane::{Plane, TrianglePlane};
-use crate::raster::slots::Slots;
+use crate::raster::slots::{OrderedSlots, Slots};
 use crate::raster::tables::{PolygonEntry, Prepared};
 use crate::raster::vertex::{ScreenVertex, TriangleTest};
 use crate::raster::wide::{cross, mul_i64_small};
@@ -50,6 +50,9 @@ pub trait ScanStorage {
 pub struct ScanParts<'a, C, D: DepthFormat> {
     /// The active polygon table.
     pub active: &'a mut [ActivePolygon<C>],
+    /// Which slots of the active polygon table are in use (rewritten at
+    /// the start of every scan; as long as `active`).
+    pub order: &'a mut [u16],
     /// Active edges beyond each polygon's first two.
     pub pool: &'a mut [ActiveEdge],
     /// The depth row (its length is the widest frame it can scan).
@@ -67,6 +70,7 @@ pub struct ScanParts<'a, C, D: DepthFormat> {
 #[derive(Debug, Clone)]
 pub struct ScanArrays<C, D: DepthFormat, const W: usize, const AP: usize, const AE: usize> {
     active: [ActivePolygon<C>; AP],
+    order: [u16; AP],
     pool: [ActiveEdge; AE],
     depth_row: [D::Value; W],
     color_row: [C; W],
@@ -80,6 +84,7 @@ impl<C: Copy, D: DepthFormat, const W: usize, const AP: usize, const AE: usize>
     pub const fn new(filler: C) -> Self {
         Self {
             active: [ActivePolygon::filler(filler); AP],
+            order: [0; AP],
             pool: [ActiveEdge::EMPTY; AE],
             depth_row: [D::CLEAR; W],
             color_row: [filler; W],
@@ -97,6 +102,7 @@ impl<C: Copy, D: DepthFormat, const W: usize, const AP: usize, const AE: usize> 
     fn parts_mut(&mut self) -> ScanParts<'_, C, D> {
         ScanParts {
             active: &mut self.active,
+            order: &mut self.order,
             pool: &mut self.pool,
             depth_row: &mut self.depth_row,
             color_row: &mut self.color_row,
@@ -226,10 +232,10 @@ fn scan_rows<C: Copy, D: DepthFormat, K: RowSink<C, D::Value>>(
     {
         return Err(RenderError::Table(Error::BadFrameSize));
     }
-    let (mut active_len, mut pool_len) = (0usize, 0usize);
+    let mut pool_len = 0usize;
     let mut state = ScanState {
         tables,
-        active: Slots::new(parts.active, &mut active_len),
+        active: OrderedSlots::new(parts.active, parts.order),
         pool: EdgePool::new(Slots::new(parts.pool, &mut pool_len)),
         stats: FrameStats {
             vertices: tables.vertices.len() as u32,
@@ -304,9 +310,15 @@ fn scan_rows<C: Copy, D: DepthFormat, K: RowSink<C, D::Value>>(
             let position = entry.position() as u32;
             let slot = state
                 .active
-                .as_slice()
+                .live_slots()
                 .iter()
-                .position(|a| a.position == position)
+                .map(|&slot| usize::from(slot))
+                .find(|&slot| {
+                    state
+                        .active
+                        .get(slot)
+                        .is_some_and(|a| a.position == position)
+                })
                 .ok_or(Error::ActivePolygonsFull { row })?;
             state.activate_edges(slot, row, false)?;
         }
@@ -649,7 +661,7 @@ const OVERWRITE: u8 = 2;
 /// The state of one scan.
 pub(crate) struct ScanState<'t, 'a, C> {
     pub tables: &'t Prepared<'t, C>,
-    pub active: Slots<'a, ActivePolygon<C>>,
+    pub active: OrderedSlots<'a, ActivePolygon<C>>,
     pub pool: EdgePool<'a>,
     pub stats: FrameStats,
 }
@@ -693,10 +705,10 @@ impl<C: Copy> ScanState<'_, '_, C> {
             polygon.color,
             depth,
         );
-        self.active
+        let slot = self
+            .active
             .push(entry)
             .map_err(|_| Error::ActivePolygonsFull { row })?;
-        let slot = self.active.len() - 1;
         self.activate_edges(slot, row, true)
     }
 
@@ -856,6 +868,7 @@ impl<C: Copy> ScanState<'_, '_, C> {
         // Written in its slot (see `set_triangle`).
         self.active
             .push_in_place(set)
+            .map(|_| ())
             .map_err(|()| Error::ActivePolygonsFull { row })
     }
 
@@ -927,7 +940,9 @@ impl<C: Copy> ScanState<'_, '_, C> {
         row: u16,
         at_activation: bool,
     ) -> Result<(), Error> {
-        let entry = self.active.as_slice()[slot];
+        let Some(&entry) = self.active.get(slot) else {
+            return Err(Error::ActivePolygonsFull { row });
+        };
         let polygon = &self.tables.polygons[entry.position as usize];
         let end_limit = i32::from(self.tables.height);
         let corners = entry_corners(polygon, self.tables.corners, self.tables.vertices);
@@ -944,9 +959,12 @@ impl<C: Copy> ScanState<'_, '_, C> {
             };
             if wanted && result.is_ok() {
                 let edge = ActiveEdge::start(top, bottom, row, end_row as u16, NO_EDGE);
-                result = active.as_mut_slice()[slot]
-                    .add_edge(edge, pool)
-                    .map_err(|()| Error::ActiveEdgesFull { row });
+                result = match active.get_mut(slot) {
+                    Some(entry) => entry
+                        .add_edge(edge, pool)
+                        .map_err(|()| Error::ActiveEdgesFull { row }),
+                    None => Err(Error::ActivePolygonsFull { row }),
+                };
                 stats.edges += 1;
             }
         });
@@ -970,7 +988,6 @@ impl<C: Copy> ScanState<'_, '_, C> {
         rows: &mut RowBuffers<'_, C, D>,
     ) -> Result<(), Error> {
         let next_row = row + 1;
-        let mut slot = 0;
         let (tables, pool, stats) = (self.tables, &mut self.pool, &mut self.stats);
         // The three rows cut to one length here, once a row, so that each
         // span's slices need one bounds check, not three.
@@ -985,29 +1002,31 @@ impl<C: Copy> ScanState<'_, '_, C> {
             key,
             write: rows.write,
         };
-        let items = self.active.as_mut_slice();
-        let mut len = items.len();
-        while let Some(polygon) = items[..len].get_mut(slot) {
+        // Entries stay in their slots. The pass runs from the last live
+        // index down: one that ends swaps places in the order array with
+        // the last live index (an entry already stepped), so nothing is
+        // copied and nothing is stepped twice.
+        let (items, order, len) = self.active.parts_mut();
+        let order = &mut order[..*len];
+        let mut live = order.len();
+        let mut index = live;
+        while index > 0 {
+            index -= 1;
+            let Some(polygon) = items.get_mut(usize::from(order[index])) else {
+                break;
+            };
             if fill_and_step(polygon, tables, pool, stats, row, rows) {
                 // A triangle reaching its middle corner's row (the switch
                 // is the same whichever polygon comes first).
                 if polygon.switch_row == next_row {
                     switch_triangle(polygon, tables, stats, next_row);
                 }
-                slot += 1;
             } else {
-                // Swap-remove; the last entry moves only when it is
-                // another one, so the copy cannot overlap (a memcpy, not
-                // a memmove, on a Cortex-M0+).
-                len -= 1;
-                if let (head, [moved, ..]) = items.split_at_mut(len)
-                    && let Some(target) = head.get_mut(slot)
-                {
-                    core::slice::from_mut(target).copy_from_slice(core::slice::from_ref(moved));
-                }
+                live -= 1;
+                order.swap(index, live);
             }
         }
-        self.active.truncate(len);
+        *len = live;
         Ok(())
     }
 }

@@ -26,7 +26,7 @@ use crate::raster::edge::ActiveEdge;
 use crate::raster::scan::{
     FrameStats, PixelWrite, RowBuffers, ScanState, fill_and_step, switch_triangle,
 };
-use crate::raster::slots::Slots;
+use crate::raster::slots::{OrderedSlots, Slots};
 use crate::raster::tables::Prepared;
 use crate::sink::RowSink;
 
@@ -96,10 +96,12 @@ pub fn render_bands<C: Copy, D: DepthFormat, K: RowSink<C, D::Value>>(
     {
         return Err(RenderError::Table(Error::BandBuffersTooSmall));
     }
-    let (mut active_len, mut pool_len) = (0usize, 0usize);
+    let mut pool_len = 0usize;
+    // One polygon at a time: one slot, and its order entry.
+    let mut slot_order = [0u16; 1];
     let mut state = ScanState {
         tables,
-        active: Slots::new(buffers.active, &mut active_len),
+        active: OrderedSlots::new(buffers.active, &mut slot_order),
         pool: EdgePool::new(Slots::new(buffers.pool, &mut pool_len)),
         stats: FrameStats::default(),
     };
@@ -179,7 +181,7 @@ fn draw_rows<C: Copy, D: DepthFormat>(
     width: usize,
     test: DepthTest,
 ) -> Result<(), Error> {
-    state.active.truncate(0);
+    state.active.clear();
     state.pool.reset();
     let write = match test {
         DepthTest::Nearer => PixelWrite::Nearer,
@@ -197,24 +199,22 @@ fn draw_rows<C: Copy, D: DepthFormat>(
         // A triangle covering one row was drawn at activation.
         return Ok(());
     }
-    let is_triangle = state.active.as_slice()[0].is_triangle();
+    let Some(is_triangle) = state.active.first_mut().map(|entry| entry.is_triangle()) else {
+        return Ok(());
+    };
     while y < rows.end {
         let mut buffers = band_row::<C, D>((depth, color, scratch), at(y), width, write);
         let next = y + 1;
         let (tables, pool, stats) = (state.tables, &mut state.pool, &mut state.stats);
-        let alive = fill_and_step(
-            &mut state.active.as_mut_slice()[0],
-            tables,
-            pool,
-            stats,
-            y,
-            &mut buffers,
-        );
+        let Some(entry) = state.active.first_mut() else {
+            break;
+        };
+        let alive = fill_and_step(entry, tables, pool, stats, y, &mut buffers);
         if !alive || next >= rows.end {
             break;
         }
         if is_triangle {
-            if let Some(entry) = state.active.as_mut_slice().first_mut()
+            if let Some(entry) = state.active.first_mut()
                 && entry.switch_row == next
                 && entry.switch_row != NO_ROW
             {
