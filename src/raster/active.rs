@@ -30,8 +30,8 @@ pub(crate) enum SpanDepth {
     },
     /// An in-range triangle of a [`NARROW`](crate::raster::depth::DepthFormat::NARROW)
     /// depth format: its 32-bit accumulator at column 0 of the current row
-    /// and its steps, stepped once a row.
-    Narrow(NarrowRow),
+    /// and its steps, stepped once a row, are the entry's `narrow` row.
+    Narrow,
     /// A polygon sharing a plane with others
     /// ([`Tables::share_plane`](crate::raster::Tables::share_plane)): the
     /// plane's own affine function in plane units, anchored where the
@@ -64,12 +64,15 @@ pub struct ActivePolygon<C> {
     pub(crate) switch_row: u16,
     pub(crate) color: C,
     pub(crate) depth: SpanDepth,
+    /// A narrow triangle's row state (see [`SpanDepth::Narrow`]).
+    pub(crate) narrow: NarrowRow,
     /// The edge pair: up to two active edges held inline. For a triangle,
     /// always two: the left edge, then the right one.
     pair: [ActiveEdge; 2],
     pair_len: u8,
-    /// A triangle: its pair is ordered and it has no pooled edges.
-    triangle: bool,
+    /// Whether a triangle (its pair is ordered and it has no pooled
+    /// edges), and whether its depth is a narrow row.
+    shape: Shape,
     /// For a triangle, which of the pair is the short edge (the other is
     /// the long one, from the top corner to the bottom one).
     short_side: u8,
@@ -79,6 +82,17 @@ pub struct ActivePolygon<C> {
     /// indices of its middle and bottom corners, the ends of the lower
     /// short edge.
     pub(crate) lower: [u16; 2],
+}
+
+/// What the row loop does with an active polygon.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Shape {
+    /// Any polygon: its spans come from the edge pair and the pool.
+    Polygon,
+    /// A triangle: its two edges, ordered.
+    Triangle,
+    /// A triangle whose depth is a narrow row (the common case).
+    NarrowTriangle,
 }
 
 /// No row: a triangle with no edge left to start.
@@ -105,9 +119,10 @@ impl<C: Copy> ActivePolygon<C> {
             switch_row: NO_ROW,
             color,
             depth,
+            narrow: NarrowRow::ZERO,
             pair: [ActiveEdge::EMPTY; 2],
             pair_len: 0,
-            triangle: false,
+            shape: Shape::Polygon,
             short_side: 0,
             extra: NO_EDGE,
             lower: [0; 2],
@@ -128,7 +143,7 @@ impl<C: Copy> ActivePolygon<C> {
         end_row: u16,
         switch_row: u16,
         color: C,
-        depth: SpanDepth,
+        (depth, narrow): (SpanDepth, Option<NarrowRow>),
         long: ActiveEdge,
         short: ActiveEdge,
         short_left: bool,
@@ -140,6 +155,13 @@ impl<C: Copy> ActivePolygon<C> {
         self.switch_row = switch_row;
         self.color = color;
         self.depth = depth;
+        self.shape = match narrow {
+            Some(row) => {
+                self.narrow = row;
+                Shape::NarrowTriangle
+            }
+            None => Shape::Triangle,
+        };
         let (left, right) = if short_left {
             (short, long)
         } else {
@@ -148,7 +170,6 @@ impl<C: Copy> ActivePolygon<C> {
         self.pair[0] = left;
         self.pair[1] = right;
         self.pair_len = 2;
-        self.triangle = true;
         self.short_side = if short_left { 0 } else { 1 };
         self.extra = NO_EDGE;
         self.lower = lower;
@@ -163,7 +184,13 @@ impl<C: Copy> ActivePolygon<C> {
     /// Whether this is a triangle (two ordered edges, no pool).
     #[inline]
     pub(crate) fn is_triangle(&self) -> bool {
-        self.triangle
+        self.shape != Shape::Polygon
+    }
+
+    /// Whether this is a triangle whose depth is its `narrow` row.
+    #[inline]
+    pub(crate) fn is_narrow_triangle(&self) -> bool {
+        self.shape == Shape::NarrowTriangle
     }
 
     /// A triangle's span on this row: from its left edge's crossing to its

@@ -770,10 +770,10 @@ impl<C: Copy> ScanState<'_, '_, C> {
         let stepped = |dz_dx: i64, dz_dy: i64, first: i64| {
             if D::NARROW && in_range {
                 if let Some(narrow) = D::narrow_row(first, dz_dx, dz_dy, rows_below) {
-                    return SpanDepth::Narrow(narrow);
+                    return (SpanDepth::Narrow, Some(narrow));
                 }
             }
-            SpanDepth::Stepped {
+            let depth = SpanDepth::Stepped {
                 dz_dx,
                 dz_dy,
                 // 0 <= rows_below < 2^12, |dz_dy| < 2^40.
@@ -783,20 +783,24 @@ impl<C: Copy> ScanState<'_, '_, C> {
                     first + mul_i64_small(dz_dy, rows_below)
                 },
                 accumulator: in_range.then(|| D::accumulator_step(dz_dx)).flatten(),
-            }
+            };
+            (depth, None)
         };
         let own_plane = if shared {
             None
         } else {
             TrianglePlane::new(a, b, c)
         };
-        let depth = match own_plane {
+        let (depth, narrow) = match own_plane {
             // The common case: two exact divisions per gradient.
             Some(plane) => stepped(plane.dz_dx, plane.dz_dy, plane.row_start(polygon.first_row)),
             // Large (256 px or more) or steep: the general plane.
             None if shared => match shared_plane_of(&polygon, corners, vertices) {
-                Some(plane) => shared_depth(&plane, self.tables.width, self.tables.height),
-                None => SpanDepth::Exact,
+                Some(plane) => (
+                    shared_depth(&plane, self.tables.width, self.tables.height),
+                    None,
+                ),
+                None => (SpanDepth::Exact, None),
             },
             None => match Plane::triangle(a, b, c) {
                 Some(plane) => match plane.gradients() {
@@ -805,7 +809,7 @@ impl<C: Copy> ScanState<'_, '_, C> {
                         let first = plane.row_start((dz_dx, dz_dy), width, first_row, first_row);
                         stepped(dz_dx, dz_dy, first)
                     }
-                    None => SpanDepth::Exact,
+                    None => (SpanDepth::Exact, None),
                 },
                 None => return Ok(()), // Zero area was left out when it was queued.
             },
@@ -849,7 +853,7 @@ impl<C: Copy> ScanState<'_, '_, C> {
                 polygon.end_row,
                 switch_row,
                 polygon.color,
-                depth,
+                (depth, narrow),
                 long,
                 short,
                 turn > 0,
@@ -1044,15 +1048,16 @@ fn fill_and_step_triangle<C: Copy, D: DepthFormat>(
     row: u16,
     rows: &mut RowBuffers<'_, C, D>,
 ) -> Option<bool> {
-    if !polygon.is_triangle() {
-        return None;
-    }
     if D::NARROW {
-        // A 32-bit row accumulator (Depth16): one addition a row.
-        let SpanDepth::Narrow(narrow) = polygon.depth else {
+        // A 32-bit row accumulator (Depth16): one addition a row. One
+        // byte says so (a triangle's, in range), where testing the shape
+        // and then the depth's variant took 12 cycles a row on a
+        // Cortex-M0+.
+        if !polygon.is_narrow_triangle() {
             return None;
-        };
+        }
         let (start, end) = polygon.triangle_span();
+        let narrow = polygon.narrow;
         if rows.fill_in_range(start, end, polygon.key, polygon.color, |column| {
             D::narrow_at(&narrow, column)
         }) {
@@ -1061,10 +1066,11 @@ fn fill_and_step_triangle<C: Copy, D: DepthFormat>(
         if !step_triangle(polygon, pool, row) {
             return Some(false);
         }
-        if let SpanDepth::Narrow(narrow) = &mut polygon.depth {
-            narrow.next_row();
-        }
+        polygon.narrow.next_row();
         return Some(true);
+    }
+    if !polygon.is_triangle() {
+        return None;
     }
     // Fields are read where they are used, not copied out first: on a
     // Cortex-M0+ the copies were spilled to the stack on every row. (One
@@ -1180,7 +1186,7 @@ fn fill_and_step_general<C: Copy, D: DepthFormat>(
         SpanDepth::Shared { .. } => return fill_shared_and_step(polygon, pool, stats, row, rows),
         // A narrow row is only ever a triangle's, which the fast path takes;
         // were one here, the exact plane would still draw it.
-        SpanDepth::Narrow(_) | SpanDepth::Exact => {
+        SpanDepth::Narrow | SpanDepth::Exact => {
             // Edge-on: the plane, exactly, at each pixel (rare).
             let entry = &tables.polygons[polygon.position as usize];
             match polygon_plane(entry, tables.corners, tables.vertices) {
