@@ -62,6 +62,10 @@ pub struct ActivePolygon<C> {
     /// joins the pair by itself, with no edge-table entry); `NO_ROW` when
     /// no edge is left to start.
     pub(crate) switch_row: u16,
+    /// For a triangle, the first row where the row loop has more to do
+    /// than step its edges: the smaller of `end_row` and `switch_row`, so
+    /// that one comparison a row covers both.
+    pub(crate) event_row: u16,
     pub(crate) color: C,
     pub(crate) depth: SpanDepth,
     /// A narrow triangle's row state (see [`SpanDepth::Narrow`]).
@@ -117,6 +121,7 @@ impl<C: Copy> ActivePolygon<C> {
             key,
             end_row,
             switch_row: NO_ROW,
+            event_row: end_row,
             color,
             depth,
             narrow: NarrowRow::ZERO,
@@ -153,6 +158,7 @@ impl<C: Copy> ActivePolygon<C> {
         self.key = key;
         self.end_row = end_row;
         self.switch_row = switch_row;
+        self.event_row = end_row.min(switch_row);
         self.color = color;
         self.depth = depth;
         self.shape = match narrow {

@@ -991,7 +991,6 @@ impl<C: Copy> ScanState<'_, '_, C> {
         row: u16,
         rows: &mut RowBuffers<'_, C, D>,
     ) -> Result<(), Error> {
-        let next_row = row + 1;
         let (tables, pool, stats) = (self.tables, &mut self.pool, &mut self.stats);
         // The three rows cut to one length here, once a row, so that each
         // span's slices need one bounds check, not three.
@@ -1019,13 +1018,8 @@ impl<C: Copy> ScanState<'_, '_, C> {
             let Some(polygon) = items.get_mut(usize::from(order[index])) else {
                 break;
             };
-            if fill_and_step(polygon, tables, pool, stats, row, rows) {
-                // A triangle reaching its middle corner's row (the switch
-                // is the same whichever polygon comes first).
-                if polygon.switch_row == next_row {
-                    switch_triangle(polygon, tables, stats, next_row);
-                }
-            } else {
+            // (A triangle switches its short edge in there.)
+            if !fill_and_step(polygon, tables, pool, stats, row, rows) {
                 live -= 1;
                 order.swap(index, live);
             }
@@ -1043,6 +1037,7 @@ impl<C: Copy> ScanState<'_, '_, C> {
 #[inline(always)]
 fn fill_and_step_triangle<C: Copy, D: DepthFormat>(
     polygon: &mut ActivePolygon<C>,
+    tables: &Prepared<'_, C>,
     pool: &mut EdgePool<'_>,
     stats: &mut FrameStats,
     row: u16,
@@ -1063,7 +1058,7 @@ fn fill_and_step_triangle<C: Copy, D: DepthFormat>(
         }) {
             stats.spans += 1;
         }
-        if !step_triangle(polygon, pool, row) {
+        if !step_triangle(polygon, tables, pool, stats, row) {
             return Some(false);
         }
         polygon.narrow.next_row();
@@ -1096,7 +1091,7 @@ fn fill_and_step_triangle<C: Copy, D: DepthFormat>(
     }) {
         stats.spans += 1;
     }
-    if !step_triangle(polygon, pool, row) {
+    if !step_triangle(polygon, tables, pool, stats, row) {
         return Some(false);
     }
     if let SpanDepth::Stepped {
@@ -1109,19 +1104,43 @@ fn fill_and_step_triangle<C: Copy, D: DepthFormat>(
 }
 
 /// Steps a triangle's edges down from `row`; `false` (its edges freed)
-/// when it ends there.
+/// when it ends there. On its switch row its lower short edge takes the
+/// upper one's place. One comparison a row decides whether either happens
+/// (`event_row`).
 #[inline(always)]
 fn step_triangle<C: Copy>(
     polygon: &mut ActivePolygon<C>,
+    tables: &Prepared<'_, C>,
     pool: &mut EdgePool<'_>,
+    stats: &mut FrameStats,
     row: u16,
 ) -> bool {
     let next_row = row + 1;
+    if polygon.event_row > next_row {
+        polygon.advance_triangle(next_row);
+        return true;
+    }
+    triangle_event(polygon, tables, pool, stats, next_row)
+}
+
+/// A triangle reaching its `event_row`: its end (`false`, its edges
+/// freed), or else its switch row, where it steps and then switches its
+/// short edge.
+#[inline(always)]
+fn triangle_event<C: Copy>(
+    polygon: &mut ActivePolygon<C>,
+    tables: &Prepared<'_, C>,
+    pool: &mut EdgePool<'_>,
+    stats: &mut FrameStats,
+    next_row: u16,
+) -> bool {
     if polygon.end_row <= next_row {
         pool.live -= 2;
         return false;
     }
+    debug_assert_eq!(polygon.switch_row, next_row);
     polygon.advance_triangle(next_row);
+    switch_triangle(polygon, tables, stats, next_row);
     true
 }
 
@@ -1137,6 +1156,7 @@ pub(crate) fn switch_triangle<C: Copy>(
     let [mid, bot] = entry.lower.map(|id| tables.vertices[usize::from(id)]);
     let end = first_sample_at_or_after(bot.y).min(i32::from(tables.height));
     entry.switch_row = NO_ROW;
+    entry.event_row = entry.end_row;
     if end > i32::from(row) {
         entry.switch_short_edge(ActiveEdge::start(mid, bot, row, end as u16, NO_EDGE));
         stats.edges += 1;
@@ -1156,7 +1176,7 @@ pub(crate) fn fill_and_step<C: Copy, D: DepthFormat>(
     row: u16,
     rows: &mut RowBuffers<'_, C, D>,
 ) -> bool {
-    match fill_and_step_triangle(polygon, pool, stats, row, rows) {
+    match fill_and_step_triangle(polygon, tables, pool, stats, row, rows) {
         Some(alive) => alive,
         None => fill_and_step_general(polygon, tables, pool, stats, row, rows),
     }
@@ -1183,7 +1203,9 @@ fn fill_and_step_general<C: Copy, D: DepthFormat>(
             row_value,
             accumulator,
         },
-        SpanDepth::Shared { .. } => return fill_shared_and_step(polygon, pool, stats, row, rows),
+        SpanDepth::Shared { .. } => {
+            return fill_shared_and_step(polygon, tables, pool, stats, row, rows);
+        }
         // A narrow row is only ever a triangle's, which the fast path takes;
         // were one here, the exact plane would still draw it.
         SpanDepth::Narrow | SpanDepth::Exact => {
@@ -1196,7 +1218,7 @@ fn fill_and_step_general<C: Copy, D: DepthFormat>(
         }
     };
     let (key, color) = (polygon.key, polygon.color);
-    let active = fill_spans_and_step(polygon, pool, stats, row, |start, end| {
+    let active = fill_spans_and_step(polygon, tables, pool, stats, row, |start, end| {
         rows.fill(start, end, key, color, &source)
     });
     if let SpanDepth::Stepped {
@@ -1214,6 +1236,7 @@ fn fill_and_step_general<C: Copy, D: DepthFormat>(
 #[inline(never)]
 fn fill_shared_and_step<C: Copy, D: DepthFormat>(
     polygon: &mut ActivePolygon<C>,
+    tables: &Prepared<'_, C>,
     pool: &mut EdgePool<'_>,
     stats: &mut FrameStats,
     row: u16,
@@ -1230,7 +1253,7 @@ fn fill_shared_and_step<C: Copy, D: DepthFormat>(
     // |row| < 2^12, |dz_dy| < 2^40: the product is below 2^52.
     let row_value = row0_value + i64::from(row) * dz_dy;
     let (key, color) = (polygon.key, polygon.color);
-    fill_spans_and_step(polygon, pool, stats, row, |start, end| {
+    fill_spans_and_step(polygon, tables, pool, stats, row, |start, end| {
         rows.fill_shared(start, end, key, color, row_value, dz_dx)
     })
 }
@@ -1242,6 +1265,7 @@ fn fill_shared_and_step<C: Copy, D: DepthFormat>(
 #[inline(always)]
 fn fill_spans_and_step<C: Copy>(
     polygon: &mut ActivePolygon<C>,
+    tables: &Prepared<'_, C>,
     pool: &mut EdgePool<'_>,
     stats: &mut FrameStats,
     row: u16,
@@ -1253,11 +1277,7 @@ fn fill_spans_and_step<C: Copy>(
         if fill(start, end) {
             stats.spans += 1;
         }
-        if polygon.end_row <= next_row {
-            pool.live -= 2;
-            return false;
-        }
-        polygon.advance_triangle(next_row);
+        return step_triangle(polygon, tables, pool, stats, row);
     } else {
         let spans = &mut stats.spans;
         polygon.for_each_span(pool, |start, end| {

@@ -20,12 +20,10 @@
 use core::ops::Range;
 
 use crate::error::{Error, RenderError};
-use crate::raster::active::{ActivePolygon, EdgePool, NO_ROW};
+use crate::raster::active::{ActivePolygon, EdgePool};
 use crate::raster::depth::DepthFormat;
 use crate::raster::edge::ActiveEdge;
-use crate::raster::scan::{
-    FrameStats, PixelWrite, RowBuffers, ScanState, fill_and_step, switch_triangle,
-};
+use crate::raster::scan::{FrameStats, PixelWrite, RowBuffers, ScanState, fill_and_step};
 use crate::raster::slots::{OrderedSlots, Slots};
 use crate::raster::tables::Prepared;
 use crate::sink::RowSink;
@@ -213,15 +211,10 @@ fn draw_rows<C: Copy, D: DepthFormat>(
         if !alive || next >= rows.end {
             break;
         }
-        if is_triangle {
-            if let Some(entry) = state.active.first_mut()
-                && entry.switch_row == next
-                && entry.switch_row != NO_ROW
-            {
-                switch_triangle(entry, state.tables, &mut state.stats, next);
-            }
-        } else {
-            // The edge table's work: edges starting on the next row join.
+        // A triangle switched its short edge in `fill_and_step`; another
+        // polygon takes the edge table's work: edges starting on the next
+        // row join.
+        if !is_triangle {
             state.activate_edges(0, next, false)?;
         }
         y = next;
