@@ -51,7 +51,8 @@ pub struct ScanParts<'a, C, D: DepthFormat> {
     /// The active polygon table.
     pub active: &'a mut [ActivePolygon<C>],
     /// Which slots of the active polygon table are in use (rewritten at
-    /// the start of every scan; as long as `active`).
+    /// the start of every scan; as long as `active`). The table has as
+    /// many slots as the shorter of the two, and at most 2^16.
     pub order: &'a mut [u16],
     /// Active edges beyond each polygon's first two.
     pub pool: &'a mut [ActiveEdge],
