@@ -220,7 +220,9 @@ where
 }
 
 /// [`scan`], capacity-erased: compiled once per colour, depth format and
-/// sink.
+/// sink. (With the `profile` feature it is kept out of line: the
+/// profile's whole scan.)
+#[cfg_attr(feature = "profile", inline(never))]
 fn scan_rows<C: Copy, D: DepthFormat, K: RowSink<C, D::Value>>(
     tables: &Prepared<'_, C>,
     parts: ScanParts<'_, C, D>,
