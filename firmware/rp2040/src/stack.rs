@@ -39,11 +39,15 @@ unsafe extern "C" {
 }
 
 /// Most bytes of stack the render loop used, measured after the first
-/// frame (0 before).
+/// frame (0 before). These three are `#[used]`: LTO would remove a static
+/// that is only written, and a debugger reads them.
+#[used]
 pub static HIGH_WATER_BYTES: AtomicU32 = AtomicU32::new(0);
 /// Most bytes of stack start-up used (clocks, LCD, building the renderer).
+#[used]
 pub static STARTUP_HIGH_WATER_BYTES: AtomicU32 = AtomicU32::new(0);
 /// Bytes between the end of the statics and the top of RAM.
+#[used]
 pub static STACK_BYTES: AtomicU32 = AtomicU32::new(0);
 
 fn bounds() -> (usize, usize) {
