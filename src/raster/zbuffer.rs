@@ -193,11 +193,8 @@ fn draw_rows<C: Copy, D: DepthFormat>(
         y,
         &mut band_row::<C, D>((depth, color, scratch), at(y), width, write),
     )?;
-    if state.active.len() == 0 {
-        // A triangle covering one row was drawn at activation.
-        return Ok(());
-    }
     let Some(is_triangle) = state.active.first_mut().map(|entry| entry.is_triangle()) else {
+        // A triangle covering one row was drawn at activation.
         return Ok(());
     };
     while y < rows.end {
