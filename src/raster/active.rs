@@ -214,9 +214,9 @@ impl<C: Copy> ActivePolygon<C> {
     /// long edge and the lower short edge end with the triangle, and the
     /// upper short edge does too when there is no switch (the middle corner
     /// lies at or below the last row). The one extra step of an edge that
-    /// has ended stays in range: a stepped edge spans at least one row
-    /// (256 sub-pixel steps), so inside the guard band its step is below
-    /// 2^15 pixels, and its crossing is never used.
+    /// has ended stays in range: inside the guard band `|step| < 2^22`
+    /// pixels and `|x| <= 2^13 + 1`, so the crossing stays below 2^23 in
+    /// magnitude, and it is never used.
     #[inline]
     pub(crate) fn advance_triangle(&mut self, next_row: u16) {
         for edge in &mut self.pair {

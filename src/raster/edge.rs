@@ -23,6 +23,8 @@
 //! | `dx`, `dy` | `|dx| < 2^22`, `0 < dy < 2^22` | `i32` |
 //! | `den = 256·dy` | `< 2^30` | `i32` |
 //! | set-up numerator `s·dy + (y_sample - y_top)·dx`, `s = (x_top - 128) mod 256` (the whole pixels `(x_top - 128) div 256` are added after the division) | `< 2^30 + 2^44` (`0 <= y_sample - y_top < dy`); `< 2^31` when `dy, abs(dx) < 2^15` | `i64`; `i32` when `dy, abs(dx) < 2^15` |
+//! | on the first row (`0 <= along = y_sample - y_top < 256`): `a = s + along·step` | `< 2^30 + 2^8` | `i32` |
+//! | and `n = dy·(a mod 256) + along·(dx mod dy)` | `[0, 510·dy)`, so `< 2^31` | `i32` |
 //! | crossing `x` (pixels) | `|x| <= 2^13 + 1` | `i32` |
 //! | `remainder`, `step_remainder` | `[0, den)` | `i32` |
 //! | `remainder - step_remainder` while stepping | `(-2^30, 2^30)` | `i32` |
@@ -31,7 +33,7 @@
 //! The tests below step edges between the guard band's corners over every
 //! row they cover and compare each crossing with the exact `i128` value.
 
-use crate::raster::fixed::{HALF_PIXEL, SUBPIXEL_BITS, SUBPIXEL_STEPS};
+use crate::raster::fixed::{DIVISION_IS_CHEAP, HALF_PIXEL, SUBPIXEL_BITS, SUBPIXEL_STEPS};
 use crate::raster::vertex::ScreenVertex;
 
 /// Edge-table entry, packed in 4 bytes: the row where edges of a polygon
@@ -92,6 +94,37 @@ fn ceil_div_rem(num: i64, den: i32) -> (i32, i32) {
     if r > 0 { (q + 1, den - r) } else { (q, -r) }
 }
 
+/// `(floor(n / d), n mod d)` for `d > 0`. Where a division is not cheap
+/// (a Cortex-M0+ without a divider) a quotient in `[-4, 4)` is found by at
+/// most four additions or subtractions: an edge's step is mostly a pixel
+/// or two per row, and a library division costs about 90 instructions.
+/// Ranges: `|n| < 2^22`, `0 < d < 2^22`, so `4·d < 2^24` and every partial
+/// remainder stays within `(-2^24, 2^24)`.
+#[inline]
+fn floor_div_rem(n: i32, d: i32) -> (i32, i32) {
+    floor_div_rem_by(n, d, !DIVISION_IS_CHEAP)
+}
+
+/// [`floor_div_rem`], by additions for a small quotient when `by_steps`.
+#[inline(always)]
+fn floor_div_rem_by(n: i32, d: i32, by_steps: bool) -> (i32, i32) {
+    debug_assert!(d > 0);
+    if by_steps && n.unsigned_abs() < 4 * d.unsigned_abs() {
+        let (mut q, mut r) = (0, n);
+        while r < 0 {
+            r += d;
+            q -= 1;
+        }
+        while r >= d {
+            r -= d;
+            q += 1;
+        }
+        return (q, r);
+    }
+    let (q, r) = (n / d, n % d);
+    if r < 0 { (q - 1, r + d) } else { (q, r) }
+}
+
 /// Active-edge-table entry (opaque): an edge crossing the current
 /// scanline.
 #[derive(Debug, Clone, Copy)]
@@ -144,36 +177,54 @@ impl ActiveEdge {
         let dy = bottom.y - top.y;
         let den = SUBPIXEL_STEPS * dy;
         let sample_y = i32::from(row) * SUBPIXEL_STEPS + HALF_PIXEL;
-        // Crossing x at the sample line, minus half a pixel, times den:
-        // x(row) - 0.5px = (x_top - half)·dy + (yc - y_top)·dx, over dy.
-        // With x_top - half = 256·p + s (0 <= s < 256) the whole pixels p
-        // come out of the division exactly, leaving s·dy + (yc - y_top)·dx
-        // (0 <= yc - y_top < dy): below 2^31 when dy, |dx| < 2^15 (edges
-        // under 128 px each way), so a 32-bit product and division do
-        // (fast on a Cortex-M0+); longer edges take 64 bits.
+        // x_top - half a pixel = 256·whole + s, 0 <= s < 256.
         let t = top.x - HALF_PIXEL;
         let (whole, s) = (t >> SUBPIXEL_BITS, t & (SUBPIXEL_STEPS - 1));
         let along = sample_y - top.y;
-        let (x, remainder) = if dy < 1 << 15 && dx.unsigned_abs() < 1 << 15 {
-            ceil_div_rem(i64::from(s * dy + along * dx), den)
-        } else {
-            ceil_div_rem(
-                i64::from(s) * i64::from(dy) + i64::from(along) * i64::from(dx),
-                den,
-            )
-        };
-        let x = x + whole;
-        // floor(dx / dy) and its remainder, in one 32-bit division; an edge
-        // covering one row is never stepped and needs none.
-        let (mut step, mut rest) = if end_row > row + 1 {
-            (dx / dy, dx % dy)
+        let stepped = end_row > row + 1;
+        // floor(dx / dy) and its remainder; an edge covering one row is
+        // never stepped and needs none, unless the crossing below uses it.
+        let (step, rest) = if stepped || along < SUBPIXEL_STEPS {
+            floor_div_rem(dx, dy)
         } else {
             (0, 0)
         };
-        if rest < 0 {
-            step -= 1;
-            rest += dy;
-        }
+        let (x, remainder) = if along < SUBPIXEL_STEPS {
+            // The usual case: `row` is the edge's first row, so the sample
+            // line lies within a pixel of the top. With dx = step·dy + rest,
+            // the numerator s·dy + along·dx is dy·a + along·rest, a = s +
+            // along·step (|a| < 2^30 + 2^8); the whole pixels of a come out
+            // exactly, leaving n = dy·(a mod 256) + along·rest in [0,
+            // 510·dy) (each term below 2^30, so n < 2^31): its ceiling
+            // quotient by den = 256·dy is 0, 1 or 2, with no division.
+            let a = s + along * step;
+            let n = dy * (a & (SUBPIXEL_STEPS - 1)) + along * rest;
+            let (q, r) = if n == 0 {
+                (0, 0)
+            } else if n <= den {
+                (1, den - n)
+            } else {
+                (2, 2 * den - n)
+            };
+            (whole + (a >> SUBPIXEL_BITS) + q, r)
+        } else {
+            // Crossing x at the sample line, minus half a pixel, times den:
+            // x(row) - 0.5px = (x_top - half)·dy + (yc - y_top)·dx, over dy.
+            // With x_top - half = 256·p + s (0 <= s < 256) the whole pixels
+            // p come out of the division exactly, leaving s·dy + (yc -
+            // y_top)·dx (0 <= yc - y_top < dy): below 2^31 when dy, |dx| <
+            // 2^15 (edges under 128 px each way), so a 32-bit product and
+            // division do; longer edges take 64 bits.
+            let (x, remainder) = if dy < 1 << 15 && dx.unsigned_abs() < 1 << 15 {
+                ceil_div_rem(i64::from(s * dy + along * dx), den)
+            } else {
+                ceil_div_rem(
+                    i64::from(s) * i64::from(dy) + i64::from(along) * i64::from(dx),
+                    den,
+                )
+            };
+            (x + whole, remainder)
+        };
         Self {
             next,
             x,
@@ -244,6 +295,33 @@ mod tests {
     }
 
     const G: i32 = crate::raster::fixed::GUARD_BAND - 1;
+
+    #[test]
+    fn floor_division_by_steps_is_exact() {
+        let limit = (1 << 22) - 1;
+        let mut numerators = std::vec![-limit, -limit + 1, -1, 0, 1, limit - 1, limit];
+        let mut divisors = std::vec![1, 2, 3, 255, 256, 257, limit - 1, limit];
+        for k in 0..=22 {
+            numerators.extend([(1 << k) - 1, -(1 << k) + 1]);
+            divisors.push((1 << k).min(limit));
+        }
+        for &d in &divisors {
+            // Quotients -5..=5, at and beside every boundary.
+            for q in -5..=5i64 {
+                for off in [-1, 0, 1, i64::from(d) - 1] {
+                    let n = q * i64::from(d) + off;
+                    if n.abs() <= i64::from(limit) {
+                        numerators.push(n as i32);
+                    }
+                }
+            }
+            for &n in &numerators {
+                let expected = (n.div_euclid(d), n.rem_euclid(d));
+                assert_eq!(floor_div_rem_by(n, d, true), expected, "{n} / {d}");
+                assert_eq!(floor_div_rem_by(n, d, false), expected, "{n} / {d}");
+            }
+        }
+    }
 
     #[test]
     fn extreme_edges_step_exactly() {
