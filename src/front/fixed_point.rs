@@ -255,12 +255,77 @@ fn isqrt(v: u128) -> u128 {
 pub fn reciprocal62(w: u32) -> u64 {
     debug_assert!((1 << 30..1 << 31).contains(&w));
     let d = w >> 15;
-    let r0 = u64::from(u32::MAX / d);
+    let r0 = u64::from(max_div(d));
     let r0s = r0 << 15;
     // r0 < 2^17, so r0s < 2^32 and r0 fits i32: 32-bit operands.
     let e = (1i64 << 62) - mul_u32(w, r0s as u32) as i64;
     let correction = mul_i64_i32(e >> 2, r0 as i32) >> 45;
     (r0s as i64 + correction) as u64
+}
+
+/// `(2^32 - 1) / d` exactly, for `d` in `[2^15, 2^16)`: the quotient is in
+/// `(2^16, 2^17)`. Where a division is cheap it is one; on a Cortex-M0+
+/// without a divider (where compiler-builtins' routine takes about 190
+/// instructions for a 17-bit quotient) it is [`max_div_by_table`].
+#[inline]
+fn max_div(d: u32) -> u32 {
+    if crate::raster::fixed::DIVISION_IS_CHEAP {
+        u32::MAX / d
+    } else {
+        max_div_by_table(d)
+    }
+}
+
+/// Entries of [`RECIPROCAL_TABLE`]: one per 2^7-wide interval of `d`.
+const RECIPROCAL_ENTRIES: usize = 256;
+
+/// `2^32 / m` for the midpoint `m = 2^15 + 2^7·i + 2^6` of interval `i`:
+/// within `2^-9` (relative) of `2^32 / d` for every `d` of the interval.
+/// Every entry is in `(2^16, 2^17)`.
+static RECIPROCAL_TABLE: [u32; RECIPROCAL_ENTRIES] = {
+    let mut table = [0u32; RECIPROCAL_ENTRIES];
+    let mut i = 0;
+    while i < RECIPROCAL_ENTRIES {
+        let mid = (1u64 << 15) + ((i as u64) << 7) + (1 << 6);
+        table[i] = ((1u64 << 32) / mid) as u32;
+        i += 1;
+    }
+    table
+};
+
+/// The estimate of [`max_div_by_table`] before its corrections.
+#[inline(always)]
+fn max_div_estimate(d: u32) -> u32 {
+    debug_assert!((1 << 15..1 << 16).contains(&d));
+    let x0 = RECIPROCAL_TABLE[((d >> 7) & 0xFF) as usize];
+    let e = 0u32.wrapping_sub(d.wrapping_mul(x0)) as i32;
+    x0.wrapping_add_signed(((e >> 8) * (x0 >> 2) as i32) >> 22)
+}
+
+/// [`max_div`] by products alone: a table estimate `x0` (relative error
+/// below `2^-9`), one Newton step in 32-bit products, and exact
+/// corrections against the remainder.
+///
+/// Ranges (`d` in `[2^15, 2^16)`, `x0` in `(2^16, 2^17)`): `d·x0` is
+/// within `2^32·2^-9` of `2^32`, so the residual `e = 2^32 - d·x0`
+/// (wrapping, as `i32`) is at most `2^23` in magnitude; `(e >> 8)·(x0 >>
+/// 2)` is at most `2^15·2^15 = 2^30`; the step leaves `q` within 2 of the
+/// quotient (the tests check every `d`, and that each correction loop runs
+/// at most twice); `q·d` wraps `u32`, but `2^32 - 1 - q·d` is within
+/// `3·d < 2^18` of `[0, d)`, so its wrapping difference as `i32` is exact.
+#[inline]
+fn max_div_by_table(d: u32) -> u32 {
+    let mut q = max_div_estimate(d);
+    let mut r = u32::MAX.wrapping_sub(q.wrapping_mul(d)) as i32;
+    while r < 0 {
+        q -= 1;
+        r += d as i32;
+    }
+    while r >= d as i32 {
+        q += 1;
+        r -= d as i32;
+    }
+    q
 }
 
 /// `n / d` rounded to the nearest integer (ties up), for `d > 0`.
@@ -564,6 +629,23 @@ fn view_rotation(m: &Mat4) -> Option<[[i32; 3]; 3]> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn max_div_by_table_is_exact_for_every_divisor() {
+        let (mut worst_residual, mut worst_miss) = (0u32, 0u32);
+        for d in 1u32 << 15..1 << 16 {
+            let exact = u32::MAX / d;
+            assert_eq!(max_div_by_table(d), exact, "d = {d}");
+            let x0 = RECIPROCAL_TABLE[((d >> 7) & 0xFF) as usize];
+            assert!((1 << 16..1 << 17).contains(&x0));
+            let residual = ((1i64 << 32) - i64::from(d) * i64::from(x0)).unsigned_abs();
+            worst_residual = worst_residual.max(residual as u32);
+            worst_miss = worst_miss.max(max_div_estimate(d).abs_diff(exact));
+        }
+        // The ranges stated on `max_div_by_table`.
+        assert!(worst_residual <= 1 << 23, "residual {worst_residual}");
+        assert!(worst_miss <= 2, "estimate off by {worst_miss}");
+    }
     use crate::front::geometry::{Vec3, radians};
     use crate::front::scene::Camera;
     use proptest::prelude::*;
