@@ -300,6 +300,49 @@ impl Divisor {
         }
         (q < Self::QUOTIENT_LIMIT).then_some((q, r))
     }
+
+    /// [`Self::div_rem`], by one 32x32→64 product when `d < 2^28` and the
+    /// quotient is below `2^17` (a gradient's fraction always, its whole
+    /// part mostly); otherwise by [`Self::div_rem`].
+    ///
+    /// Ranges: with `s - 1 = 62 - shift` (at least 3, as `d < 2^28`), `nn =
+    /// n·2^(s-1) < dn·2^17 < 2^48`, so `top = nn >> 16` fits 32 bits (when
+    /// `s - 1 >= 16`, `d < 2^15` and `n < 2^32`, so the left shift is of a
+    /// 32-bit word and exact); `top·R < 2^64`. As `top·2^16 <= nn` and `R
+    /// <= 2^62 / dn`, the estimate `(top·R) >> 46` is at most `n / d`; as
+    /// `nn - top·2^16 < 2^16` and `R >= 2^62 / dn - 8`, it falls short by
+    /// less than `2^-14 + 2^-11` before its floor, so by at most one. The
+    /// remainder `n - q·d` is then in `[0, 2d)`, below `2^29`: computed
+    /// modulo `2^32` it is exact, and one correction finishes.
+    #[inline(always)]
+    pub fn div_rem_short(&self, n: u64) -> Option<(u64, u64)> {
+        if self.d < 1 << 28 && n < self.d << 17 {
+            let s1 = 62 - self.shift;
+            let top = if s1 >= 16 {
+                (n as u32) << (s1 - 16)
+            } else {
+                shr_u64(n, 16 - s1) as u32
+            };
+            let d = self.d as u32;
+            let mut q = (mul_u32(top, self.recip as u32) >> 46) as u32;
+            let mut r = (n as u32).wrapping_sub(q.wrapping_mul(d));
+            if r >= d {
+                q += 1;
+                r -= d;
+            }
+            debug_assert!(r < d);
+            return Some((u64::from(q), u64::from(r)));
+        }
+        self.div_rem_long(n)
+    }
+
+    /// [`Self::div_rem`] out of line: the rare case of
+    /// [`Self::div_rem_short`], kept from crowding its fast path.
+    #[cold]
+    #[inline(never)]
+    fn div_rem_long(&self, n: u64) -> Option<(u64, u64)> {
+        self.div_rem(n)
+    }
 }
 
 /// First pixel whose sample point lies at or to the right of sub-pixel
@@ -318,13 +361,11 @@ mod tests {
     #[test]
     fn divisor_is_exact() {
         let check = |n: u64, d: u32| {
-            let got = Divisor::new(d).div_rem(n);
+            let divisor = Divisor::new(d);
             let (q, r) = (n / u64::from(d), n % u64::from(d));
-            if q < Divisor::QUOTIENT_LIMIT {
-                assert_eq!(got, Some((q, r)), "{n} / {d}");
-            } else {
-                assert_eq!(got, None, "{n} / {d}");
-            }
+            let expected = (q < Divisor::QUOTIENT_LIMIT).then_some((q, r));
+            assert_eq!(divisor.div_rem(n), expected, "{n} / {d}");
+            assert_eq!(divisor.div_rem_short(n), expected, "short {n} / {d}");
         };
         let mut x = 0x9E37_79B9_7F4A_7C15u64;
         let mut next = || {
@@ -345,6 +386,29 @@ mod tests {
         for d in [1u32, 2, 3, (1 << 30) - 1, 1 << 30, (1 << 31) - 1] {
             for n in [0u64, 1, u64::from(d) - 1, u64::from(d), (1 << 57) - 1] {
                 check(n, d);
+            }
+        }
+        // The short path's edges: divisors at every power of two up to and
+        // beyond 2^28 (and beside them), quotients at and beside 2^17.
+        for k in 0..31 {
+            for d in [(1u32 << k).saturating_sub(1), 1 << k, (1 << k) + 1] {
+                let d = d.clamp(1, (1 << 31) - 1);
+                let d64 = u64::from(d);
+                for n in [
+                    0,
+                    d64 - 1,
+                    d64,
+                    (d64 << 17) - 1,
+                    d64 << 17,
+                    (d64 << 17) - d64,
+                    (d64 << 17) - d64 - 1,
+                    (d64 << 16) + d64 / 2,
+                ] {
+                    check(n, d);
+                }
+                for _ in 0..2_000 {
+                    check(next() % (d64 << 17), d);
+                }
             }
         }
     }

@@ -315,12 +315,12 @@ impl GradientDivisor {
     fn div_rem(&mut self, n: u64) -> Option<(u64, u64)> {
         let d = self.d;
         let (q, r) = match self.path {
-            DivisionPath::Reciprocal => return self.divisor().div_rem(n),
+            DivisionPath::Reciprocal => return self.divisor().div_rem_short(n),
             DivisionPath::Native => (n / u64::from(d), n % u64::from(d)),
             DivisionPath::Words => match u32::try_from(n) {
                 Ok(n) => ((n / d).into(), (n % d).into()),
                 Err(_) if self.bytewise() => div_rem_by_bytes(n, d),
-                Err(_) => return self.divisor().div_rem(n),
+                Err(_) => return self.divisor().div_rem_short(n),
             },
         };
         (q < Divisor::QUOTIENT_LIMIT).then_some((q, r))
@@ -347,7 +347,7 @@ impl GradientDivisor {
         if self.path == DivisionPath::Native {
             return Some(n / u64::from(d));
         }
-        Some(self.divisor().div_rem(n)?.0)
+        Some(self.divisor().div_rem_short(n)?.0)
     }
 }
 
