@@ -288,16 +288,19 @@ struct GradientDivisor {
 }
 
 impl GradientDivisor {
-    /// Division by `d` on `path`.
+    /// Division by `d` on `path`. The reciprocal path makes its
+    /// [`Divisor`] at once: each of its divisions needs it.
+    #[inline(always)]
     fn with_path(d: u32, path: DivisionPath) -> Self {
         debug_assert!(d > 0 && d < 1 << 31);
         Self {
             d,
-            divisor: None,
+            divisor: (path == DivisionPath::Reciprocal).then(|| Divisor::new(d)),
             path,
         }
     }
 
+    #[inline(always)]
     fn divisor(&mut self) -> &Divisor {
         let d = self.d;
         self.divisor.get_or_insert_with(|| Divisor::new(d))
