@@ -6,7 +6,10 @@ mod common;
 
 use common::{capture, vtx};
 use zline::raster::fixed::{DEPTH_MAX, GUARD_BAND, MAX_POLYGON_CORNERS, SUBPIXEL_STEPS};
-use zline::raster::{ScanArrays, TableArrays};
+use zline::raster::{
+    EdgeEntry, PolygonEntry, ScanArrays, TableArrays, TableParts, TablePartsRef, TableStorage,
+    Tables,
+};
 use zline::{Admission, Depth16, Depth24, Error, FnSink, RenderError, Renderer, ScreenVertex};
 
 const S: i32 = SUBPIXEL_STEPS;
@@ -62,6 +65,73 @@ fn edge_table_full() {
         Err(Error::EdgeTableFull)
     );
     assert_eq!((r.vertex_count(), r.polygon_count()), (3, 1));
+}
+
+/// Table storage of one's own whose edge table is shorter than its corner
+/// list: 12 corners, room in the edge table for 7.
+struct ShortEdgeTable {
+    vertices: [ScreenVertex; 16],
+    polygons: [PolygonEntry<u32>; 4],
+    corners: [u16; 12],
+    edges: [EdgeEntry; 7],
+}
+
+impl TableStorage for ShortEdgeTable {
+    type Color = u32;
+    fn parts_mut(&mut self) -> TableParts<'_, u32> {
+        TableParts {
+            vertices: &mut self.vertices,
+            polygons: &mut self.polygons,
+            corners: &mut self.corners,
+            edges: &mut self.edges,
+        }
+    }
+    fn parts(&self) -> TablePartsRef<'_, u32> {
+        TablePartsRef {
+            vertices: &self.vertices,
+            polygons: &self.polygons,
+            corners: &self.corners,
+            edges: &self.edges,
+        }
+    }
+}
+
+#[test]
+fn a_short_edge_table_bounds_the_corners() {
+    // The edge table is the sort's scratch and holds up to one entry per
+    // corner: with 7 entries, two triangles fit (6 corners) and a third is
+    // refused, by either way in, and preparing the tables does not fail.
+    for offer in [false, true] {
+        let storage = ShortEdgeTable {
+            vertices: [ScreenVertex::default(); 16],
+            polygons: [PolygonEntry::filler(0); 4],
+            corners: [0; 12],
+            edges: [EdgeEntry::ZERO; 7],
+        };
+        let mut tables = Tables::new(storage, 16, 16).unwrap();
+        let mut results = Vec::new();
+        for k in 0..3 {
+            let x = 1.0 + 4.0 * k as f32;
+            let ids = tri(x, 1.0).map(|v| tables.push_vertex(v).unwrap());
+            results.push(if offer {
+                tables.offer_triangle(ids, |_| Some(k))
+            } else {
+                tables.push_polygon(&ids, k)
+            });
+        }
+        assert!(
+            matches!(results[0], Ok(Admission::Queued(_))),
+            "{results:?}"
+        );
+        assert!(
+            matches!(results[1], Ok(Admission::Queued(_))),
+            "{results:?}"
+        );
+        assert_eq!(results[2], Err(Error::EdgeTableFull), "offer {offer}");
+        assert_eq!(tables.polygon_count(), 2);
+        let prepared = tables.prepare();
+        assert_eq!(prepared.width(), 16);
+    }
 }
 
 #[test]

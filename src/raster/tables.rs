@@ -83,6 +83,16 @@ const _: () = assert!(MAX_POLYGON_CORNERS < SHARED_PLANE as usize);
 /// position.
 pub type TableEdge = EdgeEntry;
 
+/// How many corners the tables take: the corner list's length, bounded by
+/// the edge table's, which serves as the sort's scratch (two entries per
+/// polygon) and holds up to one entry per corner. A storage whose edge
+/// table is shorter than its corner list thus refuses corners with
+/// [`Error::EdgeTableFull`] rather than failing later.
+#[inline(always)]
+fn corner_room(corners: usize, edges: usize) -> usize {
+    corners.min(edges)
+}
+
 /// Where the tables live: anything that lends the four arrays as slices.
 /// [`TableArrays`] holds them in fixed arrays (for statics on a
 /// microcontroller); the host's `zline::host::TableVecs` in `Vec`s.
@@ -104,7 +114,8 @@ pub struct TableParts<'a, C> {
     pub polygons: &'a mut [PolygonEntry<C>],
     /// Every polygon's corners, as vertex indices.
     pub corners: &'a mut [u16],
-    /// The edge table, and scratch space for sorting.
+    /// The edge table, and scratch space for sorting: as long as
+    /// `corners` (the tables take no more corners than it has entries).
     pub edges: &'a mut [TableEdge],
 }
 
@@ -292,10 +303,11 @@ impl<S: TableStorage> Tables<S> {
     fn view(&mut self) -> TablesMut<'_, S::Color> {
         let parts = self.storage.parts_mut();
         let st = &mut self.state;
+        let room = corner_room(parts.corners.len(), parts.edges.len());
         TablesMut {
             vertices: Slots::new(parts.vertices, &mut st.vertices),
             polygons: Slots::new(parts.polygons, &mut st.polygons),
-            corners: Slots::new(parts.corners, &mut st.corners),
+            corners: Slots::new(&mut parts.corners[..room], &mut st.corners),
             edges: Slots::new(parts.edges, &mut st.edges),
             counts: &mut st.counts,
         }
@@ -508,9 +520,10 @@ impl<S: TableStorage> Tables<S> {
         let Some(color) = decide(&outline) else {
             return Ok(Admission::Declined);
         };
+        let room = corner_room(parts.corners.len(), parts.edges.len());
         let (Some(entry), Some(slots)) = (
             parts.polygons.get_mut(st.polygons),
-            parts.corners.get_mut(st.corners..st.corners + 3),
+            parts.corners[..room].get_mut(st.corners..st.corners + 3),
         ) else {
             return Err(if st.polygons >= parts.polygons.len() {
                 Error::PolygonTableFull
