@@ -165,6 +165,7 @@ impl ActiveEdge {
     /// Inside the guard band `dy < 2^22` sub-pixel steps, so `den < 2^30`
     /// and every per-row quantity fits `i32`; the set-up products fit `i64`,
     /// and the divisions are 32-bit whenever the numerator fits.
+    #[inline(always)]
     pub fn start(
         top: ScreenVertex,
         bottom: ScreenVertex,
