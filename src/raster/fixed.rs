@@ -348,9 +348,14 @@ impl Divisor {
 /// First pixel whose sample point lies at or to the right of sub-pixel
 /// coordinate `x` (`ceil((x - HALF_PIXEL) / SUBPIXEL_STEPS)`). The same
 /// function gives the first row at or below a sub-pixel y.
+///
+/// With `x = 256·q + r` (`q = x >> 8`, `0 <= r < 256`), `(x - 128) / 256`
+/// is `q + (r - 128) / 256`, whose second term lies in `[-1/2, 1/2)`: the
+/// ceiling is `q`, plus one when `r > 128`. A shift, a mask and a
+/// comparison, with no overflow for any `i32`.
+#[inline]
 pub(crate) fn first_sample_at_or_after(x: i32) -> i32 {
-    (x - HALF_PIXEL).div_euclid(SUBPIXEL_STEPS)
-        + i32::from((x - HALF_PIXEL).rem_euclid(SUBPIXEL_STEPS) != 0)
+    (x >> SUBPIXEL_BITS) + i32::from(x & (SUBPIXEL_STEPS - 1) > HALF_PIXEL)
 }
 
 #[cfg(test)]
@@ -410,6 +415,23 @@ mod tests {
                     check(next() % (d64 << 17), d);
                 }
             }
+        }
+    }
+
+    #[test]
+    fn first_sample_is_the_exact_ceiling() {
+        let exact = |x: i32| {
+            let v = i64::from(x) - i64::from(HALF_PIXEL);
+            v.div_euclid(i64::from(SUBPIXEL_STEPS))
+                + i64::from(v.rem_euclid(i64::from(SUBPIXEL_STEPS)) != 0)
+        };
+        let mut values: std::vec::Vec<i32> = (-2000..2000).collect();
+        for base in [i32::MIN, -GUARD_BAND, GUARD_BAND, i32::MAX - 600] {
+            values.extend((0..600).map(|k| base.saturating_add(k)));
+        }
+        values.extend([i32::MAX, i32::MAX - 127, i32::MAX - 128, i32::MAX - 129]);
+        for x in values {
+            assert_eq!(i64::from(first_sample_at_or_after(x)), exact(x), "x = {x}");
         }
     }
 
