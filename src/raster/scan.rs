@@ -681,17 +681,26 @@ impl<C: Copy> ScanState<'_, '_, C> {
 
     /// Moves the polygon at `position` into the APT at `row`, with its
     /// plane and the edges covering `row`.
-    #[inline(never)]
+    /// Inline: a triangle goes straight to [`Self::activate_triangle`].
+    #[inline(always)]
     pub(crate) fn activate_polygon<D: DepthFormat>(
         &mut self,
         position: usize,
         row: u16,
         rows: &mut RowBuffers<'_, C, D>,
     ) -> Result<(), Error> {
-        let polygon = self.tables.polygons[position];
-        if polygon.corner_count() == 3 {
-            return self.activate_triangle(position, row, rows);
+        if self.tables.polygons[position].corner_count() == 3 {
+            self.activate_triangle(position, row, rows)
+        } else {
+            self.activate_general(position, row)
         }
+    }
+
+    /// [`Self::activate_polygon`] for a polygon of four or more corners,
+    /// or a triangle whose plane is shared.
+    #[inline(never)]
+    fn activate_general(&mut self, position: usize, row: u16) -> Result<(), Error> {
+        let polygon = self.tables.polygons[position];
         let (corners, vertices) = (self.tables.corners, self.tables.vertices);
         let (width, height) = (self.tables.width, self.tables.height);
         let depth = match polygon.shared_plane() {
