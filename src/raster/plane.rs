@@ -488,7 +488,7 @@ impl TrianglePlane {
     }
 
     /// The value at column 0 of `row` (see the type's notes).
-    #[inline]
+    #[inline(always)]
     pub fn row_start(&self, row: u16) -> i64 {
         let o = self.origin;
         let sample_y = i32::from(row) * SUBPIXEL_STEPS + HALF_PIXEL;
