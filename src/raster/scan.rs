@@ -682,7 +682,10 @@ impl<C: Copy> ScanState<'_, '_, C> {
     /// Moves the polygon at `position` into the APT at `row`, with its
     /// plane and the edges covering `row`.
     /// Inline: a triangle goes straight to [`Self::activate_triangle`].
-    #[inline(always)]
+    /// (With the `profile` feature it is kept out of line: the profile's
+    /// "activation" stage.)
+    #[cfg_attr(feature = "profile", inline(never))]
+    #[cfg_attr(not(feature = "profile"), inline(always))]
     pub(crate) fn activate_polygon<D: DepthFormat>(
         &mut self,
         position: usize,
