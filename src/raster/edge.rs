@@ -182,6 +182,7 @@ impl ActiveEdge {
         let t = top.x - HALF_PIXEL;
         let (whole, s) = (t >> SUBPIXEL_BITS, t & (SUBPIXEL_STEPS - 1));
         let along = sample_y - top.y;
+        debug_assert!(along >= 0, "row {row} lies above the edge's top");
         let stepped = end_row > row + 1;
         // floor(dx / dy) and its remainder; an edge covering one row is
         // never stepped and needs none, unless the crossing below uses it.
