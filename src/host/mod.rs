@@ -1,8 +1,9 @@
 //! What the host tools share (feature `std`): meshes and core storage in
-//! `Vec`s, procedural shapes, the mesh-to-Rust writer, command-line
+//! `Vec`s, a frame drawn in bands on several threads, procedural shapes, the mesh-to-Rust writer, command-line
 //! helpers, the machine a measurement ran on, and the properties the fuzzers check. None of it is a
 //! rendering method and none is needed on a microcontroller.
 
+mod bands;
 mod cli;
 pub mod coplanar;
 pub mod fuzz_checks;
@@ -13,6 +14,7 @@ mod rust_source;
 pub mod shapes;
 mod storage;
 
+pub use bands::{BandTables, BandedRenderer};
 pub use cli::{load_model, obj_files, parse_angle, parse_size, run_tool};
 pub use host_mesh::HostMesh;
 pub use machine::{cpu, now_utc};

@@ -8,6 +8,7 @@ use crate::view::{Cull, DEFAULT_PITCH_DEG, DEFAULT_YAW_DEG};
 pub const USAGE: &str = "\
 usage: zline-bench [--sizes WxH,...] [--cull none,back] [--rounds N] [--quick]
                    [--out FILE.csv] [--yaw DEG] [--pitch DEG] [--dump DIR]
+                   [--threads N]
                    MESH.obj|MESH_DIR...
 
 Times zline, euc 0.5 and embedded-3dgfx 0.7 drawing the same reference view
@@ -24,10 +25,16 @@ zline's float64 reference.
   --yaw DEG      rotation about +Y [30]
   --pitch DEG    rotation about +X after yaw [20]
   --dump DIR     also write every renderer's last frame, and the reference's,
-                 as PNG images";
+                 as PNG images
+  --threads N    also time zline drawing in N bands on N threads, by the wall
+                 clock (`zline-N-threads`; its frame must equal zline's);
+                 1 leaves it out [2]";
 
 /// Most rounds `--rounds` accepts.
 pub const MAX_ROUNDS: usize = 100_000;
+
+/// Most threads `--threads` accepts.
+pub const MAX_THREADS: usize = 64;
 
 /// Parsed options.
 #[derive(Debug, Clone)]
@@ -48,6 +55,8 @@ pub struct Options {
     pub pitch: f32,
     /// Where to write PNG images of the frames, if anywhere.
     pub dump: Option<PathBuf>,
+    /// Threads (bands) for the banded zline renderer; 1 leaves it out.
+    pub threads: usize,
     /// Mesh files and directories as given.
     pub inputs: Vec<PathBuf>,
     /// `-h` or `--help` was given.
@@ -65,6 +74,7 @@ pub fn parse(args: &[String]) -> Result<Options, String> {
         yaw: DEFAULT_YAW_DEG,
         pitch: DEFAULT_PITCH_DEG,
         dump: None,
+        threads: 2,
         inputs: Vec::new(),
         help: false,
     };
@@ -86,6 +96,13 @@ pub fn parse(args: &[String]) -> Result<Options, String> {
             "--yaw" => o.yaw = parse_angle("--yaw", value()?)?,
             "--pitch" => o.pitch = parse_angle("--pitch", value()?)?,
             "--dump" => o.dump = Some(PathBuf::from(value()?)),
+            "--threads" => {
+                o.threads = value()?
+                    .parse()
+                    .ok()
+                    .filter(|n| (1..=MAX_THREADS).contains(n))
+                    .ok_or_else(|| format!("--threads: expected 1 to {MAX_THREADS}"))?
+            }
             "-h" | "--help" => o.help = true,
             s if s.starts_with('-') && s.len() > 1 => return Err(format!("unknown option {s}")),
             s => o.inputs.push(PathBuf::from(s)),

@@ -37,7 +37,7 @@ use crate::peers::euc::EucRenderer;
 use crate::renderer::Renderer;
 use crate::report::Row;
 use crate::view::{Scene, View};
-use crate::zline_renderer::ZlineRenderer;
+use crate::zline_renderer::{ZlineBandsRenderer, ZlineRenderer};
 
 /// Stack for the worker thread: zline's host renderer is built on the
 /// stack (about 20 MB) before it moves to the heap.
@@ -199,6 +199,13 @@ fn bench_view(
         Box::new(EucRenderer::new(scene, view)?),
         Box::new(Embedded3dgfxRenderer::new(e3d, view)?),
     ];
+    if options.threads > 1 && usize::from(view.height) >= options.threads {
+        renderers.push(Box::new(ZlineBandsRenderer::new(
+            scene,
+            view,
+            options.threads,
+        )?));
+    }
     // Warm-up, untimed: every renderer at least once, and for at least
     // WARM_UP in all. On this shared machine the first configurations
     // after loading the meshes measured up to 45 % slow after a single
@@ -218,11 +225,25 @@ fn bench_view(
         for k in 0..n {
             let which = (round + k) % n;
             let renderer = &mut renderers[which];
-            times[which].push(timing::time_ms(|| renderer.render())?);
+            let time = if renderer.wall_clock() {
+                timing::wall_ms(|| renderer.render())?
+            } else {
+                timing::time_ms(|| renderer.render())?
+            };
+            times[which].push(time);
         }
     }
     let stats: Vec<(f64, f64)> = times.iter().map(|t| timing::median_min(t)).collect();
     let zline_median = stats[0].0;
+    // The banded renderer must draw zline's frame, bit for bit.
+    for other in &renderers[3..] {
+        if other.rgb565() != renderers[0].rgb565() {
+            return Err(format!(
+                "{label}: {} drew another frame than zline",
+                other.name()
+            ));
+        }
+    }
 
     let mut rows = Vec::with_capacity(n);
     let mut summary = Vec::with_capacity(n);

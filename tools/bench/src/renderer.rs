@@ -5,6 +5,13 @@ pub trait Renderer {
     /// The name in the CSV and the table (`zline…`, `euc`, `embedded-3dgfx`).
     fn name(&self) -> &str;
 
+    /// Whether the harness times [`Self::render`] by the wall clock (a
+    /// renderer that works on several threads) rather than by the calling
+    /// thread's CPU time (the default).
+    fn wall_clock(&self) -> bool {
+        false
+    }
+
     /// Draws one whole frame of the view: the timed region. What exactly
     /// that includes is stated on each implementation.
     fn render(&mut self) -> Result<(), String>;

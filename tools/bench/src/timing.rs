@@ -26,6 +26,14 @@ pub fn time_ms(f: impl FnOnce() -> Result<(), String>) -> Result<f64, String> {
     Ok(thread_cpu_ms()? - start)
 }
 
+/// Runs `f` once and returns the wall-clock time it took in milliseconds
+/// (for work spread over several threads).
+pub fn wall_ms(f: impl FnOnce() -> Result<(), String>) -> Result<f64, String> {
+    let start = std::time::Instant::now();
+    f()?;
+    Ok(start.elapsed().as_secs_f64() * 1e3)
+}
+
 /// Median (mean of the middle two for an even count) and minimum; NaN
 /// for no samples.
 pub fn median_min(samples: &[f64]) -> (f64, f64) {

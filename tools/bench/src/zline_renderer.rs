@@ -7,9 +7,9 @@ use embedded_graphics::prelude::IntoStorage;
 use zline::front::geometry::Mat4 as ZMat4;
 use zline::front::scene::{Camera, Cull as ZCull, VertexCache, draw_mesh, reference_model};
 use zline::front::shade::Shading;
-use zline::host::{ScanVecs, TableVecs, host_renderer};
+use zline::host::{BandedRenderer, ScanVecs, TableVecs, host_renderer};
 use zline::methods::HostScanline;
-use zline::{Capacities, Depth16, FnSink, Renderer as ZRenderer};
+use zline::{Capacities, Depth16, Error as ZError, FnSink, Renderer as ZRenderer};
 
 use crate::framebuffer::Frame565;
 use crate::renderer::Renderer;
@@ -46,18 +46,13 @@ impl<'a> ZlineRenderer<'a> {
     /// Builds the renderer for `view`, its tables sized for the mesh.
     pub fn new(scene: &'a Scene, view: &View) -> Result<Self, String> {
         let mesh = &scene.mesh;
-        let corners = mesh.corners.len();
-        // Room for every face's fan and for the corners clipping adds.
-        let caps = Capacities {
-            width: usize::from(view.width),
-            vertices: (mesh.positions.len() * 2 + 1024).min(1 << 16),
-            polygons: corners + 64,
-            corners: 3 * corners + 256,
-            active_polygons: corners + 64,
-            pooled_edges: 4096,
-        };
-        let renderer = host_renderer(&caps, view.width, view.height, Rgb565::new(0, 0, 0))
-            .map_err(|e| format!("zline: {e}"))?;
+        let renderer = host_renderer(
+            &capacities(scene, view),
+            view.width,
+            view.height,
+            Rgb565::new(0, 0, 0),
+        )
+        .map_err(|e| format!("zline: {e}"))?;
         let model = reference_model(mesh, view.yaw_deg, view.pitch_deg)
             .map_err(|e| format!("zline: {e}"))?;
         Ok(Self {
@@ -78,6 +73,21 @@ impl<'a> ZlineRenderer<'a> {
                 .collect(),
             view: *view,
         })
+    }
+}
+
+/// Capacities for the mesh's frame: room for every face's fan and for the
+/// corners clipping adds.
+fn capacities(scene: &Scene, view: &View) -> Capacities {
+    let mesh = &scene.mesh;
+    let corners = mesh.corners.len();
+    Capacities {
+        width: usize::from(view.width),
+        vertices: (mesh.positions.len() * 2 + 1024).min(1 << 16),
+        polygons: corners + 64,
+        corners: 3 * corners + 256,
+        active_polygons: corners + 64,
+        pooled_edges: 4096,
     }
 }
 
@@ -125,6 +135,101 @@ impl Renderer for ZlineRenderer<'_> {
         )
         .map_err(|e| format!("zline: {e}"))?;
         Ok(Some(host.frame().faces.clone()))
+    }
+
+    fn rgb565(&self) -> Vec<u16> {
+        self.frame.pixels.clone()
+    }
+}
+
+/// zline drawing the frame in horizontal bands on several threads
+/// ([`BandedRenderer`]): each thread builds its band's tables from the
+/// whole mesh (every thread transforms every vertex and judges every
+/// face, keeping the faces that reach its rows) and scans its rows into
+/// its own part of the frame. The same frame as [`ZlineRenderer`], bit for
+/// bit. Timed by the wall clock, not thread CPU time (the work is on
+/// several threads); the timed region is [`ZlineRenderer`]'s.
+pub struct ZlineBandsRenderer<'a> {
+    scene: &'a Scene,
+    renderer: BandedRenderer<Rgb565, Depth16>,
+    caches: Vec<Box<VertexCache<65536>>>,
+    frame: Frame565,
+    model: ZMat4,
+    camera: Camera,
+    cull: ZCull,
+    colors: Vec<Rgb565>,
+    name: String,
+}
+
+impl<'a> ZlineBandsRenderer<'a> {
+    /// Builds the renderer for `view` with `threads` bands, each band's
+    /// tables sized as [`ZlineRenderer`]'s.
+    pub fn new(scene: &'a Scene, view: &View, threads: usize) -> Result<Self, String> {
+        let single = ZlineRenderer::new(scene, view)?;
+        let renderer = BandedRenderer::new(
+            &capacities(scene, view),
+            view.width,
+            view.height,
+            Rgb565::new(0, 0, 0),
+            threads,
+        )
+        .map_err(|e| format!("zline: {e}"))?;
+        Ok(Self {
+            scene,
+            renderer,
+            caches: (0..threads).map(|_| Box::default()).collect(),
+            frame: single.frame,
+            model: single.model,
+            camera: single.camera,
+            cull: single.cull,
+            colors: single.colors,
+            name: format!("zline-{threads}-threads"),
+        })
+    }
+}
+
+impl Renderer for ZlineBandsRenderer<'_> {
+    fn name(&self) -> &str {
+        &self.name
+    }
+
+    fn wall_clock(&self) -> bool {
+        true
+    }
+
+    fn render(&mut self) -> Result<(), String> {
+        let width = self.frame.width;
+        // Each band's sink writes into its own rows of the frame.
+        let mut rest = &mut self.frame.pixels[..];
+        let mut sinks = Vec::new();
+        for rows in self.renderer.bands() {
+            let (part, tail) = rest.split_at_mut(rows.len() * width);
+            rest = tail;
+            let first = rows.start;
+            sinks.push(FnSink(move |y: u16, colors: &[Rgb565], _: &[u16]| {
+                let row = &mut part[usize::from(y - first) * width..][..width];
+                for (out, c) in row.iter_mut().zip(colors) {
+                    *out = c.into_storage();
+                }
+                Ok::<(), ()>(())
+            }));
+        }
+        let (mesh, colors) = (&self.scene.mesh, &self.colors);
+        let (model, camera, cull) = (&self.model, &self.camera, self.cull);
+        self.renderer
+            .render(&mut self.caches, &mut sinks, |tables, cache| {
+                draw_mesh(tables, &mut **cache, mesh, model, camera, cull, |f| {
+                    colors[f.face as usize]
+                })
+                .map(|_| ())
+                .map_err(ZError::from)
+            })
+            .map(|_| ())
+            .map_err(|e| format!("zline: {e:?}"))
+    }
+
+    fn face_ids(&mut self) -> Result<Option<Vec<u32>>, String> {
+        Ok(None)
     }
 
     fn rgb565(&self) -> Vec<u16> {

@@ -1,0 +1,249 @@
+//! The banded renderer (`zline::host::BandedRenderer`): a frame cut into
+//! bands of rows, each band with tables of its own built from the whole
+//! scene on a thread of its own, sends exactly the rows one renderer sends,
+//! wherever the cuts lie and after they move to balance the work.
+
+mod common;
+
+use proptest::prelude::*;
+use zline::front::scene::{Camera, Cull, VertexCache, draw_mesh, reference_model};
+use zline::host::{BandTables, BandedRenderer, host_renderer, shapes};
+use zline::raster::PolygonTables;
+use zline::raster::fixed::SUBPIXEL_STEPS;
+use zline::{Admission, Capacities, Depth16, Depth24, DepthFormat, Error, FnSink, ScreenVertex};
+
+const W: u16 = 48;
+const H: u16 = 40;
+const S: i32 = SUBPIXEL_STEPS;
+
+const CAPS: Capacities = Capacities {
+    width: W as usize,
+    vertices: 512,
+    polygons: 64,
+    corners: 512,
+    active_polygons: 64,
+    pooled_edges: 128,
+};
+
+/// A frame as (row, colours, depths), in the order the sinks got the rows.
+type Rows = Vec<(u16, Vec<u32>, Vec<u64>)>;
+
+/// Offers `scene` (polygon k in colour k + 1) to `tables`, as a scene
+/// builder would: vertices, then each polygon by its corners.
+fn offer<T: PolygonTables<u32> + ?Sized>(tables: &mut T, scene: &[Vec<ScreenVertex>]) {
+    for (k, polygon) in scene.iter().enumerate() {
+        let ids: Vec<u16> = polygon
+            .iter()
+            .map(|&v| tables.add_vertex(v).unwrap())
+            .collect();
+        tables.offer_polygon(ids, |_| Some(k as u32 + 1)).unwrap();
+    }
+}
+
+/// One renderer's rows of `build`'s scene.
+fn whole<D: DepthFormat>(
+    caps: &Capacities,
+    (width, height): (u16, u16),
+    build: impl Fn(&mut zline::Renderer<zline::host::TableVecs<u32>, zline::host::ScanVecs<u32, D>>),
+) -> Rows
+where
+    D::Value: Into<u64>,
+{
+    let mut renderer = host_renderer::<u32, D>(caps, width, height, 0).unwrap();
+    build(&mut renderer);
+    let mut rows = Rows::new();
+    renderer
+        .render(&mut FnSink(|y: u16, c: &[u32], z: &[D::Value]| {
+            rows.push((y, c.to_vec(), z.iter().map(|&v| v.into()).collect()));
+            Ok::<(), ()>(())
+        }))
+        .unwrap();
+    rows
+}
+
+/// The banded renderer's rows of one frame, band after band.
+fn banded<D: DepthFormat, X: Send>(
+    renderer: &mut BandedRenderer<u32, D>,
+    scratch: &mut [X],
+    build: impl Fn(&mut BandTables<'_, zline::Tables<zline::host::TableVecs<u32>>>, &mut X) + Sync,
+) -> Rows
+where
+    D::Value: Into<u64> + Send,
+{
+    let n = renderer.bands().count();
+    let mut bands: Vec<Rows> = vec![Rows::new(); n];
+    let mut sinks: Vec<_> = bands
+        .iter_mut()
+        .map(|rows| {
+            FnSink(move |y: u16, c: &[u32], z: &[D::Value]| {
+                rows.push((y, c.to_vec(), z.iter().map(|&v| v.into()).collect()));
+                Ok::<(), ()>(())
+            })
+        })
+        .collect();
+    renderer
+        .render(scratch, &mut sinks, |tables, x| {
+            build(tables, x);
+            Ok(())
+        })
+        .unwrap();
+    drop(sinks);
+    bands.into_iter().flatten().collect()
+}
+
+fn check_scene<D: DepthFormat>(scene: &[Vec<ScreenVertex>], count: usize, cuts: &[u16])
+where
+    D::Value: Into<u64> + Send,
+{
+    let one = whole::<D>(&CAPS, (W, H), |r| offer(r, scene));
+    let mut renderer = BandedRenderer::<u32, D>::new(&CAPS, W, H, 0, count).unwrap();
+    let mut bounds: Vec<u16> = cuts.iter().map(|c| 1 + c % (H - 1)).collect();
+    bounds.sort_unstable();
+    bounds.dedup();
+    if bounds.len() + 1 == count {
+        renderer.set_cuts(&bounds).unwrap();
+    }
+    let mut scratch = vec![(); count];
+    // The second frame runs with the cuts the first one balanced.
+    for frame in 0..2 {
+        let cuts: Vec<_> = renderer.bands().collect();
+        let rows = banded(&mut renderer, &mut scratch, |t, _| offer(t, scene));
+        assert_eq!(rows, one, "frame {frame}, bands {cuts:?}");
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+
+    #[test]
+    fn banded_frames_equal_one_renderers(
+        scene in prop::collection::vec(common::random_polygon(W, H, 10, 7), 1..=10),
+        count in 1usize..=4,
+        cuts in prop::collection::vec(0u16..H, 0..4),
+    ) {
+        check_scene::<Depth16>(&scene, count, &cuts);
+        check_scene::<Depth24>(&scene, count, &cuts);
+    }
+}
+
+#[test]
+fn a_mesh_in_bands_equals_one_renderer_culled_or_not() {
+    let mesh = shapes::torus_knot(2, 3, 64, 8, 0.45);
+    let (width, height) = (96, 72);
+    let caps = Capacities {
+        width: usize::from(width),
+        vertices: 4096,
+        polygons: 2048,
+        corners: 8192,
+        active_polygons: 2048,
+        pooled_edges: 256,
+    };
+    let model = reference_model(&mesh, 30.0, 20.0).unwrap();
+    let camera = Camera::reference(width, height);
+    for cull in [Cull::None, Cull::Back] {
+        let one = whole::<Depth16>(&caps, (width, height), |r| {
+            let mut cache = Box::new(VertexCache::<4096>::new());
+            draw_mesh(r, &mut *cache, &mesh, &model, &camera, cull, |f| f.face + 1).unwrap();
+        });
+        assert!(one.iter().flat_map(|r| &r.1).filter(|&&c| c != 0).count() > 1000);
+        for count in 1..=4 {
+            let mut renderer =
+                BandedRenderer::<u32, Depth16>::new(&caps, width, height, 0, count).unwrap();
+            let mut caches: Vec<Box<VertexCache<4096>>> =
+                (0..count).map(|_| Box::new(VertexCache::new())).collect();
+            for frame in 0..3 {
+                let rows = banded(&mut renderer, &mut caches, |t, cache| {
+                    draw_mesh(t, &mut **cache, &mesh, &model, &camera, cull, |f| {
+                        f.face + 1
+                    })
+                    .unwrap();
+                });
+                assert_eq!(rows, one, "{cull:?}, {count} bands, frame {frame}");
+            }
+        }
+    }
+}
+
+#[test]
+fn band_tables_decline_what_misses_the_band() {
+    let v = |x: i32, y: i32| ScreenVertex::new(x * S, y * S, 1000).unwrap();
+    let mut renderer = host_renderer::<u32, Depth16>(&CAPS, W, H, 0).unwrap();
+    let mut band = BandTables::new(&mut renderer.tables, 10..20);
+    assert_eq!(band.rows(), 10..20);
+    let mut offer_triangle = |a, b, c| {
+        let ids = [a, b, c].map(|p| band.add_vertex(p).unwrap());
+        band.offer_triangle(ids, |_| Some(7))
+    };
+    // Rows 0 to 5, and rows 20 to 29: outside.
+    assert_eq!(
+        offer_triangle(v(0, 0), v(20, 0), v(0, 6)),
+        Ok(Admission::Declined)
+    );
+    assert_eq!(
+        offer_triangle(v(0, 20), v(20, 20), v(0, 30)),
+        Ok(Admission::Declined)
+    );
+    // Rows 5 to 10 (its last sample row is the band's first), and one off
+    // the frame: queued, and counted off-screen as ever.
+    assert_eq!(
+        offer_triangle(v(0, 5), v(20, 5), v(0, 11)),
+        Ok(Admission::Queued(0))
+    );
+    assert_eq!(
+        offer_triangle(v(-30, 12), v(-20, 12), v(-30, 18)),
+        Ok(Admission::OffScreen)
+    );
+    assert_eq!(renderer.polygon_count(), 1);
+}
+
+#[test]
+fn cuts_move_to_where_the_polygons_are() {
+    // Thin triangles starting on rows 30 to 39 only.
+    let v = |x: i32, y: i32| ScreenVertex::new(x * S, y * S, 1000).unwrap();
+    let scene: Vec<Vec<ScreenVertex>> = (0..40)
+        .map(|k| {
+            let (x, y) = (k % 40, 30 + k / 4);
+            vec![v(x, y), v(x + 2, y), v(x, y + 1)]
+        })
+        .collect();
+    let mut renderer = BandedRenderer::<u32, Depth16>::new(&CAPS, W, H, 0, 2).unwrap();
+    assert_eq!(renderer.bands().collect::<Vec<_>>(), [0..20, 20..40]);
+    let rows = banded(&mut renderer, &mut [(), ()], |t, _| offer(t, &scene));
+    assert_eq!(rows, whole::<Depth16>(&CAPS, (W, H), |r| offer(r, &scene)));
+    let cut = renderer.bands().next().unwrap().end;
+    assert!((30..40).contains(&cut), "cut at {cut}");
+}
+
+#[test]
+fn bad_bands_and_cuts_are_errors() {
+    let new = |count| BandedRenderer::<u32, Depth16>::new(&CAPS, W, H, 0, count).map(|_| ());
+    assert_eq!(new(0), Err(Error::BadFrameSize));
+    assert_eq!(new(usize::from(H) + 1), Err(Error::BadFrameSize));
+    assert_eq!(new(usize::from(H)), Ok(()));
+    let mut renderer = BandedRenderer::<u32, Depth16>::new(&CAPS, W, H, 0, 3).unwrap();
+    for cuts in [
+        &[10][..],
+        &[10, 20, 30],
+        &[20, 10],
+        &[10, 10],
+        &[0, 10],
+        &[10, H],
+    ] {
+        assert_eq!(
+            renderer.set_cuts(cuts),
+            Err(Error::BadFrameSize),
+            "{cuts:?}"
+        );
+    }
+    assert_eq!(renderer.set_cuts(&[1, H - 1]), Ok(()));
+    assert_eq!(
+        renderer.bands().collect::<Vec<_>>(),
+        [0..1, 1..H - 1, H - 1..H]
+    );
+    // One scratch entry or sink per band.
+    let mut sinks: Vec<_> = (0..2)
+        .map(|_| FnSink(|_: u16, _: &[u32], _: &[u16]| Ok::<(), ()>(())))
+        .collect();
+    let result = renderer.render(&mut [(), (), ()], &mut sinks, |_, _| Ok(()));
+    assert!(result.is_err());
+}
