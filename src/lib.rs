@@ -39,6 +39,7 @@
 //! | | `methods::scanline_host` | the scanline core on `Vec` storage, whole-frame output ([`methods::HostScanline`]) |
 //! | tools' support (feature `std`) | [`host`] | what the examples, tools and fuzzers share |
 //! | | `host::host_mesh`, `host::storage` | meshes and core storage in `Vec`s ([`host::HostMesh`], [`host::TableVecs`], [`host::ScanVecs`]) |
+//! | | `host::bands` | one frame in bands of rows on several threads, each band's tables built from the whole scene ([`host::BandedRenderer`], [`host::BandTables`]) |
 //! | | [`host::coplanar`] | the faces of a mesh that overlap in one plane, to share it ([`front::mesh::SharedPlane`]) |
 //! | | `host::quantize` | a mesh quantized for the integer front end, in `Vec`s ([`host::QuantizedHostMesh`]) |
 //! | | [`host::shapes`] | procedural meshes (torus knot, icosphere, boxes, terrain) |
