@@ -269,6 +269,12 @@ pub(crate) enum DivisionPath {
     Native,
 }
 
+/// Whether [`TrianglePlane::new`] takes its gradients from
+/// [`float_gradient`]: on a 64-bit host (x86-64, AArch64), where one
+/// `f64` division takes less time than the two 64-bit integer divisions
+/// of [`DivisionPath::Native`]. A microcontroller never does.
+pub(crate) const FLOAT_GRADIENTS: bool = cfg!(any(target_arch = "x86_64", target_arch = "aarch64"));
+
 /// This target's [`DivisionPath`].
 pub(crate) const DIVISION_PATH: DivisionPath = if cfg!(target_pointer_width = "64") {
     DivisionPath::Native
@@ -354,6 +360,44 @@ impl GradientDivisor {
     }
 }
 
+/// `floor((n·2^16 + floor(d / 2)) / d)`, a gradient rounded to the unit,
+/// for `|n| < 2^57` and `0 < d < 2^31`, from one `f64` division; `None`
+/// when `|n| / d` is [`Divisor::QUOTIENT_LIMIT`] or more, as the integer
+/// paths. The same value as `(n div d)·2^16 + floor(((n mod d)·2^16 +
+/// floor(d / 2)) / d)` (floored division), which those paths compute.
+///
+/// Ranges: with `|n| < 2^26·d`, the quotient `Q = (n·2^16 + h) / d`
+/// (`h = floor(d / 2)`) is below `2^42 + 1` in magnitude. `n as f64`, the
+/// product by `2^16` (exact), the sum with `h` and the division each round
+/// by at most half an ulp, so the estimate is within `2^-51·2^43 = 2^-8`
+/// of `Q`, and its truncation `g` within 2 of `floor(Q)`. The remainder
+/// `n·2^16 + h - g·d` is then below `3d < 2^33` in magnitude, so
+/// computing it modulo `2^64` (wrapping: `n·2^16` itself needs 73 bits)
+/// gives it exactly, and at most two steps of `d` bring it into `[0, d)`.
+#[inline(always)]
+pub(crate) fn float_gradient(n: i64, d: u32) -> Option<i64> {
+    if n.unsigned_abs() >= Divisor::QUOTIENT_LIMIT * u64::from(d) {
+        return None;
+    }
+    let (d, half) = (i64::from(d), i64::from(d >> 1));
+    let estimate = ((n as f64) * 65536.0 + half as f64) / d as f64;
+    // Truncation, not `floor` (a library call without SSE4.1).
+    let mut g = estimate as i64;
+    let mut rest = n
+        .wrapping_shl(PLANE_FRAC_BITS)
+        .wrapping_add(half)
+        .wrapping_sub(g.wrapping_mul(d));
+    while rest < 0 {
+        g -= 1;
+        rest += d;
+    }
+    while rest >= d {
+        g += 1;
+        rest -= d;
+    }
+    Some(g)
+}
+
 /// `(n / d, n mod d)` for `n < 2^57` and `0 < d < 2^23` by 32-bit
 /// divisions only.
 ///
@@ -395,7 +439,9 @@ fn div_rem_by_bytes(n: u64, d: u32) -> (u64, u64) {
 /// `round(-a·2^24 / c)` (plane units per pixel) comes from two exact
 /// divisions by `c`: `-a·2^8 = n·c + r` (`0 <= r < c`), then
 /// `n·2^16 + round(r·2^16 / c)`. That is the same rounding as
-/// [`Plane::gradients`], to the unit.
+/// [`Plane::gradients`], to the unit. On a 64-bit host each gradient is
+/// instead one `f64` division corrected exactly ([`float_gradient`]): the
+/// same values.
 ///
 /// The row value at column 0 is anchored at `o` itself, where the plane's
 /// value is `z_o` exactly: `z_o·2^16 + round((dz_dx·(128 - o.x) +
@@ -432,7 +478,56 @@ impl TrianglePlane {
     /// gradient is steep.
     #[inline]
     pub fn new(o: ScreenVertex, p: ScreenVertex, q: ScreenVertex) -> Option<Self> {
-        Self::with_division(o, p, q, DIVISION_PATH)
+        if FLOAT_GRADIENTS {
+            Self::with_float_division(o, p, q)
+        } else {
+            Self::with_division(o, p, q, DIVISION_PATH)
+        }
+    }
+
+    /// [`Self::new`] with each gradient from [`float_gradient`]: the same
+    /// values as [`Self::with_division`] on every path (the tests compare
+    /// them).
+    #[inline(always)]
+    fn with_float_division(o: ScreenVertex, p: ScreenVertex, q: ScreenVertex) -> Option<Self> {
+        let (c, a, b) = Self::coefficients(o, p, q)?;
+        let d = c.unsigned_abs() as u32;
+        let gradient = |coef: i64| {
+            let n = if c < 0 { coef } else { -coef } << SUBPIXEL_BITS;
+            float_gradient(n, d).filter(|g| g.abs() < STEEP_GRADIENT)
+        };
+        Some(Self {
+            dz_dx: gradient(a)?,
+            dz_dy: gradient(b)?,
+            twice_area: c as i32,
+            origin: o,
+        })
+    }
+
+    /// The plane's `c`, `a` and `b` (see the type's notes), or `None` when
+    /// the triangle is too large for this set-up or its area is zero.
+    /// ([`Self::with_division`] keeps its own copy of these lines: calling
+    /// this from it changed the Cortex-M0+ build's code, and `cargo qemu`
+    /// counted 1,760 more instructions a frame.)
+    #[inline(always)]
+    fn coefficients(o: ScreenVertex, p: ScreenVertex, q: ScreenVertex) -> Option<(i64, i64, i64)> {
+        let small = |d: i32| d.unsigned_abs() < 1 << 16;
+        let (px, py, qx, qy) = (p.x - o.x, p.y - o.y, q.x - o.x, q.y - o.y);
+        if !(small(px) && small(py) && small(qx) && small(qy)) {
+            return None;
+        }
+        // Each product below 2^32 in magnitude: i64, but no overflow check
+        // needed.
+        let c = cross(px, py, qx, qy);
+        if c == 0 || c.unsigned_abs() >= 1 << 31 {
+            return None;
+        }
+        // Depths are below 2^24: their differences fit i32, and each
+        // product is below 2^40.
+        let (pz, qz) = (p.z as i32 - o.z as i32, q.z as i32 - o.z as i32);
+        let a = mul_sub_small(qz, py, pz, qy);
+        let b = mul_sub_small(pz, qx, qz, px);
+        Some((c, a, b))
     }
 
     /// [`Self::new`] on a given [`DivisionPath`] (the tests compare them).
@@ -687,6 +782,8 @@ mod tests {
                 "{o:?} {p:?} {q:?} {path:?}"
             );
         }
+        let float = TrianglePlane::with_float_division(o, p, q);
+        assert_eq!(gradients(fast), gradients(float), "{o:?} {p:?} {q:?} f64");
         if let Some(t) = fast {
             let plane = Plane::triangle(o, p, q).expect("a triangle with a set-up has area");
             assert_eq!(
@@ -713,10 +810,56 @@ mod tests {
                 "{rest} / {d} ({path:?})"
             );
         }
+        // The f64 path's gradient against i128, both signs: floored.
+        for signed in [n as i64, -(n as i64)] {
+            let exact = ((i128::from(signed) << 16) + i128::from(d / 2)).div_euclid(i128::from(d));
+            let expected = (signed.unsigned_abs() / u64::from(d) < Divisor::QUOTIENT_LIMIT)
+                .then_some(exact as i64);
+            assert_eq!(float_gradient(signed, d), expected, "{signed} / {d}");
+        }
         if d < 1 << 23 && n < 1 << 57 {
             // The byte steps themselves, past the quotient limit too.
             let expected = (n / u64::from(d), n % u64::from(d));
             assert_eq!(div_rem_by_bytes(n, d), expected, "{n} / {d}");
+        }
+    }
+
+    /// The f64 path where its estimate is most likely to miss: numerators
+    /// whose quotient `(n·2^16 + floor(d / 2)) / d` is an integer, or an
+    /// integer plus `1 / d` or minus `1 / d`, for large `|n|` (where `n as
+    /// f64` rounds) and odd `d` of every size, both signs.
+    #[test]
+    fn float_gradient_at_exact_quotients() {
+        let mut x = 0x9E37_79B9_7F4A_7C15u64;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        };
+        // The inverse of an odd d modulo 2^16 (Newton: each step doubles
+        // the correct bits).
+        let inverse = |d: i128| {
+            let mut v = d;
+            for _ in 0..4 {
+                v = (v * (2 - d * v)).rem_euclid(1 << 16);
+            }
+            v
+        };
+        for round in 0..200_000 {
+            let d = (((next() as u32) >> (next() % 31)) | 1).min((1 << 31) - 1);
+            let (di, h) = (i128::from(d), i128::from(d / 2));
+            let r = [0, 1, di - 1][round % 3].min(di - 1);
+            // g·d + r = n·2^16 + h needs g ≡ (h - r)·d^-1 (mod 2^16).
+            let low = ((h - r) * inverse(di)).rem_euclid(1 << 16);
+            let high = i128::from(next() % (1 << 26)) - (1 << 25);
+            let g = high * (1 << 16) + low;
+            let numerator = g * di + r - h;
+            assert_eq!(numerator.rem_euclid(1 << 16), 0);
+            let n = numerator >> 16;
+            let limit = i128::from(Divisor::QUOTIENT_LIMIT) * di;
+            let expected = (n.abs() < limit).then_some(g as i64);
+            assert_eq!(float_gradient(n as i64, d), expected, "{n} / {d}");
         }
     }
 
