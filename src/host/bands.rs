@@ -305,6 +305,10 @@ where
     /// they are prepared, and the band's rows are scanned into its entry
     /// of `sinks`. `scratch` and `sinks` hold one entry per band; the
     /// result holds each band's counts, top to bottom.
+    ///
+    /// The cuts move after each frame (see the type's notes): a sink that
+    /// writes a band's rows into part of a frame buffer is made for the
+    /// rows [`Self::bands`] gives just before the call.
     pub fn render<X, K, B>(
         &mut self,
         scratch: &mut [X],
