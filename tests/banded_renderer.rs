@@ -210,6 +210,13 @@ fn cuts_move_to_where_the_polygons_are() {
     assert_eq!(renderer.bands().collect::<Vec<_>>(), [0..20, 20..40]);
     let rows = banded(&mut renderer, &mut [(), ()], |t, _| offer(t, &scene));
     assert_eq!(rows, whole::<Depth16>(&CAPS, (W, H), |r| offer(r, &scene)));
+    // The last frame's account: drawn with the first cuts, every polygon
+    // in the lower band.
+    let last: Vec<_> = renderer
+        .last_frame()
+        .map(|t| (t.rows.clone(), t.polygons))
+        .collect();
+    assert_eq!(last, [(0..20, 0), (20..40, 40)]);
     let cut = renderer.bands().next().unwrap().end;
     assert!((30..40).contains(&cut), "cut at {cut}");
 }

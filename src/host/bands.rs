@@ -12,6 +12,7 @@
 //! and judges every face.
 
 use std::ops::Range;
+use std::time::{Duration, Instant};
 use std::vec::Vec;
 
 use crate::error::{Error, RenderError};
@@ -153,6 +154,23 @@ struct Band<C: Copy, D: DepthFormat> {
     /// Per row of `rows`: the polygons whose first row it is, plus one
     /// (the row's own upkeep).
     work: Vec<u32>,
+    /// What the last frame took in this band.
+    last: BandTiming,
+}
+
+/// One band's share of the last frame ([`BandedRenderer::last_frame`]):
+/// its rows, its polygons and the wall-clock time of each step on its
+/// thread.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct BandTiming {
+    /// The rows the band drew.
+    pub rows: Range<u16>,
+    /// Polygons in its tables (those reaching its rows).
+    pub polygons: usize,
+    /// Emptying its tables and building them from the scene.
+    pub build: Duration,
+    /// Preparing the tables and scanning its rows into its sink.
+    pub scan: Duration,
 }
 
 /// A frame cut into bands of rows, each drawn on a thread of its own (the
@@ -244,9 +262,16 @@ where
                 rows: cut(k)..cut(k + 1),
                 renderer: host_renderer(caps, width, height, background)?,
                 work: Vec::new(),
+                last: BandTiming::default(),
             });
         }
         Ok(Self { bands, height })
+    }
+
+    /// Each band's rows, polygons and times in the last frame drawn, top
+    /// to bottom.
+    pub fn last_frame(&self) -> impl Iterator<Item = &BandTiming> + '_ {
+        self.bands.iter().map(|band| &band.last)
     }
 
     /// The bands' rows, top to bottom.
@@ -365,14 +390,22 @@ where
 {
     let rows = band.rows.clone();
     let renderer = &mut band.renderer;
+    let start = Instant::now();
     renderer.clear();
     build(
         &mut BandTables::new(&mut renderer.tables, rows.clone()),
         scratch,
     )
     .map_err(RenderError::Table)?;
+    let built = Instant::now();
     let prepared = renderer.tables.prepare();
     let stats = scan(&prepared, &mut renderer.scanner, rows.clone(), sink)?;
+    band.last = BandTiming {
+        rows: rows.clone(),
+        polygons: prepared.polygons.len(),
+        build: built - start,
+        scan: built.elapsed(),
+    };
     band.work.clear();
     band.work.resize(rows.len(), 1);
     // Sorted by first row: those of this band's rows are one run.
