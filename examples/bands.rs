@@ -21,7 +21,7 @@ use zline::front::mesh::Mesh;
 use zline::front::scene::{Camera, Cull, FaceInfo, VertexCache, draw_mesh, reference_model};
 use zline::front::shade::Shading;
 use zline::host::{BandedRenderer, HostMesh, host_renderer, load_model, parse_size, run_tool};
-use zline::{Capacities, Depth16, Error, FnSink};
+use zline::{Depth16, Error, FnSink};
 
 /// Untimed frames before the timed ones.
 const WARM_UP: usize = 5;
@@ -45,15 +45,7 @@ fn run(args: &[String]) -> Result<(), String> {
     let o = options(args)?;
     let mesh = load_model(&o.path)?;
     let (width, height) = o.size;
-    let corners = mesh.corners.len();
-    let caps = Capacities {
-        width: usize::from(width),
-        vertices: (mesh.positions.len() * 2 + 1024).min(1 << 16),
-        polygons: corners + 64,
-        corners: 3 * corners + 256,
-        active_polygons: corners + 64,
-        pooled_edges: 4096,
-    };
+    let caps = mesh.capacities(width);
     let model = reference_model(&mesh, 30.0, 20.0).map_err(|e| e.to_string())?;
     let camera = Camera::reference(width, height);
     let shading = Shading::lambert();

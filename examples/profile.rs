@@ -36,7 +36,7 @@ use zline::front::mesh::Mesh;
 use zline::front::scene::{Camera, Cull, VertexCache, draw_mesh, reference_model};
 use zline::front::shade::Shading;
 use zline::host::{HostMesh, host_renderer, load_model, parse_size, run_tool};
-use zline::{Capacities, Depth16, FnSink};
+use zline::{Depth16, FnSink};
 
 /// Copies one finished row into the frame buffer (the sink stage).
 #[inline(never)]
@@ -54,15 +54,7 @@ fn frames(
     count: usize,
     live_shading: bool,
 ) -> Result<(), String> {
-    let corners = mesh.corners.len();
-    let caps = Capacities {
-        width: usize::from(size.0),
-        vertices: (mesh.positions.len() * 2 + 1024).min(1 << 16),
-        polygons: corners + 64,
-        corners: 3 * corners + 256,
-        active_polygons: corners + 64,
-        pooled_edges: 4096,
-    };
+    let caps = mesh.capacities(size.0);
     let black = Rgb565::new(0, 0, 0);
     let mut renderer = host_renderer::<Rgb565, Depth16>(&caps, size.0, size.1, black)
         .map_err(|e| e.to_string())?;

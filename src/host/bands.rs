@@ -94,7 +94,7 @@ impl<C, T: PolygonTables<C>> PolygonTables<C> for BandTables<'_, T> {
         corners: [u16; 3],
         decide: impl FnOnce(&Outline) -> Option<C>,
     ) -> Result<Admission, Error> {
-        let (width, height, rows) = (self.frame_width(), self.frame_height(), &self.rows);
+        let (height, rows) = (self.frame_height(), &self.rows);
         // Most triangles miss a band: the rows of their corners tell, before
         // the tables' own tests (any other outcome is theirs to give).
         let y = |k: usize| self.tables.get_vertex(corners[k]).map(|v| v.y);
@@ -106,11 +106,9 @@ impl<C, T: PolygonTables<C>> PolygonTables<C> for BandTables<'_, T> {
                 return Ok(Admission::Declined);
             }
         }
-        self.tables.offer_triangle(corners, |outline| {
-            reaches(outline, rows, width, height)
-                .then(|| decide(outline))
-                .flatten()
-        })
+        // Past that test the triangle reaches the band, or the tables
+        // refuse it before `decide` (its corners are the outline's).
+        self.tables.offer_triangle(corners, decide)
     }
 
     fn share_plane(&mut self, plane: [u16; 3]) -> Result<bool, Error> {
@@ -357,16 +355,14 @@ where
             let others: Vec<_> = jobs
                 .map(|((band, x), sink)| s.spawn(move || draw_band(band, x, sink, build)))
                 .collect();
+            // The first band on this thread, meanwhile.
             let mut stats = Vec::with_capacity(n);
-            let first = first.map(|((band, x), sink)| draw_band(band, x, sink, build));
+            stats.extend(first.map(|((band, x), sink)| draw_band(band, x, sink, build)));
             for handle in others {
                 match handle.join() {
                     Ok(band) => stats.push(band),
                     Err(panic) => std::panic::resume_unwind(panic),
                 }
-            }
-            if let Some(first) = first {
-                stats.insert(0, first);
             }
             stats.into_iter().collect::<Result<Vec<_>, _>>()
         })?;

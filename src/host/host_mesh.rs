@@ -5,6 +5,7 @@ use std::vec::Vec;
 use crate::front::mesh::{MeshArrays, SharedPlane};
 use crate::front::obj::{ObjError, ObjReader, Statement};
 use crate::front::scene::MAX_FACE_CORNERS;
+use crate::raster::Capacities;
 
 /// Positions and faces in growable storage, in the layout of
 /// [`StaticMesh`](crate::front::mesh::StaticMesh).
@@ -22,6 +23,21 @@ pub struct HostMesh {
 }
 
 impl HostMesh {
+    /// Capacities for drawing this mesh whole into frames `width` pixels
+    /// wide: room for every face's fan and for the corners clipping adds
+    /// (what the host tools and the peers bench use).
+    pub fn capacities(&self, width: u16) -> Capacities {
+        let corners = self.corners.len();
+        Capacities {
+            width: usize::from(width),
+            vertices: (self.positions.len() * 2 + 1024).min(1 << 16),
+            polygons: corners + 64,
+            corners: 3 * corners + 256,
+            active_polygons: corners + 64,
+            pooled_edges: 4096,
+        }
+    }
+
     /// Reads an OBJ file with the no_std reader (faces of up to
     /// [`MAX_FACE_CORNERS`] corners, all the pipeline draws), and finds
     /// its overlapping coplanar faces ([`Self::with_shared_planes`]).

@@ -9,7 +9,7 @@ use zline::front::scene::{Camera, Cull as ZCull, VertexCache, draw_mesh, referen
 use zline::front::shade::Shading;
 use zline::host::{BandedRenderer, ScanVecs, TableVecs, host_renderer};
 use zline::methods::HostScanline;
-use zline::{Capacities, Depth16, Error as ZError, FnSink, Renderer as ZRenderer};
+use zline::{Depth16, Error as ZError, FnSink, Renderer as ZRenderer};
 
 use crate::framebuffer::Frame565;
 use crate::renderer::Renderer;
@@ -47,7 +47,7 @@ impl<'a> ZlineRenderer<'a> {
     pub fn new(scene: &'a Scene, view: &View) -> Result<Self, String> {
         let mesh = &scene.mesh;
         let renderer = host_renderer(
-            &capacities(scene, view),
+            &scene.mesh.capacities(view.width),
             view.width,
             view.height,
             Rgb565::new(0, 0, 0),
@@ -73,21 +73,6 @@ impl<'a> ZlineRenderer<'a> {
                 .collect(),
             view: *view,
         })
-    }
-}
-
-/// Capacities for the mesh's frame: room for every face's fan and for the
-/// corners clipping adds.
-fn capacities(scene: &Scene, view: &View) -> Capacities {
-    let mesh = &scene.mesh;
-    let corners = mesh.corners.len();
-    Capacities {
-        width: usize::from(view.width),
-        vertices: (mesh.positions.len() * 2 + 1024).min(1 << 16),
-        polygons: corners + 64,
-        corners: 3 * corners + 256,
-        active_polygons: corners + 64,
-        pooled_edges: 4096,
     }
 }
 
@@ -167,7 +152,7 @@ impl<'a> ZlineBandsRenderer<'a> {
     pub fn new(scene: &'a Scene, view: &View, threads: usize) -> Result<Self, String> {
         let single = ZlineRenderer::new(scene, view)?;
         let renderer = BandedRenderer::new(
-            &capacities(scene, view),
+            &scene.mesh.capacities(view.width),
             view.width,
             view.height,
             Rgb565::new(0, 0, 0),
