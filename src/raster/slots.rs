@@ -102,8 +102,10 @@ impl<'a, T: Copy> OrderedSlots<'a, T> {
     pub fn new(items: &'a mut [T], order: &'a mut [u16]) -> Self {
         let slots = items.len().min(order.len()).min(Self::MAX_SLOTS);
         let order = &mut order[..slots];
-        for (slot, index) in (0u16..).zip(order.iter_mut()) {
-            *index = slot;
+        // slot < MAX_SLOTS = 2^16: the cast is exact. (Counting in a
+        // `0u16..` range instead overflows on its 65,536th step.)
+        for (slot, index) in order.iter_mut().enumerate() {
+            *index = slot as u16;
         }
         Self {
             items: &mut items[..slots],
@@ -172,6 +174,25 @@ mod tests {
     use super::*;
     extern crate std;
     use std::vec::Vec;
+
+    /// The most slots a table can index, from longer storage: every slot
+    /// numbered, with no overflow of the `u16` indices on the way.
+    #[test]
+    fn a_table_of_the_most_slots_numbers_them_all() {
+        let mut items = std::vec![0u8; OrderedSlots::<u8>::MAX_SLOTS + 5];
+        let mut order = std::vec![0u16; OrderedSlots::<u8>::MAX_SLOTS + 9];
+        let mut slots = OrderedSlots::new(&mut items, &mut order);
+        assert_eq!(slots.items.len(), OrderedSlots::<u8>::MAX_SLOTS);
+        assert_eq!(slots.order.len(), OrderedSlots::<u8>::MAX_SLOTS);
+        assert!(
+            slots
+                .order
+                .iter()
+                .enumerate()
+                .all(|(k, &i)| usize::from(i) == k)
+        );
+        assert_eq!(slots.push(7), Ok(0));
+    }
 
     /// Random pushes and removals against a model list: the live entries
     /// are always the model's, no entry moves, `order` stays a permutation
