@@ -1,8 +1,8 @@
 //! Where a frame drawn in bands on several threads (`BandedRenderer`)
-//! spends its time, next to one renderer on one thread: each band's
-//! polygons, its table building (the whole front end over the whole mesh,
-//! keeping the faces that reach its rows) and its scan, and the frame's
-//! wall-clock time. Medians over the frames, after a few untimed ones.
+//! spends its time, next to one renderer on one thread: the steps the
+//! threads share (projecting the vertices, sorting the faces into bands),
+//! then each band's polygons, its table building (from the projection and
+//! its faces) and its scan, and the frame's wall-clock time. Medians over the frames, after a few untimed ones.
 //!
 //! ```sh
 //! cargo run --release --example bands -- MODEL.obj [--size WxH] [--cull none|back] [--threads N] [--frames N]
@@ -17,11 +17,14 @@ use std::time::{Duration, Instant};
 
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::IntoStorage;
+use zline::front::geometry::Mat4;
 use zline::front::mesh::Mesh;
 use zline::front::scene::{Camera, Cull, FaceInfo, VertexCache, draw_mesh, reference_model};
 use zline::front::shade::Shading;
-use zline::host::{BandedRenderer, HostMesh, host_renderer, load_model, parse_size, run_tool};
-use zline::{Depth16, Error, FnSink};
+use zline::host::{
+    BandedRenderer, HostMesh, SharedSteps, host_renderer, load_model, parse_size, run_tool,
+};
+use zline::{Depth16, FnSink};
 
 /// Untimed frames before the timed ones.
 const WARM_UP: usize = 5;
@@ -93,27 +96,22 @@ fn run(args: &[String]) -> Result<(), String> {
     // The same frame in bands.
     let mut banded = BandedRenderer::<Rgb565, Depth16>::new(&caps, width, height, black, o.threads)
         .map_err(|e| e.to_string())?;
-    let mut caches: Vec<Box<VertexCache<65536>>> = (0..o.threads).map(|_| Box::default()).collect();
     let mut bands_frame = vec![0u16; pixels];
-    let mut walls = Vec::new();
+    let (mut walls, mut shared) = (Vec::new(), Vec::new());
     let mut per_band: Vec<Vec<(usize, Duration, Duration)>> = vec![Vec::new(); o.threads];
+    let scene = SceneView {
+        mesh: &mesh,
+        model: &model,
+        camera: &camera,
+        cull: o.cull,
+        colors: &colors,
+    };
     for k in 0..WARM_UP + o.frames {
         let start = Instant::now();
-        draw_bands(
-            &mut banded,
-            &mut caches,
-            &mut bands_frame,
-            width,
-            |tables, cache| {
-                draw_mesh(tables, &mut **cache, &mesh, &model, &camera, o.cull, |f| {
-                    colors[f.face as usize]
-                })
-                .map(|_| ())
-                .map_err(Error::from)
-            },
-        )?;
+        draw_bands(&mut banded, &mut bands_frame, width, &scene)?;
         if k >= WARM_UP {
             walls.push(start.elapsed());
+            shared.push(banded.last_shared_steps());
             for (band, t) in per_band.iter_mut().zip(banded.last_frame()) {
                 band.push((t.polygons, t.build, t.scan));
             }
@@ -129,7 +127,7 @@ fn run(args: &[String]) -> Result<(), String> {
         (builds, scans),
         &banded,
         per_band,
-        walls,
+        (shared, walls),
     );
     Ok(())
 }
@@ -141,21 +139,22 @@ fn copy(frame: &mut [u16], width: usize, y: usize, colors: &[Rgb565]) {
     }
 }
 
+/// What a banded frame draws.
+struct SceneView<'a> {
+    mesh: &'a HostMesh,
+    model: &'a Mat4,
+    camera: &'a Camera,
+    cull: Cull,
+    colors: &'a [Rgb565],
+}
+
 /// One banded frame into `frame`, each band's sink writing its rows.
-fn draw_bands<B>(
+fn draw_bands(
     banded: &mut BandedRenderer<Rgb565, Depth16>,
-    caches: &mut [Box<VertexCache<65536>>],
     frame: &mut [u16],
     width: u16,
-    build: B,
-) -> Result<(), String>
-where
-    B: Fn(
-            &mut zline::host::BandTables<'_, zline::Tables<zline::host::TableVecs<Rgb565>>>,
-            &mut Box<VertexCache<65536>>,
-        ) -> Result<(), Error>
-        + Sync,
-{
+    scene: &SceneView,
+) -> Result<(), String> {
     let width = usize::from(width);
     let mut rest = frame;
     let mut sinks = Vec::new();
@@ -167,8 +166,16 @@ where
             Ok::<(), ()>(())
         }));
     }
+    let colors = scene.colors;
     banded
-        .render(caches, &mut sinks, build)
+        .render_mesh(
+            scene.mesh,
+            scene.model,
+            scene.camera,
+            scene.cull,
+            &mut sinks,
+            |f: &FaceInfo| colors[f.face as usize],
+        )
         .map(|_| ())
         .map_err(|e| format!("{e:?}"))
 }
@@ -180,7 +187,7 @@ fn report(
     (builds, scans): (Vec<Duration>, Vec<Duration>),
     banded: &BandedRenderer<Rgb565, Depth16>,
     per_band: Vec<Vec<(usize, Duration, Duration)>>,
-    walls: Vec<Duration>,
+    (shared, walls): (Vec<SharedSteps>, Vec<Duration>),
 ) {
     let (build, scan) = (median(builds), median(scans));
     println!(
@@ -198,6 +205,16 @@ fn report(
         "| one thread | 0..{} | {polygons} | {build:.2} | {scan:.2} | {:.2} |",
         o.size.1,
         build + scan
+    );
+    println!(
+        "| projecting the vertices, {} threads | | | {:.2} | | |",
+        o.threads,
+        median(shared.iter().map(|s| s.project).collect())
+    );
+    println!(
+        "| sorting the faces into bands, {} threads | | | {:.2} | | |",
+        o.threads,
+        median(shared.iter().map(|s| s.sort_faces).collect())
     );
     for (k, (band, last)) in per_band.into_iter().zip(banded.last_frame()).enumerate() {
         let polygons = band.last().map_or(0, |b| b.0);

@@ -44,6 +44,10 @@ pub enum Error {
     /// The mesh has more vertices than the
     /// [`VertexCache`](crate::front::scene::VertexCache) given to the scene holds.
     VertexCacheTooSmall,
+    /// The faces given to
+    /// [`draw_mesh_projected`](crate::front::scene::draw_mesh_projected)
+    /// are not in increasing order.
+    FacesOutOfOrder,
     /// The mesh's size cannot be normalised in `f32`: the radius of its
     /// bounding sphere is positive but outside `[2^-126, 2^126]`, or a
     /// position is not finite.
@@ -85,6 +89,7 @@ impl fmt::Display for Error {
             Error::VertexCacheTooSmall => {
                 f.write_str("the vertex cache holds fewer vertices than the mesh has")
             }
+            Error::FacesOutOfOrder => f.write_str("the faces to draw are not in increasing order"),
             Error::MeshExtent => f.write_str(
                 "mesh size cannot be normalised: its radius must be 0 or between 2^-126 and 2^126",
             ),

@@ -1,6 +1,8 @@
 //! World to screen: transforms a mesh, culls and clips its faces, projects
 //! them, shades them and offers them to the renderer's tables. Only faces
 //! that can be visible enter the tables, and only the vertices they use.
+//! ([`draw_mesh_projected`] does the same with vertices projected
+//! beforehand, for example on other threads.)
 //!
 //! For each face, in order:
 //! 1. **Transform** each corner to clip space (`projection · view · model`),
@@ -514,6 +516,43 @@ impl Frame {
         p.z >= -p.w && p.z <= p.w && p.x.abs() <= gx * p.w && p.y.abs() <= gy * p.w
     }
 
+    /// Transforms mesh vertex `index` to clip space and classifies it,
+    /// projecting it when it lies inside the near, far and clipping-band
+    /// planes. With the integer front end (`positions`), a point outside
+    /// the band is clipped in `f64` like any other, and none is
+    /// non-finite.
+    #[inline(always)]
+    fn vertex<M: Mesh + ?Sized>(
+        &self,
+        mesh: &M,
+        positions: Option<&[[i16; 3]]>,
+        index: usize,
+    ) -> Result<ProjectedVertex, Error> {
+        if let (Some(fixed), Some(positions)) = (&self.fixed, positions) {
+            let q = positions.get(index).ok_or(Error::MeshIndexOutOfRange)?;
+            let c = fixed.clip(*q);
+            let stored = if fixed.inside(&c) {
+                fixed.project(&c)
+            } else {
+                None
+            };
+            return Ok(stored.map_or(ProjectedVertex::NeedsClip, ProjectedVertex::Screen));
+        }
+        let p = self.clip_position(mesh, index);
+        let stored = if !p.is_finite() {
+            None
+        } else if self.inside_guard(p) {
+            self.project(p)
+        } else {
+            None
+        };
+        Ok(match stored {
+            Some(v) => ProjectedVertex::Screen(v),
+            None if self.clip_position64(mesh, index).is_finite() => ProjectedVertex::NeedsClip,
+            None => ProjectedVertex::NonFinite,
+        })
+    }
+
     /// Clip-space position in `f32` (not checked for finiteness).
     fn clip_position<M: Mesh + ?Sized>(&self, mesh: &M, index: usize) -> Vec4 {
         self.mvp
@@ -601,7 +640,7 @@ pub fn draw_mesh<C, T, M, const VM: usize>(
     model: &Mat4,
     camera: &Camera,
     cull: Cull,
-    mut shade: impl FnMut(&FaceInfo) -> C,
+    shade: impl FnMut(&FaceInfo) -> C,
 ) -> Result<DrawStats, DrawError>
 where
     C: Copy,
@@ -616,6 +655,156 @@ where
         });
     };
     slots.fill(EMPTY);
+    draw_faces(
+        tables,
+        cache,
+        mesh,
+        TransformEach,
+        (model, camera, cull),
+        shade,
+        None,
+    )
+}
+
+/// Where one mesh vertex lands in a frame ([`project_vertices`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ProjectedVertex {
+    /// Inside the near, far and clipping-band planes: its screen vertex.
+    Screen(ScreenVertex),
+    /// Outside one of those planes: the faces using it are clipped.
+    NeedsClip,
+    /// Not finite even in `f64`: the faces using it are skipped.
+    NonFinite,
+}
+
+/// Transforms and projects mesh vertices `first..first + out.len()` as
+/// [`draw_mesh`] does (step 1), for [`draw_mesh_projected`]. Independent
+/// ranges can be projected on different threads (or cores) and the
+/// results put side by side.
+pub fn project_vertices<M: Mesh>(
+    mesh: &M,
+    model: &Mat4,
+    camera: &Camera,
+    first: usize,
+    out: &mut [ProjectedVertex],
+) -> Result<(), Error> {
+    let quantized = mesh.quantized();
+    let frame = Frame::new(model, camera, Cull::None, quantized.as_ref());
+    let positions = quantized
+        .filter(|_| frame.fixed.is_some())
+        .map(|q| q.positions);
+    for (index, slot) in (first..).zip(out) {
+        if index >= mesh.vertex_count() {
+            return Err(Error::MeshIndexOutOfRange);
+        }
+        *slot = frame.vertex(mesh, positions, index)?;
+    }
+    Ok(())
+}
+
+/// [`draw_mesh`] with the vertices already projected, for the faces in
+/// `faces` (all of them when it is `None`).
+///
+/// `projected` holds [`project_vertices`]' result for the first
+/// `projected.len()` vertices of `mesh` (normally all of them) under the
+/// same `model` and `camera`. A vertex enters the vertex table on its
+/// first use, as in `draw_mesh`, taken from `projected` instead of
+/// transformed (a vertex beyond `projected` is transformed). The faces go
+/// through steps 2 to 7 as in `draw_mesh`, in order: the rows drawn are
+/// those `draw_mesh` draws for the same faces.
+///
+/// Several tables (bands of one frame on several threads, as the host's
+/// `BandedRenderer::render_mesh` draws them) can share one projection
+/// instead of each transforming every vertex, and each draw only the
+/// faces that can reach its rows.
+///
+/// Errors: more entries in `projected` than `mesh` has vertices, or a
+/// face in `faces` beyond the mesh, is [`Error::MeshIndexOutOfRange`];
+/// faces not in increasing order are [`Error::FacesOutOfOrder`]. A
+/// projection made with another model or camera is not detected (its
+/// vertices are valid, only not this view's).
+#[allow(clippy::too_many_arguments)]
+pub fn draw_mesh_projected<C, T, M, const VM: usize>(
+    tables: &mut T,
+    cache: &mut VertexCache<VM>,
+    projected: &[ProjectedVertex],
+    faces: Option<&[u32]>,
+    mesh: &M,
+    model: &Mat4,
+    camera: &Camera,
+    cull: Cull,
+    shade: impl FnMut(&FaceInfo) -> C,
+) -> Result<DrawStats, DrawError>
+where
+    C: Copy,
+    T: PolygonTables<C> + ?Sized,
+    M: Mesh,
+{
+    let fail = |error| DrawError { face: None, error };
+    let Some(slots) = cache.slots.get_mut(..mesh.vertex_count()) else {
+        return Err(fail(Error::VertexCacheTooSmall));
+    };
+    if projected.len() > slots.len() {
+        return Err(fail(Error::MeshIndexOutOfRange));
+    }
+    if let Some(faces) = faces {
+        if faces.windows(2).any(|w| w[0] >= w[1]) {
+            return Err(fail(Error::FacesOutOfOrder));
+        }
+        if let Some(&last) = faces.last()
+            && last as usize >= mesh.face_count()
+        {
+            return Err(DrawError {
+                face: Some(last),
+                error: Error::MeshIndexOutOfRange,
+            });
+        }
+    }
+    slots.fill(EMPTY);
+    draw_faces(
+        tables,
+        cache,
+        mesh,
+        projected,
+        (model, camera, cull),
+        shade,
+        faces,
+    )
+}
+
+/// Adds a projected vertex to the tables: its index, which must stay
+/// below the cache's markers.
+fn store_vertex<C, T: PolygonTables<C> + ?Sized>(
+    tables: &mut T,
+    vertex: ScreenVertex,
+) -> Result<u16, Error> {
+    let id = tables.add_vertex(vertex)?;
+    if id >= NON_FINITE {
+        return Err(Error::VertexTableFull);
+    }
+    Ok(id)
+}
+
+/// Steps 2 to 7 for `faces` of `mesh` (increasing; all of them for
+/// `None`), with the cache reset
+/// and the first `projected.len()` vertices projected beforehand (see
+/// [`draw_mesh_projected`]).
+#[inline(always)]
+fn draw_faces<C, T, M, P, const VM: usize>(
+    tables: &mut T,
+    cache: &mut VertexCache<VM>,
+    mesh: &M,
+    projected: P,
+    (model, camera, cull): (&Mat4, &Camera, Cull),
+    mut shade: impl FnMut(&FaceInfo) -> C,
+    faces: Option<&[u32]>,
+) -> Result<DrawStats, DrawError>
+where
+    C: Copy,
+    T: PolygonTables<C> + ?Sized,
+    M: Mesh,
+    P: VertexSource,
+{
     let quantized = mesh.quantized();
     let frame = Frame::new(model, camera, cull, quantized.as_ref());
     let mut stats = DrawStats {
@@ -634,6 +823,7 @@ where
         tables,
         cache,
         mesh,
+        projected,
         positions,
         eye,
         exact_normals: quantized.map_or(&[][..], |q| q.exact_normals),
@@ -642,20 +832,56 @@ where
         shade: &mut shade,
         planes: mesh.shared_planes(),
     };
-    for face in 0..mesh.face_count() {
+    let mut draw_face = |face: usize| {
         draw.face(face).map_err(|error| DrawError {
             face: Some(face as u32),
             error,
-        })?;
+        })
+    };
+    match faces {
+        // (`draw_mesh` passes `None`: its loop is a plain count.)
+        None => (0..mesh.face_count()).try_for_each(&mut draw_face)?,
+        Some(faces) => faces
+            .iter()
+            .try_for_each(|&face| draw_face(face as usize))?,
     }
     Ok(stats)
 }
 
+/// Where a [`Draw`] finds a vertex on its first use, before transforming
+/// it itself: nowhere in [`draw_mesh`], in the projection given to
+/// [`draw_mesh_projected`]. (A type, so that `draw_mesh` pays nothing for
+/// it.)
+trait VertexSource: Copy {
+    /// Vertex `index`, if it was projected beforehand.
+    fn projected(self, index: usize) -> Option<ProjectedVertex>;
+}
+
+/// [`draw_mesh`]'s source: every vertex is transformed on its first use.
+#[derive(Debug, Clone, Copy)]
+struct TransformEach;
+
+impl VertexSource for TransformEach {
+    #[inline(always)]
+    fn projected(self, _: usize) -> Option<ProjectedVertex> {
+        None
+    }
+}
+
+impl VertexSource for &[ProjectedVertex] {
+    #[inline(always)]
+    fn projected(self, index: usize) -> Option<ProjectedVertex> {
+        self.get(index).copied()
+    }
+}
+
 /// The state of one [`draw_mesh`].
-struct Draw<'a, T: ?Sized, M: ?Sized, S, const VM: usize> {
+struct Draw<'a, T: ?Sized, M: ?Sized, S, P, const VM: usize> {
     tables: &'a mut T,
     cache: &'a mut VertexCache<VM>,
     mesh: &'a M,
+    /// The vertices projected beforehand ([`draw_mesh_projected`]).
+    projected: P,
     /// The quantized positions, when the integer front end transforms
     /// this mesh.
     positions: Option<&'a [[i16; 3]]>,
@@ -671,12 +897,13 @@ struct Draw<'a, T: ?Sized, M: ?Sized, S, const VM: usize> {
     planes: &'a [SharedPlane],
 }
 
-impl<C, T, M, S, const VM: usize> Draw<'_, T, M, S, VM>
+impl<C, T, M, S, P, const VM: usize> Draw<'_, T, M, S, P, VM>
 where
     C: Copy,
     T: PolygonTables<C> + ?Sized,
     M: Mesh,
     S: FnMut(&FaceInfo) -> C,
+    P: VertexSource,
 {
     fn face(&mut self, face: usize) -> Result<(), Error> {
         let corners = self.mesh.face(face);
@@ -868,45 +1095,14 @@ where
     /// finite. Once per vertex per draw (the profile's "transform" stage).
     #[inline(never)]
     fn transform_vertex(&mut self, index: usize) -> Result<u16, Error> {
-        if let (Some(fixed), Some(positions)) = (&self.frame.fixed, self.positions) {
-            // The integer front end: a point outside the clipping band is
-            // clipped in f64 like any other; none is non-finite.
-            let q = positions.get(index).ok_or(Error::MeshIndexOutOfRange)?;
-            let c = fixed.clip(*q);
-            let stored = if fixed.inside(&c) {
-                fixed.project(&c)
-            } else {
-                None
-            };
-            return match stored {
-                Some(v) => {
-                    let id = self.tables.add_vertex(v)?;
-                    if id >= NON_FINITE {
-                        return Err(Error::VertexTableFull);
-                    }
-                    Ok(id)
-                }
-                None => Ok(NEEDS_CLIP),
-            };
-        }
-        let p = self.frame.clip_position(self.mesh, index);
-        let stored = if !p.is_finite() {
-            None
-        } else if self.frame.inside_guard(p) {
-            self.frame.project(p)
-        } else {
-            None
+        let vertex = match self.projected.projected(index) {
+            Some(projected) => projected,
+            None => self.frame.vertex(self.mesh, self.positions, index)?,
         };
-        Ok(match stored {
-            Some(v) => {
-                let id = self.tables.add_vertex(v)?;
-                if id >= NON_FINITE {
-                    return Err(Error::VertexTableFull);
-                }
-                id
-            }
-            None if self.frame.clip_position64(self.mesh, index).is_finite() => NEEDS_CLIP,
-            None => NON_FINITE,
+        Ok(match vertex {
+            ProjectedVertex::Screen(v) => store_vertex(self.tables, v)?,
+            ProjectedVertex::NeedsClip => NEEDS_CLIP,
+            ProjectedVertex::NonFinite => NON_FINITE,
         })
     }
 

@@ -7,15 +7,25 @@
 //! activates the polygons that started above it at its first row, as
 //! [`scan`] does for several scanners over one set of tables).
 //!
-//! The work that does not shrink with the band is the front end's
-//! per-vertex and per-face tests: every thread transforms the vertices
-//! and judges every face.
+//! [`BandedRenderer::render_mesh`] shares the front end's first steps
+//! between the threads: the mesh's vertices are projected once, each
+//! thread taking a run of them, and then each thread sorts a run of the
+//! faces into the bands their rows reach. Each band then builds its tables
+//! from that projection and its own faces. ([`BandedRenderer::render`],
+//! given a closure that draws the whole scene, transforms every vertex
+//! and judges every face in every band.)
 
+use std::boxed::Box;
 use std::ops::Range;
 use std::time::{Duration, Instant};
 use std::vec::Vec;
 
 use crate::error::{Error, RenderError};
+use crate::front::geometry::Mat4;
+use crate::front::mesh::Mesh;
+use crate::front::scene::{
+    Camera, Cull, FaceInfo, ProjectedVertex, VertexCache, draw_mesh_projected, project_vertices,
+};
 use crate::raster::depth::DepthFormat;
 use crate::raster::fixed::first_sample_at_or_after;
 use crate::raster::scan::{FrameStats, scan};
@@ -32,12 +42,32 @@ use super::storage::{ScanVecs, TableVecs, host_renderer};
 pub struct BandTables<'a, T> {
     tables: &'a mut T,
     rows: Range<u16>,
+    /// Whether triangles are tested against the band (see
+    /// [`Self::triangles_reach`]).
+    test_triangles: bool,
 }
 
 impl<'a, T> BandTables<'a, T> {
     /// `tables`, keeping polygons with a sample row in `rows`.
     pub fn new(tables: &'a mut T, rows: Range<u16>) -> Self {
-        Self { tables, rows }
+        Self {
+            tables,
+            rows,
+            test_triangles: true,
+        }
+    }
+
+    /// `tables` for `rows`, for a caller whose triangles are known to reach
+    /// the band (as the faces [`BandedRenderer::render_mesh`] sorts into
+    /// bands do): triangles go straight to `tables`, other polygons are
+    /// tested. A triangle that misses the band after all costs time, not
+    /// pixels: a band's scan draws its own rows only.
+    pub fn triangles_reach(tables: &'a mut T, rows: Range<u16>) -> Self {
+        Self {
+            tables,
+            rows,
+            test_triangles: false,
+        }
     }
 
     /// The band's rows.
@@ -94,6 +124,9 @@ impl<C, T: PolygonTables<C>> PolygonTables<C> for BandTables<'_, T> {
         corners: [u16; 3],
         decide: impl FnOnce(&Outline) -> Option<C>,
     ) -> Result<Admission, Error> {
+        if !self.test_triangles {
+            return self.tables.offer_triangle(corners, decide);
+        }
         let (height, rows) = (self.frame_height(), &self.rows);
         // Most triangles miss a band: the rows of their corners tell, before
         // the tables' own tests (any other outcome is theirs to give).
@@ -233,7 +266,54 @@ pub struct BandTiming {
 pub struct BandedRenderer<C: Copy, D: DepthFormat> {
     bands: Vec<Band<C, D>>,
     height: u16,
+    /// [`Self::render_mesh`]'s projection of the mesh's vertices.
+    projected: Vec<ProjectedVertex>,
+    /// The first sample row at or below each projected vertex
+    /// ([`NOT_PROJECTED`] for the others): 2 bytes a vertex, so that
+    /// sorting the faces into bands reads little memory.
+    vertex_rows: Vec<i16>,
+    /// [`Self::render_mesh`]'s faces for each band, per run of faces
+    /// (`face_lists[run][band]`).
+    face_lists: Vec<Vec<Vec<u32>>>,
+    /// [`Self::render_mesh`]'s scratch for each band.
+    scratch: Vec<MeshScratch>,
+    /// What [`Self::render_mesh`]'s shared steps took in the last frame.
+    shared: SharedSteps,
 }
+
+/// A band's scratch in [`BandedRenderer::render_mesh`].
+#[derive(Debug, Clone)]
+struct MeshScratch {
+    /// Which band it is.
+    band: usize,
+    /// Where the mesh's vertices went in its vertex table.
+    cache: Box<VertexCache<MESH_VERTICES>>,
+    /// Its faces, in increasing order.
+    faces: Vec<u32>,
+}
+
+/// The wall-clock time of [`BandedRenderer::render_mesh`]'s steps shared
+/// by the threads, before any band starts building its tables.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct SharedSteps {
+    /// Projecting the mesh's vertices.
+    pub project: Duration,
+    /// Sorting the faces into the bands their rows reach.
+    pub sort_faces: Duration,
+}
+
+/// Most vertices a mesh drawn by [`BandedRenderer::render_mesh`] may have
+/// (a face's corners are `u16` indices).
+pub const MESH_VERTICES: usize = 1 << 16;
+
+/// Fewest vertices (or faces) [`BandedRenderer::render_mesh`] gives a
+/// thread of its own to project (or sort into bands): about 0.1 ms of work
+/// on a desktop core, a few times what starting the thread costs. Smaller
+/// meshes use fewer threads.
+const ITEMS_PER_THREAD: usize = 4096;
+
+/// The row of a vertex that is not projected.
+const NOT_PROJECTED: i16 = i16::MIN;
 
 impl<C: Copy + Send + Sync, D: DepthFormat> BandedRenderer<C, D>
 where
@@ -263,13 +343,26 @@ where
                 last: BandTiming::default(),
             });
         }
-        Ok(Self { bands, height })
+        Ok(Self {
+            bands,
+            height,
+            projected: Vec::new(),
+            vertex_rows: Vec::new(),
+            face_lists: Vec::new(),
+            scratch: Vec::new(),
+            shared: SharedSteps::default(),
+        })
     }
 
     /// Each band's rows, polygons and times in the last frame drawn, top
     /// to bottom.
     pub fn last_frame(&self) -> impl Iterator<Item = &BandTiming> + '_ {
         self.bands.iter().map(|band| &band.last)
+    }
+
+    /// What the last [`Self::render_mesh`]'s shared steps took.
+    pub fn last_shared_steps(&self) -> SharedSteps {
+        self.shared
     }
 
     /// The bands' rows, top to bottom.
@@ -322,6 +415,121 @@ where
         let _ = self.set_cuts(&cuts);
     }
 
+    /// Draws one frame of `mesh`, as [`draw_mesh`](crate::front::scene::draw_mesh)
+    /// with these arguments followed by one renderer's `render` would, with
+    /// the work spread over one thread per band:
+    ///
+    /// 1. the mesh's vertices are projected once ([`project_vertices`]),
+    ///    each thread taking an equal run of them;
+    /// 2. each thread takes an equal run of the faces and sorts them into
+    ///    the bands that hold a sample row between their corners' (a face
+    ///    with a corner that needs clipping goes to every band);
+    /// 3. each band, on its own thread, builds its tables from the
+    ///    projection and its faces ([`draw_mesh_projected`]) and scans its
+    ///    rows into its entry of `sinks`, as [`Self::render`] does.
+    ///
+    /// Steps 1 and 2 use fewer threads for small meshes (a few thousand
+    /// vertices or faces per thread). `shade` is called from several
+    /// threads, for the faces each band keeps (a face reaching two bands is
+    /// shaded in both). The mesh may have up to [`MESH_VERTICES`] vertices.
+    #[allow(clippy::too_many_arguments)]
+    pub fn render_mesh<M, K, S>(
+        &mut self,
+        mesh: &M,
+        model: &Mat4,
+        camera: &Camera,
+        cull: Cull,
+        sinks: &mut [K],
+        shade: S,
+    ) -> Result<Vec<FrameStats>, RenderError<K::Error>>
+    where
+        M: Mesh + Sync,
+        K: RowSink<C, D::Value> + Send,
+        K::Error: Send,
+        S: Fn(&FaceInfo) -> C + Sync,
+    {
+        let count = mesh.vertex_count();
+        if count > MESH_VERTICES {
+            return Err(RenderError::Table(Error::VertexCacheTooSmall));
+        }
+        let n = self.bands.len();
+        // 1. The projection.
+        let start = Instant::now();
+        // Every entry is written below: the old values may stay.
+        let mut projected = core::mem::take(&mut self.projected);
+        projected.resize(count, ProjectedVertex::NonFinite);
+        let mut rows = core::mem::take(&mut self.vertex_rows);
+        rows.resize(count, NOT_PROJECTED);
+        let run = runs(count, n);
+        let parts = projected.chunks_mut(run).zip(rows.chunks_mut(run));
+        let results = on_threads(parts.enumerate(), |(k, (part, rows))| {
+            project_vertices(mesh, model, camera, k * run, part)?;
+            for (row, vertex) in rows.iter_mut().zip(part.iter()) {
+                *row = vertex_row(vertex);
+            }
+            Ok(())
+        });
+        let projected_at = Instant::now();
+        if let Err(e) = results.into_iter().collect::<Result<Vec<()>, Error>>() {
+            self.projected = projected;
+            self.vertex_rows = rows;
+            return Err(RenderError::Table(e));
+        }
+        // 2. The faces, sorted into bands.
+        let faces = mesh.face_count();
+        let run = runs(faces, n);
+        let mut lists = core::mem::take(&mut self.face_lists);
+        lists.resize_with(faces.div_ceil(run.max(1)), Vec::new);
+        let bands: Vec<Range<u16>> = self.bands().collect();
+        let (rows_ref, bands_ref, height) = (&rows, &bands, self.height);
+        on_threads(lists.iter_mut().enumerate(), |(k, out)| {
+            let faces = k * run..((k + 1) * run).min(faces);
+            sort_faces(mesh, rows_ref, faces, bands_ref, height, out);
+        });
+        let projected_ref = &projected;
+        self.shared = SharedSteps {
+            project: projected_at - start,
+            sort_faces: projected_at.elapsed(),
+        };
+        // 3. The bands.
+        let mut scratch = core::mem::take(&mut self.scratch);
+        scratch.resize_with(n, || MeshScratch {
+            band: 0,
+            cache: Box::default(),
+            faces: Vec::new(),
+        });
+        for (band, x) in scratch.iter_mut().enumerate() {
+            x.band = band;
+        }
+        let lists_ref = &lists;
+        let build = |tables: &mut BandTables<'_, _>, x: &mut MeshScratch| {
+            x.faces.clear();
+            for run in lists_ref {
+                x.faces.extend_from_slice(&run[x.band]);
+            }
+            draw_mesh_projected(
+                tables,
+                &mut *x.cache,
+                projected_ref,
+                Some(&x.faces),
+                mesh,
+                model,
+                camera,
+                cull,
+                &shade,
+            )
+            .map(|_| ())
+            .map_err(Error::from)
+        };
+        // The triangles of a band's faces reach it (see `sort_faces`).
+        let result = self.render_bands(&mut scratch, sinks, build, false);
+        self.projected = projected;
+        self.vertex_rows = rows;
+        self.face_lists = lists;
+        self.scratch = scratch;
+        result
+    }
+
     /// Draws one frame. For each band, on its own thread: its tables are
     /// emptied, `build` fills them from the whole scene (given the band's
     /// tables and its entry of `scratch`, for example a vertex cache),
@@ -344,6 +552,24 @@ where
         K::Error: Send,
         B: Fn(&mut BandTables<'_, Tables<TableVecs<C>>>, &mut X) -> Result<(), Error> + Sync,
     {
+        self.render_bands(scratch, sinks, build, true)
+    }
+
+    /// [`Self::render`], testing the triangles against each band or not
+    /// (see [`BandTables::triangles_reach`]).
+    fn render_bands<X, K, B>(
+        &mut self,
+        scratch: &mut [X],
+        sinks: &mut [K],
+        build: B,
+        test_triangles: bool,
+    ) -> Result<Vec<FrameStats>, RenderError<K::Error>>
+    where
+        X: Send,
+        K: RowSink<C, D::Value> + Send,
+        K::Error: Send,
+        B: Fn(&mut BandTables<'_, Tables<TableVecs<C>>>, &mut X) -> Result<(), Error> + Sync,
+    {
         let n = self.bands.len();
         if scratch.len() != n || sinks.len() != n {
             return Err(RenderError::Table(Error::BadFrameSize));
@@ -353,11 +579,14 @@ where
         let first = jobs.next();
         let stats = std::thread::scope(|s| {
             let others: Vec<_> = jobs
-                .map(|((band, x), sink)| s.spawn(move || draw_band(band, x, sink, build)))
+                .map(|((band, x), sink)| {
+                    s.spawn(move || draw_band(band, x, sink, build, test_triangles))
+                })
                 .collect();
             // The first band on this thread, meanwhile.
             let mut stats = Vec::with_capacity(n);
-            stats.extend(first.map(|((band, x), sink)| draw_band(band, x, sink, build)));
+            let band = |((band, x), sink)| draw_band(band, x, sink, build, test_triangles);
+            stats.extend(first.map(band));
             for handle in others {
                 match handle.join() {
                     Ok(band) => stats.push(band),
@@ -371,12 +600,129 @@ where
     }
 }
 
+/// The length of each of at most `threads` equal runs of `items` items,
+/// none shorter than [`ITEMS_PER_THREAD`] (one run holds them all when
+/// there are fewer); at least 1.
+fn runs(items: usize, threads: usize) -> usize {
+    items
+        .div_ceil(threads.max(1))
+        .max(ITEMS_PER_THREAD)
+        .min(items)
+        .max(1)
+}
+
+/// `job` for each of `items`, each on a thread of its own but the first,
+/// which runs on the calling thread: the results in the items' order.
+fn on_threads<A, R, J>(items: impl Iterator<Item = A>, job: J) -> Vec<R>
+where
+    A: Send,
+    R: Send,
+    J: Fn(A) -> R + Sync,
+{
+    let mut items = items;
+    let Some(first) = items.next() else {
+        return Vec::new();
+    };
+    let job = &job;
+    std::thread::scope(|s| {
+        let others: Vec<_> = items.map(|item| s.spawn(move || job(item))).collect();
+        let mut results = Vec::with_capacity(others.len() + 1);
+        results.push(job(first));
+        for handle in others {
+            match handle.join() {
+                Ok(r) => results.push(r),
+                Err(panic) => std::panic::resume_unwind(panic),
+            }
+        }
+        results
+    })
+}
+
+/// The first sample row at or below a projected vertex, or
+/// [`NOT_PROJECTED`]. Projected vertices lie in the guard band, whose rows
+/// fit in `i16` with room to spare (`GUARD_BAND_PX` < 2^15).
+fn vertex_row(vertex: &ProjectedVertex) -> i16 {
+    const _: () = assert!(crate::raster::fixed::GUARD_BAND_PX < (1 << 14));
+    match vertex {
+        ProjectedVertex::Screen(v) => first_sample_at_or_after(v.y) as i16,
+        _ => NOT_PROJECTED,
+    }
+}
+
+/// Sorts `faces` of `mesh` into the bands they can reach, `out[band]`
+/// holding the band's faces in increasing order, from the first sample
+/// row at or below each vertex (`rows`, see [`vertex_row`]). A face goes
+/// to a band when the sample rows from its highest corner's to its lowest
+/// corner's (that one left out) include one of the band's, as
+/// [`BandTables`] decides for a triangle; a face covering no sample row
+/// goes nowhere (the tables would leave it out). A face with a corner that
+/// is not projected (to be clipped, not finite, or beyond the mesh) or
+/// with fewer than three corners goes to every band, whose tables judge
+/// it.
+fn sort_faces<M: Mesh>(
+    mesh: &M,
+    rows: &[i16],
+    faces: Range<usize>,
+    bands: &[Range<u16>],
+    height: u16,
+    out: &mut Vec<Vec<u32>>,
+) {
+    // Each list has room for every face, and a face is written at the
+    // list's end whether it is kept or not, the length moving only when it
+    // is: about half the faces reach a band, and a branch on it would be
+    // mispredicted as often.
+    out.resize_with(bands.len(), Vec::new);
+    for list in out.iter_mut() {
+        list.clear();
+        list.resize(faces.len() + 1, 0);
+    }
+    let mut lengths: Vec<usize> = std::vec![0; bands.len()];
+    for face in faces {
+        // Faces are counted in u32 (`DrawStats`).
+        let id = face as u32;
+        // `None`: every band.
+        let (first, end) =
+            sample_rows(mesh.face(face), rows, height).unwrap_or((i16::MIN, i16::MAX));
+        for ((band, list), length) in bands.iter().zip(out.iter_mut()).zip(&mut lengths) {
+            list[*length] = id;
+            let reaches = first < end && first < band.end as i16 && end > band.start as i16;
+            *length += usize::from(reaches);
+        }
+    }
+    for (list, &length) in out.iter_mut().zip(&lengths) {
+        list.truncate(length);
+    }
+}
+
+/// The sample rows `first..end` of a face whose corners are all projected
+/// (empty when it covers none), clamped to the frame (`height` <= 4,096);
+/// `None` when a corner is not projected or the face has fewer than three
+/// corners. (The first sample row at or below a corner is monotonic in
+/// its `y`, so the face's rows come from its corners' rows.)
+fn sample_rows(corners: &[u16], rows: &[i16], height: u16) -> Option<(i16, i16)> {
+    if corners.len() < 3 {
+        return None;
+    }
+    let (mut low, mut high) = (i16::MAX, NOT_PROJECTED);
+    for &corner in corners {
+        match rows.get(usize::from(corner)) {
+            Some(&row) if row != NOT_PROJECTED => {
+                low = low.min(row);
+                high = high.max(row);
+            }
+            _ => return None,
+        }
+    }
+    Some((low.max(0), high.min(height as i16)))
+}
+
 /// One band's frame: build, prepare, scan; then its work per row.
 fn draw_band<C, D, X, K, B>(
     band: &mut Band<C, D>,
     scratch: &mut X,
     sink: &mut K,
     build: &B,
+    test_triangles: bool,
 ) -> Result<FrameStats, RenderError<K::Error>>
 where
     C: Copy,
@@ -388,11 +734,12 @@ where
     let renderer = &mut band.renderer;
     let start = Instant::now();
     renderer.clear();
-    build(
-        &mut BandTables::new(&mut renderer.tables, rows.clone()),
-        scratch,
-    )
-    .map_err(RenderError::Table)?;
+    let mut tables = BandTables {
+        tables: &mut renderer.tables,
+        rows: rows.clone(),
+        test_triangles,
+    };
+    build(&mut tables, scratch).map_err(RenderError::Table)?;
     let built = Instant::now();
     let prepared = renderer.tables.prepare();
     let stats = scan(&prepared, &mut renderer.scanner, rows.clone(), sink)?;

@@ -5,11 +5,13 @@ use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::pixelcolor::raw::RawU16;
 use embedded_graphics::prelude::IntoStorage;
 use zline::front::geometry::Mat4 as ZMat4;
-use zline::front::scene::{Camera, Cull as ZCull, VertexCache, draw_mesh, reference_model};
+use zline::front::scene::{
+    Camera, Cull as ZCull, FaceInfo, VertexCache, draw_mesh, reference_model,
+};
 use zline::front::shade::Shading;
 use zline::host::{BandedRenderer, ScanVecs, TableVecs, host_renderer};
 use zline::methods::HostScanline;
-use zline::{Depth16, Error as ZError, FnSink, Renderer as ZRenderer};
+use zline::{Depth16, FnSink, Renderer as ZRenderer};
 
 use crate::framebuffer::Frame565;
 use crate::renderer::Renderer;
@@ -128,16 +130,15 @@ impl Renderer for ZlineRenderer<'_> {
 }
 
 /// zline drawing the frame in horizontal bands on several threads
-/// ([`BandedRenderer`]): each thread builds its band's tables from the
-/// whole mesh (every thread transforms every vertex and judges every
-/// face, keeping the faces that reach its rows) and scans its rows into
-/// its own part of the frame. The same frame as [`ZlineRenderer`], bit for
+/// ([`BandedRenderer::render_mesh`]): the threads project the mesh's
+/// vertices (each an equal run of them), then each builds its band's
+/// tables from that projection (judging every face, keeping those that
+/// reach its rows) and scans its rows into its own part of the frame. The same frame as [`ZlineRenderer`], bit for
 /// bit. Timed by the wall clock, not thread CPU time (the work is on
 /// several threads); the timed region is [`ZlineRenderer`]'s.
 pub struct ZlineBandsRenderer<'a> {
     scene: &'a Scene,
     renderer: BandedRenderer<Rgb565, Depth16>,
-    caches: Vec<Box<VertexCache<65536>>>,
     frame: Frame565,
     model: ZMat4,
     camera: Camera,
@@ -162,7 +163,6 @@ impl<'a> ZlineBandsRenderer<'a> {
         Ok(Self {
             scene,
             renderer,
-            caches: (0..threads).map(|_| Box::default()).collect(),
             frame: single.frame,
             model: single.model,
             camera: single.camera,
@@ -199,16 +199,16 @@ impl Renderer for ZlineBandsRenderer<'_> {
                 Ok::<(), ()>(())
             }));
         }
-        let (mesh, colors) = (&self.scene.mesh, &self.colors);
-        let (model, camera, cull) = (&self.model, &self.camera, self.cull);
+        let colors = &self.colors;
         self.renderer
-            .render(&mut self.caches, &mut sinks, |tables, cache| {
-                draw_mesh(tables, &mut **cache, mesh, model, camera, cull, |f| {
-                    colors[f.face as usize]
-                })
-                .map(|_| ())
-                .map_err(ZError::from)
-            })
+            .render_mesh(
+                &self.scene.mesh,
+                &self.model,
+                &self.camera,
+                self.cull,
+                &mut sinks,
+                |f: &FaceInfo| colors[f.face as usize],
+            )
             .map(|_| ())
             .map_err(|e| format!("zline: {e:?}"))
     }
