@@ -516,18 +516,22 @@ impl Frame {
         p.z >= -p.w && p.z <= p.w && p.x.abs() <= gx * p.w && p.y.abs() <= gy * p.w
     }
 
-    /// Transforms mesh vertex `index` to clip space and classifies it,
-    /// projecting it when it lies inside the near, far and clipping-band
-    /// planes. With the integer front end (`positions`), a point outside
-    /// the band is clipped in `f64` like any other, and none is
-    /// non-finite.
+    /// Transforms mesh vertex `index` to clip space and classifies it: a
+    /// vertex inside the near, far and clipping-band planes is projected
+    /// and given to `screen`; for the others, `needs_clip` or `non_finite`
+    /// (what [`ProjectedVertex`] names). With the integer front end
+    /// (`positions`), a point outside the band is clipped in `f64` like any
+    /// other, and none is non-finite. (The outcomes are the caller's: an
+    /// enum returned and matched cost 0.25 % of an RP2040 frame.)
     #[inline(always)]
-    fn vertex<M: Mesh + ?Sized>(
+    fn vertex<M: Mesh + ?Sized, R>(
         &self,
         mesh: &M,
         positions: Option<&[[i16; 3]]>,
         index: usize,
-    ) -> Result<ProjectedVertex, Error> {
+        screen: impl FnOnce(ScreenVertex) -> Result<R, Error>,
+        (needs_clip, non_finite): (R, R),
+    ) -> Result<R, Error> {
         if let (Some(fixed), Some(positions)) = (&self.fixed, positions) {
             let q = positions.get(index).ok_or(Error::MeshIndexOutOfRange)?;
             let c = fixed.clip(*q);
@@ -536,7 +540,10 @@ impl Frame {
             } else {
                 None
             };
-            return Ok(stored.map_or(ProjectedVertex::NeedsClip, ProjectedVertex::Screen));
+            return match stored {
+                Some(v) => screen(v),
+                None => Ok(needs_clip),
+            };
         }
         let p = self.clip_position(mesh, index);
         let stored = if !p.is_finite() {
@@ -546,11 +553,11 @@ impl Frame {
         } else {
             None
         };
-        Ok(match stored {
-            Some(v) => ProjectedVertex::Screen(v),
-            None if self.clip_position64(mesh, index).is_finite() => ProjectedVertex::NeedsClip,
-            None => ProjectedVertex::NonFinite,
-        })
+        match stored {
+            Some(v) => screen(v),
+            None if self.clip_position64(mesh, index).is_finite() => Ok(needs_clip),
+            None => Ok(non_finite),
+        }
     }
 
     /// Clip-space position in `f32` (not checked for finiteness).
@@ -697,7 +704,14 @@ pub fn project_vertices<M: Mesh>(
         if index >= mesh.vertex_count() {
             return Err(Error::MeshIndexOutOfRange);
         }
-        *slot = frame.vertex(mesh, positions, index)?;
+        let fates = (ProjectedVertex::NeedsClip, ProjectedVertex::NonFinite);
+        *slot = frame.vertex(
+            mesh,
+            positions,
+            index,
+            |v| Ok(ProjectedVertex::Screen(v)),
+            fates,
+        )?;
     }
     Ok(())
 }
@@ -774,6 +788,7 @@ where
 
 /// Adds a projected vertex to the tables: its index, which must stay
 /// below the cache's markers.
+#[inline(always)]
 fn store_vertex<C, T: PolygonTables<C> + ?Sized>(
     tables: &mut T,
     vertex: ScreenVertex,
@@ -1095,15 +1110,18 @@ where
     /// finite. Once per vertex per draw (the profile's "transform" stage).
     #[inline(never)]
     fn transform_vertex(&mut self, index: usize) -> Result<u16, Error> {
-        let vertex = match self.projected.projected(index) {
-            Some(projected) => projected,
-            None => self.frame.vertex(self.mesh, self.positions, index)?,
-        };
-        Ok(match vertex {
-            ProjectedVertex::Screen(v) => store_vertex(self.tables, v)?,
-            ProjectedVertex::NeedsClip => NEEDS_CLIP,
-            ProjectedVertex::NonFinite => NON_FINITE,
-        })
+        let tables = &mut *self.tables;
+        let mut store = |v| store_vertex(tables, v);
+        if let Some(vertex) = self.projected.projected(index) {
+            return match vertex {
+                ProjectedVertex::Screen(v) => store(v),
+                ProjectedVertex::NeedsClip => Ok(NEEDS_CLIP),
+                ProjectedVertex::NonFinite => Ok(NON_FINITE),
+            };
+        }
+        let fates = (NEEDS_CLIP, NON_FINITE);
+        self.frame
+            .vertex(self.mesh, self.positions, index, store, fates)
     }
 
     /// The slow path for faces that cross the near or far plane or the
