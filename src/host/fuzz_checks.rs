@@ -17,7 +17,9 @@
 //!   draw the scanline's frame exactly, the interval and the painter's
 //!   methods and the reference finish with valid face ids (a wrong
 //!   picture from the painter is no finding; a panic or an overflow in any
-//!   method is).
+//!   method is); and the same scene from vertices projected beforehand
+//!   ([`draw_mesh_projected`]) and in two bands on two threads
+//!   ([`crate::host::BandedRenderer::render_mesh`]) gives the same rows.
 
 use std::boxed::Box;
 use std::format;
@@ -29,9 +31,12 @@ use crate::error::{Error, RenderError};
 use crate::front::geometry::{Mat4, Vec3};
 use crate::front::mesh::{Mesh, StaticMesh};
 use crate::front::obj::{ObjMesh, ObjReader, Statement, count};
-use crate::front::scene::{Camera, Cull, DrawError, VertexCache, draw_mesh, reference_model};
+use crate::front::scene::{
+    Camera, Cull, DrawError, ProjectedVertex, VertexCache, draw_mesh, draw_mesh_projected,
+    project_vertices, reference_model,
+};
 use crate::front::shade::Shading;
-use crate::host::host_renderer;
+use crate::host::{BandedRenderer, host_renderer};
 use crate::host::{HostMesh, QuantizedHostMesh};
 use crate::methods::exact::{Offered, check_frame_shared};
 use crate::raster::depth::{Depth16, Depth24, DepthFormat};
@@ -428,6 +433,84 @@ fn other_methods_check<D: DepthFormat, M: Mesh>(
     }
 }
 
+/// A row as (row, colours, depths).
+type Rows = Vec<(u16, Vec<u32>, Vec<u32>)>;
+
+fn row_of<V: Copy + Into<u32>>(y: u16, colors: &[u32], depths: &[V]) -> (u16, Vec<u32>, Vec<u32>) {
+    (
+        y,
+        colors.to_vec(),
+        depths.iter().map(|&z| z.into()).collect(),
+    )
+}
+
+/// The scene `rows` came from, drawn from vertices projected beforehand
+/// (in two runs) and by the banded renderer in two bands on two threads:
+/// the same rows, and no error where `draw_mesh` had none.
+fn projected_check<D: DepthFormat, M: Mesh + Sync>(
+    mesh: &M,
+    model: &Mat4,
+    camera: &Camera,
+    cull: Cull,
+    rows: &Rows,
+) where
+    D::Value: Into<u32> + Send,
+{
+    let count = mesh.vertex_count();
+    let mut projected = vec![ProjectedVertex::NonFinite; count];
+    let (low, high) = projected.split_at_mut(count / 2);
+    project_vertices(mesh, model, camera, 0, low).expect("vertices of the mesh");
+    project_vertices(mesh, model, camera, count / 2, high).expect("vertices of the mesh");
+    let mut renderer =
+        host_renderer::<u32, D>(&PIPELINE_CAPACITIES, camera.width, camera.height, 0)
+            .expect("frame size");
+    let mut cache: Box<VertexCache<4096>> = Box::default();
+    draw_mesh_projected(
+        &mut renderer,
+        &mut *cache,
+        &projected,
+        None,
+        mesh,
+        model,
+        camera,
+        cull,
+        |f| f.face + 1,
+    )
+    .expect("draw_mesh drew it");
+    let mut again = Rows::new();
+    renderer
+        .render(&mut FnSink(
+            |y: u16, colors: &[u32], depths: &[D::Value]| {
+                again.push(row_of(y, colors, depths));
+                Ok::<(), ()>(())
+            },
+        ))
+        .expect("draw_mesh's frame was rendered");
+    assert!(again == *rows, "draw_mesh_projected's rows differ");
+    if camera.height < 2 {
+        return;
+    }
+    let mut banded =
+        BandedRenderer::<u32, D>::new(&PIPELINE_CAPACITIES, camera.width, camera.height, 0, 2)
+            .expect("bands");
+    let mut bands: Vec<Rows> = vec![Rows::new(); 2];
+    let mut sinks: Vec<_> = bands
+        .iter_mut()
+        .map(|band| {
+            FnSink(move |y: u16, colors: &[u32], depths: &[D::Value]| {
+                band.push(row_of(y, colors, depths));
+                Ok::<(), ()>(())
+            })
+        })
+        .collect();
+    banded
+        .render_mesh(mesh, model, camera, cull, &mut sinks, |f| f.face + 1)
+        .expect("one renderer drew it");
+    drop(sinks);
+    let banded_rows: Rows = bands.into_iter().flatten().collect();
+    assert!(banded_rows == *rows, "the banded renderer's rows differ");
+}
+
 /// Capacities of [`pipeline`]'s renderer.
 const PIPELINE_CAPACITIES: Capacities = Capacities {
     width: PIPELINE_WIDTH,
@@ -438,14 +521,14 @@ const PIPELINE_CAPACITIES: Capacities = Capacities {
     pooled_edges: 256,
 };
 
-fn pipeline_check<D: DepthFormat, M: Mesh>(
+fn pipeline_check<D: DepthFormat, M: Mesh + Sync>(
     mesh: &M,
     model: &Mat4,
     camera: &Camera,
     cull: Cull,
     other: &OtherMethods,
 ) where
-    D::Value: Into<u32>,
+    D::Value: Into<u32> + Send,
 {
     let mut renderer =
         host_renderer::<u32, D>(&PIPELINE_CAPACITIES, camera.width, camera.height, 0)
@@ -494,18 +577,23 @@ fn pipeline_check<D: DepthFormat, M: Mesh>(
     assert_eq!(stats.faces as usize, mesh.face_count());
     let mut next_row = 0u16;
     let faces = mesh.face_count() as u32;
-    let result = renderer.render(&mut FnSink(|y: u16, colors: &[u32], _: &[D::Value]| {
-        assert_eq!(y, next_row, "rows in order, once each");
-        next_row += 1;
-        assert_eq!(colors.len(), usize::from(camera.width));
-        assert!(colors.iter().all(|&c| c <= faces), "a colour names no face");
-        Ok::<(), ()>(())
-    }));
+    let mut rows = Rows::new();
+    let result = renderer.render(&mut FnSink(
+        |y: u16, colors: &[u32], depths: &[D::Value]| {
+            assert_eq!(y, next_row, "rows in order, once each");
+            next_row += 1;
+            assert_eq!(colors.len(), usize::from(camera.width));
+            assert!(colors.iter().all(|&c| c <= faces), "a colour names no face");
+            rows.push(row_of(y, colors, depths));
+            Ok::<(), ()>(())
+        },
+    ));
     match result {
         Ok(frame) => {
             assert_eq!(next_row, camera.height);
             assert_eq!(frame.polygons, stats.queued);
             other_methods_check::<D, M>(mesh, model, camera, cull, other);
+            projected_check::<D, M>(mesh, model, camera, cull, &rows);
         }
         Err(RenderError::Table(e)) => assert!(
             matches!(
