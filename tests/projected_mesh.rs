@@ -42,7 +42,16 @@ fn shade(f: &FaceInfo) -> u32 {
 
 /// One renderer's rows after `build` filled its tables.
 fn rows_of(build: impl FnOnce(&mut HostRenderer)) -> Rows {
-    let mut renderer = host_renderer::<u32, Depth16>(&caps(), WIDTH, HEIGHT, 0).unwrap();
+    rows_sized(&caps(), (WIDTH, HEIGHT), build)
+}
+
+/// [`rows_of`] for other capacities and frame sizes.
+fn rows_sized(
+    caps: &Capacities,
+    (width, height): (u16, u16),
+    build: impl FnOnce(&mut HostRenderer),
+) -> Rows {
+    let mut renderer = host_renderer::<u32, Depth16>(caps, width, height, 0).unwrap();
     build(&mut renderer);
     let mut rows = Rows::new();
     renderer
@@ -52,6 +61,30 @@ fn rows_of(build: impl FnOnce(&mut HostRenderer)) -> Rows {
         }))
         .unwrap();
     rows
+}
+
+/// The view the tests draw from: mesh, model matrix, camera, culling.
+type View<'a, M> = (&'a M, &'a Mat4, &'a Camera, Cull);
+
+/// The rows `draw_mesh` draws.
+fn mesh_rows<M: Mesh>((mesh, model, camera, cull): View<'_, M>) -> Rows {
+    let mut cache = Box::new(VertexCache::<4096>::new());
+    rows_of(|r| {
+        draw_mesh(r, &mut *cache, mesh, model, camera, cull, shade).unwrap();
+    })
+}
+
+/// The rows `draw_mesh_projected` draws from `projection` and `faces`.
+fn projected_rows<M: Mesh>(
+    (mesh, model, camera, cull): View<'_, M>,
+    projection: &[ProjectedVertex],
+    faces: Option<&[u32]>,
+) -> Rows {
+    let mut cache = Box::new(VertexCache::<4096>::new());
+    rows_of(|r| {
+        let c = &mut *cache;
+        draw_mesh_projected(r, c, projection, faces, mesh, model, camera, cull, shade).unwrap();
+    })
 }
 
 fn drawn(rows: &Rows) -> usize {
@@ -153,20 +186,7 @@ fn projected_draws_equal_draw_mesh() {
                 (half, None),
                 (&[][..], None),
             ] {
-                let rows = rows_of(|r| {
-                    draw_mesh_projected(
-                        r,
-                        &mut *cache,
-                        projection,
-                        faces,
-                        &mesh,
-                        &model,
-                        &camera,
-                        cull,
-                        shade,
-                    )
-                    .unwrap();
-                });
+                let rows = projected_rows((&mesh, &model, &camera, cull), projection, faces);
                 assert_eq!(
                     rows,
                     one,
@@ -191,25 +211,10 @@ fn projected_draws_equal_draw_mesh_on_the_integer_front_end() {
     let model = reference_model(&mesh, 30.0, 20.0).unwrap();
     let whole = projected(&mesh, &model, &camera, 2);
     for cull in [Cull::None, Cull::Back] {
-        let mut cache = Box::new(VertexCache::<4096>::new());
-        let one = rows_of(|r| {
-            draw_mesh(r, &mut *cache, &mesh, &model, &camera, cull, shade).unwrap();
-        });
+        let view = (&mesh, &model, &camera, cull);
+        let one = mesh_rows(view);
         assert!(drawn(&one) > 500);
-        let rows = rows_of(|r| {
-            draw_mesh_projected(
-                r,
-                &mut *cache,
-                &whole,
-                None,
-                &mesh,
-                &model,
-                &camera,
-                cull,
-                shade,
-            )
-            .unwrap();
-        });
+        let rows = projected_rows(view, &whole, None);
         assert_eq!(rows, one, "{cull:?}");
     }
 }
@@ -220,38 +225,12 @@ fn a_face_list_draws_those_faces_only() {
     let mesh = shapes::torus_knot(2, 3, 64, 8, 0.45);
     let model = reference_model(&mesh, 30.0, 20.0).unwrap();
     let whole = projected(&mesh, &model, &camera, 1);
-    let mut cache = Box::new(VertexCache::<4096>::new());
-    let none = rows_of(|r| {
-        draw_mesh_projected(
-            r,
-            &mut *cache,
-            &whole,
-            Some(&[]),
-            &mesh,
-            &model,
-            &camera,
-            Cull::None,
-            shade,
-        )
-        .unwrap();
-    });
+    let view = (&mesh, &model, &camera, Cull::None);
+    let none = projected_rows(view, &whole, Some(&[]));
     assert_eq!(drawn(&none), 0);
     // Every colour drawn is that of a listed face (even faces here).
     let even: Vec<u32> = (0..mesh.face_count() as u32).step_by(2).collect();
-    let rows = rows_of(|r| {
-        draw_mesh_projected(
-            r,
-            &mut *cache,
-            &whole,
-            Some(&even),
-            &mesh,
-            &model,
-            &camera,
-            Cull::None,
-            shade,
-        )
-        .unwrap();
-    });
+    let rows = projected_rows(view, &whole, Some(&even));
     assert!(drawn(&rows) > 500);
     assert!(
         rows.iter()
@@ -357,10 +336,7 @@ fn render_mesh_equals_one_renderer() {
     let camera = Camera::reference(WIDTH, HEIGHT);
     for (name, mesh, model) in scenes() {
         for cull in [Cull::None, Cull::Back] {
-            let mut cache = Box::new(VertexCache::<4096>::new());
-            let one = rows_of(|r| {
-                draw_mesh(r, &mut *cache, &mesh, &model, &camera, cull, shade).unwrap();
-            });
+            let one = mesh_rows((&mesh, &model, &camera, cull));
             for count in 1..=4 {
                 let mut renderer =
                     BandedRenderer::<u32, Depth16>::new(&caps(), WIDTH, HEIGHT, 0, count).unwrap();
@@ -385,25 +361,10 @@ fn render_mesh_on_a_large_mesh_uses_every_thread_and_equals_one_renderer() {
     let caps = mesh.capacities(width);
     let model = reference_model(&mesh, 30.0, 20.0).unwrap();
     let camera = Camera::reference(width, height);
-    let mut single = host_renderer::<u32, Depth16>(&caps, width, height, 0).unwrap();
-    let mut cache = Box::new(VertexCache::<65536>::new());
-    draw_mesh(
-        &mut single,
-        &mut *cache,
-        &mesh,
-        &model,
-        &camera,
-        Cull::None,
-        shade,
-    )
-    .unwrap();
-    let mut one = Rows::new();
-    single
-        .render(&mut FnSink(|y: u16, c: &[u32], z: &[u16]| {
-            one.push((y, c.to_vec(), z.to_vec()));
-            Ok::<(), ()>(())
-        }))
-        .unwrap();
+    let one = rows_sized(&caps, (width, height), |r| {
+        let mut cache = Box::new(VertexCache::<65536>::new());
+        draw_mesh(r, &mut *cache, &mesh, &model, &camera, Cull::None, shade).unwrap();
+    });
     let mut renderer = BandedRenderer::<u32, Depth16>::new(&caps, width, height, 0, 2).unwrap();
     for frame in 0..2 {
         let rows = banded_rows(&mut renderer, &mesh, &model, &camera, Cull::None).unwrap();
