@@ -218,9 +218,9 @@ pub struct BandTiming {
 /// scenes one renderer on one thread is faster.
 ///
 /// ```
-/// use zline::front::scene::{Camera, Cull, VertexCache, draw_mesh, reference_model};
+/// use zline::front::scene::{Camera, Cull, reference_model};
 /// use zline::host::{BandedRenderer, shapes};
-/// use zline::{Capacities, Depth16, Error, FnSink};
+/// use zline::{Capacities, Depth16, FnSink};
 ///
 /// let mesh = shapes::torus_knot(2, 3, 64, 8, 0.45);
 /// let (width, height) = (160u16, 120u16);
@@ -235,9 +235,7 @@ pub struct BandTiming {
 /// let mut renderer = BandedRenderer::<u32, Depth16>::new(&caps, width, height, 0, 2)?;
 /// let model = reference_model(&mesh, 30.0, 20.0)?;
 /// let camera = Camera::reference(width, height);
-/// // One vertex cache per band, and a sink per band writing into its part
-/// // of the frame.
-/// let mut caches: Vec<Box<VertexCache<4096>>> = (0..2).map(|_| Box::default()).collect();
+/// // A sink per band, writing into its part of the frame.
 /// let mut frame = vec![0u32; usize::from(width) * usize::from(height)];
 /// let mut rest = &mut frame[..];
 /// let mut sinks = Vec::new();
@@ -250,12 +248,10 @@ pub struct BandTiming {
 ///         Ok::<(), ()>(())
 ///     }));
 /// }
+/// // The vertices projected once, the faces sorted into the bands, each
+/// // band built and scanned on its own thread.
 /// let stats = renderer
-///     .render(&mut caches, &mut sinks, |tables, cache| {
-///         draw_mesh(tables, &mut **cache, &mesh, &model, &camera, Cull::Back, |f| f.face + 1)
-///             .map(|_| ())
-///             .map_err(Error::from)
-///     })
+///     .render_mesh(&mesh, &model, &camera, Cull::Back, &mut sinks, |f| f.face + 1)
 ///     .map_err(|e| format!("{e:?}"))?;
 /// drop(sinks);
 /// assert_eq!(stats.len(), 2);
