@@ -570,27 +570,12 @@ where
         if scratch.len() != n || sinks.len() != n {
             return Err(RenderError::Table(Error::BadFrameSize));
         }
-        let build = &build;
-        let mut jobs = self.bands.iter_mut().zip(scratch).zip(sinks);
-        let first = jobs.next();
-        let stats = std::thread::scope(|s| {
-            let others: Vec<_> = jobs
-                .map(|((band, x), sink)| {
-                    s.spawn(move || draw_band(band, x, sink, build, test_triangles))
-                })
-                .collect();
-            // The first band on this thread, meanwhile.
-            let mut stats = Vec::with_capacity(n);
-            let band = |((band, x), sink)| draw_band(band, x, sink, build, test_triangles);
-            stats.extend(first.map(band));
-            for handle in others {
-                match handle.join() {
-                    Ok(band) => stats.push(band),
-                    Err(panic) => std::panic::resume_unwind(panic),
-                }
-            }
-            stats.into_iter().collect::<Result<Vec<_>, _>>()
-        })?;
+        let jobs = self.bands.iter_mut().zip(scratch).zip(sinks);
+        let stats = on_threads(jobs, |((band, x), sink)| {
+            draw_band(band, x, sink, &build, test_triangles)
+        })
+        .into_iter()
+        .collect::<Result<Vec<_>, _>>()?;
         self.balance();
         Ok(stats)
     }
