@@ -45,6 +45,40 @@ fn scaled(mesh: &HostMesh, factor: f32) -> HostMesh {
     out
 }
 
+/// A mesh's frame is the same whether its planarity bits are known or
+/// each face is tested per frame (the bits only save the test).
+#[test]
+fn planarity_bits_change_no_pixel() {
+    // Quads, some bent out of their plane (drawn as fans), some planar.
+    let mut obj = String::new();
+    for k in 0..12 {
+        let (x, lift) = (k as f32 * 0.4 - 2.4, if k % 2 == 0 { 0.3 } else { 0.0 });
+        for (dx, dy, z) in [
+            (0.0, 0.0, 0.0),
+            (0.5, 0.0, 0.2),
+            (0.5, 1.0, lift),
+            (0.0, 1.0, 0.1),
+        ] {
+            obj += &format!("v {} {} {}\n", x + dx, dy - 0.5 * (k % 3) as f32, z);
+        }
+        let v = 4 * k + 1;
+        obj += &format!("f {} {} {} {}\n", v, v + 1, v + 2, v + 3);
+    }
+    let mesh = HostMesh::from_obj(obj.as_bytes()).unwrap();
+    let bent = (0..mesh.face_count())
+        .filter(|&f| !mesh.face_is_planar(f))
+        .count();
+    assert_eq!(bent, 6);
+    let model = reference_model(&mesh, 30.0, 20.0).unwrap();
+    let with_bits = ids(&mesh, &model);
+    assert!(with_bits.iter().filter(|&&c| c != 0).count() > 500);
+    let untested = HostMesh {
+        planar_faces: Vec::new(),
+        ..mesh.clone()
+    };
+    assert_eq!(ids(&untested, &model), with_bits);
+}
+
 fn knot() -> HostMesh {
     shapes::torus_knot(2, 3, 48, 8, 0.45)
 }

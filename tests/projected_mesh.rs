@@ -141,7 +141,7 @@ fn scenes() -> Vec<(&'static str, HostMesh, Mat4)> {
     let (centre, radius) = bounding_sphere(&knot).unwrap();
     let close = Mat4::translation(zline::front::geometry::Vec3::new(0.3, 0.2, 1.6))
         .mul(&reference_model_around(centre, radius * 0.3, 30.0, 20.0));
-    let boxes = shapes::box_field(4).with_shared_planes();
+    let boxes = shapes::box_field(4).with_face_analysis();
     let boxes_view = reference_model(&boxes, 30.0, 35.0).unwrap();
     let mut broken = knot.clone();
     broken.positions[7] = [f32::NAN, 0.0, 0.0];

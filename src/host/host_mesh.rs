@@ -2,7 +2,7 @@
 
 use std::vec::Vec;
 
-use crate::front::mesh::{MeshArrays, SharedPlane};
+use crate::front::mesh::{MeshArrays, SharedPlane, planar_face_bits};
 use crate::front::obj::{ObjError, ObjReader, Statement};
 use crate::front::scene::MAX_FACE_CORNERS;
 use crate::raster::Capacities;
@@ -20,6 +20,12 @@ pub struct HostMesh {
     /// Faces that share a plane with overlapping coplanar faces, sorted by
     /// face ([`crate::host::coplanar`]); [`Self::from_obj`] finds them.
     pub shared_planes: Vec<SharedPlane>,
+    /// Which faces are planar ([`is_planar`](crate::front::mesh::is_planar)): bit `f % 32` of word
+    /// `f / 32` set when face `f` is, as in
+    /// [`StaticMesh::with_planar_faces`](crate::front::mesh::StaticMesh::with_planar_faces).
+    /// Faces past its end are tested each frame. [`Self::from_obj`] finds
+    /// them.
+    pub planar_faces: Vec<u32>,
 }
 
 impl HostMesh {
@@ -40,7 +46,8 @@ impl HostMesh {
 
     /// Reads an OBJ file with the no_std reader (faces of up to
     /// [`MAX_FACE_CORNERS`] corners, all the pipeline draws), and finds
-    /// its overlapping coplanar faces ([`Self::with_shared_planes`]).
+    /// its planar faces and its overlapping coplanar faces
+    /// ([`Self::with_face_analysis`]).
     pub fn from_obj(bytes: &[u8]) -> Result<Self, ObjError> {
         let mut mesh = Self::default();
         for statement in ObjReader::<MAX_FACE_CORNERS>::new(bytes) {
@@ -53,13 +60,17 @@ impl HostMesh {
                 Statement::Other(_) => {}
             }
         }
-        Ok(mesh.with_shared_planes())
+        Ok(mesh.with_face_analysis())
     }
 
-    /// The mesh with its overlapping coplanar faces found again
-    /// ([`crate::host::coplanar::shared_planes`]): call it after changing
-    /// positions or faces.
-    pub fn with_shared_planes(mut self) -> Self {
+    /// The mesh with what its faces' geometry tells the pipeline found
+    /// again: which faces are planar ([`Self::planar_faces`], so that no
+    /// frame tests them) and which share a plane with overlapping coplanar
+    /// faces ([`crate::host::coplanar::shared_planes`]). Call it after
+    /// changing positions or faces: stale planarity bits would draw a
+    /// face that is no longer planar as one polygon.
+    pub fn with_face_analysis(mut self) -> Self {
+        self.planar_faces = planar_face_bits(&self).collect();
         self.shared_planes = crate::host::coplanar::shared_planes(&self);
         self
     }
@@ -78,7 +89,63 @@ impl MeshArrays for HostMesh {
         &self.face_starts
     }
 
+    fn planar_bits(&self) -> &[u32] {
+        &self.planar_faces
+    }
+
     fn shared_planes(&self) -> &[SharedPlane] {
         &self.shared_planes
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::front::mesh::{Mesh, is_planar};
+    use std::fmt::Write;
+    use std::string::String;
+
+    /// 40 quads in a row, every third one bent out of its plane (its
+    /// fourth corner lifted), so the bits fill more than one word.
+    fn quads() -> Vec<u8> {
+        let mut obj = String::new();
+        for k in 0..40 {
+            let (x, lift) = (k as f32 * 2.0, if k % 3 == 0 { 0.5 } else { 0.0 });
+            for (dx, dy, z) in [
+                (0.0, 0.0, 0.0),
+                (1.0, 0.0, 0.0),
+                (1.0, 1.0, lift),
+                (0.0, 1.0, 0.0),
+            ] {
+                let _ = writeln!(obj, "v {} {dy} {z}", x + dx);
+            }
+            let v = 4 * k + 1;
+            let _ = writeln!(obj, "f {} {} {} {}", v, v + 1, v + 2, v + 3);
+        }
+        obj.into_bytes()
+    }
+
+    #[test]
+    fn from_obj_records_each_faces_planarity() {
+        let mesh = HostMesh::from_obj(&quads()).unwrap();
+        assert_eq!(mesh.planar_faces.len(), 2);
+        for f in 0..40 {
+            assert_eq!(is_planar(&mesh, f), f % 3 != 0, "face {f}");
+            assert_eq!(mesh.face_is_planar(f), f % 3 != 0, "face {f}");
+        }
+    }
+
+    #[test]
+    fn face_is_planar_reads_the_bits_and_tests_faces_past_them() {
+        let mut mesh = HostMesh::from_obj(&quads()).unwrap();
+        // The bits are what is answered: flipped, the answers flip.
+        mesh.planar_faces[0] ^= 0b11;
+        assert!(mesh.face_is_planar(0));
+        assert!(!mesh.face_is_planar(1));
+        // Faces 32..40 past a one-word list are tested.
+        mesh.planar_faces.truncate(1);
+        for f in 32..40 {
+            assert_eq!(mesh.face_is_planar(f), f % 3 != 0, "face {f}");
+        }
     }
 }

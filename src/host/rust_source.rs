@@ -23,6 +23,7 @@ pub fn static_mesh_source(mesh: &HostMesh, name: &str, origin: &str) -> Result<S
         corners,
         face_starts,
         shared_planes,
+        ..
     } = mesh;
     let mut out = String::new();
     let _ = writeln!(

@@ -125,7 +125,7 @@ impl Builder {
     }
 
     fn done(self) -> Result<HostMesh, String> {
-        Ok(self.0.with_shared_planes())
+        Ok(self.0.with_face_analysis())
     }
 }
 
