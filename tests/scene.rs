@@ -62,7 +62,16 @@ fn cube_shows_three_faces_and_culling_changes_nothing_visible() {
     let camera = Camera::reference(96, 72);
     let model = reference_model(&CUBE, 30.0, 20.0).unwrap();
     let (culled, stats) = draw(&CUBE, &model, &camera, Cull::Back);
-    assert_eq!((stats.faces, stats.queued, stats.back_faces), (6, 3, 3));
+    // Each front face, a convex quad on screen, is queued as two triangles.
+    assert_eq!(
+        (
+            stats.faces,
+            stats.convex_quads,
+            stats.queued,
+            stats.back_faces
+        ),
+        (6, 3, 6, 3)
+    );
     // Ry(30°) turns +z to (0.5, 0, 0.87) and -x to (-0.87, 0, 0.5), both
     // towards the eye; Rx(20°) tips +y towards it: faces 0, 3 and 4.
     let mut seen: Vec<u32> = culled.colors.iter().copied().filter(|&c| c != 0).collect();
@@ -70,7 +79,10 @@ fn cube_shows_three_faces_and_culling_changes_nothing_visible() {
     seen.dedup();
     assert_eq!(seen, [1, 4, 5]);
     let (all, stats) = draw(&CUBE, &model, &camera, Cull::None);
-    assert_eq!((stats.queued, stats.back_faces), (6, 0));
+    assert_eq!(
+        (stats.convex_quads, stats.queued, stats.back_faces),
+        (6, 12, 0)
+    );
     assert_eq!(
         all.colors, culled.colors,
         "a closed convex mesh looks the same with back faces culled"
@@ -94,7 +106,8 @@ fn depth_is_z_ndc_at_every_pixel() {
     )
     .unwrap();
     let (frame, stats) = draw(&quad, &Mat4::IDENTITY, &camera, Cull::None);
-    assert_eq!(stats.queued, 1);
+    // Drawn as its two triangles, each with the plane through its corners.
+    assert_eq!((stats.convex_quads, stats.queued), (1, 2));
     let (n, f) = (0.1f64, 10.0f64);
     let t = (22.5f64).to_radians().tan();
     let aspect = 96.0 / 72.0;

@@ -1,0 +1,208 @@
+//! Planar faces of four corners that are strictly convex on screen are
+//! drawn as two triangles (the scan's triangle path): they must cover
+//! exactly the samples the quad covers, be judged and shaded once as a
+//! face, and leave concave quads and quads with a shared plane to the
+//! polygon path.
+
+mod common;
+
+use common::capture;
+use proptest::prelude::*;
+use zline::front::geometry::Mat4;
+use zline::front::mesh::{SharedPlane, StaticMesh};
+use zline::front::scene::{Camera, Cull, DrawStats, VertexCache, draw_mesh};
+use zline::raster::fixed::{DEPTH_MAX, SUBPIXEL_STEPS};
+use zline::raster::{ScanArrays, TableArrays};
+use zline::{Depth16, Depth24, DepthFormat, Renderer, ScreenVertex};
+
+const W: usize = 64;
+const H: u16 = 48;
+const S: i32 = SUBPIXEL_STEPS;
+
+type R<D> = Renderer<TableArrays<u32, 16, 8, 32>, ScanArrays<u32, D, W, 8, 16>>;
+
+/// Whether the quad's four turns (cross products of consecutive edges)
+/// all have one sign: strictly convex.
+fn strictly_convex(q: &[ScreenVertex; 4]) -> bool {
+    let turn = |k: usize| {
+        let (a, b, c) = (q[k], q[(k + 1) % 4], q[(k + 2) % 4]);
+        i64::from(b.x - a.x) * i64::from(c.y - b.y) - i64::from(b.y - a.y) * i64::from(c.x - b.x)
+    };
+    let t = [turn(0), turn(1), turn(2), turn(3)];
+    t.iter().all(|&v| v > 0) || t.iter().all(|&v| v < 0)
+}
+
+/// The frame of `polygons` (each coloured 1) pushed as screen polygons.
+fn frame<D: DepthFormat>(polygons: &[&[ScreenVertex]]) -> common::Frame<D::Value> {
+    let mut renderer = R::<D>::new(H, 0).unwrap();
+    for p in polygons {
+        renderer.push_polygon_vertices(p, 1).unwrap();
+    }
+    capture(&mut renderer).0
+}
+
+/// A convex quad near the frame (corners on an ellipse, in order around
+/// it, any size and slant: slivers too), its depths on one plane (rounded
+/// to whole depth steps), steep planes included.
+fn quad() -> impl Strategy<Value = [ScreenVertex; 4]> {
+    (
+        [0.0f64..1.0, 0.0f64..1.0, 0.0f64..1.0, 0.0f64..1.0],
+        (0.0f64..f64::from(W as u16), 0.0f64..f64::from(H)),
+        (0.3f64..40.0, 0.3f64..40.0, 0.0f64..std::f64::consts::PI),
+        (0.4f64..0.6, -0.001f64..0.001, -0.001f64..0.001),
+    )
+        .prop_map(|(turns, (cx, cy), (rx, ry, tilt), (z0, gx, gy))| {
+            let mut angles = turns.map(|t| t * std::f64::consts::TAU);
+            angles.sort_by(f64::total_cmp);
+            angles.map(|a| {
+                let (u, v) = (rx * a.cos(), ry * a.sin());
+                let x = cx + u * tilt.cos() - v * tilt.sin();
+                let y = cy + u * tilt.sin() + v * tilt.cos();
+                // |gx·x| + |gy·y| < 0.001 · (104 + 88) < 0.2: z in (0, 1).
+                let z = z0 + gx * x + gy * y;
+                ScreenVertex {
+                    x: (x * f64::from(S)).round() as i32,
+                    y: (y * f64::from(S)).round() as i32,
+                    z: (z * f64::from(DEPTH_MAX)).round() as u32,
+                }
+            })
+        })
+}
+
+/// The quad and its two triangles cover the same samples. With 16-bit
+/// depth each is within a step of the exact plane (the 1-LSB bound), so
+/// they differ by two steps at most; 24-bit steps also see the corners'
+/// depths rounded off the plane, so only the samples are compared.
+fn same_samples<D: DepthFormat>(
+    q: &[ScreenVertex; 4],
+    depth_steps: Option<i64>,
+) -> Result<(), TestCaseError>
+where
+    D::Value: Into<i64>,
+{
+    let whole = frame::<D>(&[q]);
+    let halves = frame::<D>(&[&[q[0], q[1], q[2]], &[q[0], q[2], q[3]]]);
+    prop_assert_eq!(&whole.colors, &halves.colors);
+    if let Some(steps) = depth_steps {
+        for (a, b) in whole.depths.iter().zip(&halves.depths) {
+            let (a, b): (i64, i64) = ((*a).into(), (*b).into());
+            prop_assert!((a - b).abs() <= steps, "{} vs {}", a, b);
+        }
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(512))]
+
+    /// The two triangles `0 1 2` and `0 2 3` of a strictly convex quad
+    /// cover exactly the samples the quad does: none twice (the diagonal's
+    /// samples go to one side by the fill rule), none missed.
+    #[test]
+    fn a_convex_quads_two_triangles_cover_its_samples(q in quad()) {
+        // (Corners in order around an ellipse are convex; snapped to the
+        // sub-pixel grid, a few of the thinnest are not.)
+        prop_assume!(strictly_convex(&q));
+        same_samples::<Depth16>(&q, Some(2))?;
+        same_samples::<Depth24>(&q, None)?;
+    }
+}
+
+/// Draws `mesh` (identity model, the reference camera) with every face
+/// shaded 1 + its index, counting the shading calls.
+fn draw(mesh: &StaticMesh, cull: Cull) -> (common::Frame<u32>, DrawStats, u32) {
+    let camera = Camera::reference(W as u16, H);
+    let mut renderer = R::<Depth24>::new(H, 0).unwrap();
+    let mut cache: VertexCache<16> = VertexCache::new();
+    let mut calls = 0;
+    let stats = draw_mesh(
+        &mut renderer,
+        &mut cache,
+        mesh,
+        &Mat4::IDENTITY,
+        &camera,
+        cull,
+        |f| {
+            calls += 1;
+            f.face + 1
+        },
+    )
+    .unwrap();
+    (capture(&mut renderer).0, stats, calls)
+}
+
+/// A square facing the camera (counter-clockwise), an arrowhead (concave)
+/// beside it, and the square again, turned away.
+const POSITIONS: [[f32; 3]; 12] = [
+    [-1.5, -0.5, 0.0],
+    [-0.5, -0.5, 0.0],
+    [-0.5, 0.5, 0.0],
+    [-1.5, 0.5, 0.0],
+    [0.2, -0.6, 0.0],
+    [1.4, 0.0, 0.0],
+    [0.2, 0.6, 0.0],
+    [0.6, 0.0, 0.0],
+    [-1.5, -0.5, -0.5],
+    [-1.5, 0.5, -0.5],
+    [-0.5, 0.5, -0.5],
+    [-0.5, -0.5, -0.5],
+];
+
+#[test]
+fn a_convex_quad_is_judged_and_shaded_once_and_a_concave_one_stays_whole() {
+    let mesh = StaticMesh::new(&POSITIONS, &[0, 1, 2, 3, 4, 5, 6, 7], &[0, 4]).unwrap();
+    let (frame, stats, calls) = draw(&mesh, Cull::Back);
+    assert_eq!((stats.convex_quads, stats.queued), (1, 3));
+    assert_eq!(calls, 2, "one shading call per face");
+    let seen = |c: u32| frame.colors.iter().filter(|&&v| v == c).count();
+    assert!(seen(1) > 100 && seen(2) > 50, "{} {}", seen(1), seen(2));
+    // The square, drawn as two triangle faces of one colour, is the same
+    // frame pixel for pixel (colours and depths).
+    let halves = StaticMesh::new(&POSITIONS, &[0, 1, 2, 0, 2, 3, 4, 5, 6, 7], &[0, 3, 6]).unwrap();
+    let (same, _, _) = draw(&halves, Cull::Back);
+    for (k, (&a, &b)) in frame.colors.iter().zip(&same.colors).enumerate() {
+        let b = match b {
+            2 => 1, // the second triangle of the square
+            3 => 2, // the arrowhead
+            other => other,
+        };
+        assert_eq!(a, b, "pixel {k}");
+    }
+    assert_eq!(frame.depths, same.depths);
+}
+
+#[test]
+fn a_convex_quad_turned_away_is_one_back_face() {
+    let mesh = StaticMesh::new(&POSITIONS, &[8, 9, 10, 11], &[0]).unwrap();
+    let (frame, stats, calls) = draw(&mesh, Cull::Back);
+    assert_eq!(
+        (stats.back_faces, stats.convex_quads, stats.queued),
+        (1, 0, 0)
+    );
+    assert_eq!(calls, 0);
+    assert!(frame.colors.iter().all(|&c| c == 0));
+    let (frame, stats, calls) = draw(&mesh, Cull::None);
+    assert_eq!(
+        (stats.back_faces, stats.convex_quads, stats.queued),
+        (0, 1, 2)
+    );
+    assert_eq!(calls, 1);
+    assert!(frame.colors.iter().filter(|&&c| c == 1).count() > 100);
+}
+
+#[test]
+fn a_quad_with_a_shared_plane_stays_whole() {
+    const SHARED: [SharedPlane; 1] = [SharedPlane {
+        face: 0,
+        vertices: [0, 1, 2],
+    }];
+    let mesh = StaticMesh::new(&POSITIONS, &[0, 1, 2, 3], &[0])
+        .unwrap()
+        .with_shared_planes(&SHARED)
+        .unwrap();
+    let (_, stats, _) = draw(&mesh, Cull::None);
+    assert_eq!(
+        (stats.convex_quads, stats.queued, stats.shared_planes),
+        (0, 1, 1)
+    );
+}
