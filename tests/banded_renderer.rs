@@ -254,3 +254,76 @@ fn bad_bands_and_cuts_are_errors() {
     let result = renderer.render(&mut [(), (), ()], &mut sinks, |_, _| Ok(()));
     assert!(result.is_err());
 }
+
+/// The threads each band's sink was called on, in one frame of `mesh`
+/// drawn by `renderer` (two bands).
+fn sink_threads(
+    renderer: &mut BandedRenderer<u32, Depth16>,
+    mesh: &zline::host::HostMesh,
+    size: (u16, u16),
+) -> Vec<std::thread::ThreadId> {
+    let model = reference_model(mesh, 30.0, 20.0).unwrap();
+    let camera = Camera::reference(size.0, size.1);
+    let mut threads = vec![None; 2];
+    let mut sinks: Vec<_> = threads
+        .iter_mut()
+        .map(|id| {
+            FnSink(move |_: u16, _: &[u32], _: &[u16]| {
+                *id = Some(std::thread::current().id());
+                Ok::<(), ()>(())
+            })
+        })
+        .collect();
+    renderer
+        .render_mesh(mesh, &model, &camera, Cull::None, &mut sinks, |f| f.face)
+        .unwrap();
+    drop(sinks);
+    threads.into_iter().map(|id| id.unwrap()).collect()
+}
+
+/// A frame whose bands had little work the frame before (and the first
+/// frame) is drawn on the calling thread alone; a frame of more work gives
+/// each band a thread.
+#[test]
+fn small_frames_stay_on_the_calling_thread() {
+    let here = std::thread::current().id();
+    let caps = Capacities {
+        width: 96,
+        vertices: 16384,
+        polygons: 16384,
+        corners: 49152,
+        active_polygons: 16384,
+        pooled_edges: 256,
+    };
+    // Two triangles: microseconds of work.
+    let small = zline::host::HostMesh {
+        positions: vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, -1.0, 0.2],
+        ],
+        corners: vec![0, 1, 2, 0, 3, 1],
+        face_starts: vec![0, 3],
+        ..Default::default()
+    };
+    let mut renderer = BandedRenderer::<u32, Depth16>::new(&caps, 96, 72, 0, 2).unwrap();
+    for frame in 0..3 {
+        assert_eq!(
+            sink_threads(&mut renderer, &small, (96, 72)),
+            [here, here],
+            "frame {frame}"
+        );
+    }
+    // A torus knot of 16,384 triangles: over a millisecond of work even
+    // in an optimised build (0.34 ms for a quarter of it), so the second
+    // frame starts a thread for the second band.
+    let big = shapes::torus_knot(2, 3, 1024, 8, 0.45);
+    let mut renderer = BandedRenderer::<u32, Depth16>::new(&caps, 96, 72, 0, 2).unwrap();
+    assert_eq!(sink_threads(&mut renderer, &big, (96, 72)), [here, here]);
+    let work: std::time::Duration = renderer.last_frame().map(|b| b.build + b.scan).sum();
+    assert!(work > std::time::Duration::from_micros(120), "{work:?}");
+    let second = sink_threads(&mut renderer, &big, (96, 72));
+    assert_eq!(second[0], here);
+    assert_ne!(second[1], here);
+}

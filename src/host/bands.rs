@@ -214,8 +214,11 @@ pub struct BandTiming {
 /// little, takes about as long on every thread. Where the cuts lie does not
 /// change a single pixel.
 ///
-/// Each frame starts its threads afresh (tens of microseconds): on small
-/// scenes one renderer on one thread is faster.
+/// Each frame starts its threads afresh (tens of microseconds), so a
+/// frame whose bands took less than about 0.1 ms of work the frame before
+/// (and the first frame) is drawn band after band on the calling thread;
+/// on such small scenes one renderer on one thread is still a little
+/// faster.
 ///
 /// ```
 /// use zline::front::scene::{Camera, Cull, reference_model};
@@ -310,6 +313,14 @@ const ITEMS_PER_THREAD: usize = 4096;
 
 /// The row of a vertex that is not projected.
 const NOT_PROJECTED: i16 = i16::MIN;
+
+/// Below this much work in the bands in the last frame (building and
+/// scanning, summed over the bands), the next frame's bands are all drawn
+/// on the calling thread: starting a thread and waiting for it costs
+/// 30-60 µs on a desktop, more than sharing such a frame saves. The
+/// peers bench's smallest scenes took 0.06-0.1 ms on two threads, 0.01-0.06
+/// on one.
+const ONE_THREAD_BELOW: Duration = Duration::from_micros(120);
 
 impl<C: Copy + Send + Sync, D: DepthFormat> BandedRenderer<C, D>
 where
@@ -420,9 +431,11 @@ where
     /// 2. each thread takes an equal run of the faces and sorts them into
     ///    the bands that hold a sample row between their corners' (a face
     ///    with a corner that needs clipping goes to every band);
-    /// 3. each band, on its own thread, builds its tables from the
-    ///    projection and its faces ([`draw_mesh_projected`]) and scans its
-    ///    rows into its entry of `sinks`, as [`Self::render`] does.
+    /// 3. each band, on its own thread (on the calling thread, when the
+    ///    last frame's bands had little work: see the type's notes),
+    ///    builds its tables from the projection and its faces
+    ///    ([`draw_mesh_projected`]) and scans its rows into its entry of
+    ///    `sinks`, as [`Self::render`] does.
     ///
     /// Steps 1 and 2 use fewer threads for small meshes (a few thousand
     /// vertices or faces per thread). `shade` is called from several
@@ -526,7 +539,9 @@ where
         result
     }
 
-    /// Draws one frame. For each band, on its own thread: its tables are
+    /// Draws one frame. For each band, on its own thread (or all on the
+    /// calling thread, when the last frame's bands had little work: see
+    /// the type's notes): its tables are
     /// emptied, `build` fills them from the whole scene (given the band's
     /// tables and its entry of `scratch`, for example a vertex cache),
     /// they are prepared, and the band's rows are scanned into its entry
@@ -570,12 +585,17 @@ where
         if scratch.len() != n || sinks.len() != n {
             return Err(RenderError::Table(Error::BadFrameSize));
         }
+        // The bands' work in the last frame: below a thread start's worth,
+        // they all run on the calling thread (the first frame too).
+        let last: Duration = self.bands.iter().map(|b| b.last.build + b.last.scan).sum();
         let jobs = self.bands.iter_mut().zip(scratch).zip(sinks);
-        let stats = on_threads(jobs, |((band, x), sink)| {
-            draw_band(band, x, sink, &build, test_triangles)
-        })
-        .into_iter()
-        .collect::<Result<Vec<_>, _>>()?;
+        let job = |((band, x), sink)| draw_band(band, x, sink, &build, test_triangles);
+        let stats = if last < ONE_THREAD_BELOW {
+            jobs.map(job).collect::<Vec<_>>()
+        } else {
+            on_threads(jobs, job)
+        };
+        let stats = stats.into_iter().collect::<Result<Vec<_>, _>>()?;
         self.balance();
         Ok(stats)
     }
