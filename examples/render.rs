@@ -222,6 +222,7 @@ where
             s("degenerate", &d.degenerate),
             s("non_finite", &d.non_finite),
             s("split", &d.split),
+            s("convex_quads", &d.convex_quads),
             s("shared_planes", &d.shared_planes),
             s("unshared_planes", &d.unshared_planes),
         ]);

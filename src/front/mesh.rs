@@ -345,7 +345,8 @@ pub const PLANARITY_TOLERANCE: f32 = 1e-3;
 /// A face that is not planar has no single plane, so the pipeline (and the
 /// float64 reference) draw it as the fan of triangles from its first corner,
 /// as OBJ loaders usually do. A planar face is drawn whole, so a concave
-/// planar face stays exact.
+/// planar face stays exact (a convex quad goes to the tables as its two
+/// triangles, which cover the same samples).
 pub fn is_planar<M: Mesh + ?Sized>(mesh: &M, index: usize) -> bool {
     let corners = mesh.face(index);
     let count = corners.len();

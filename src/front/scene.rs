@@ -31,7 +31,11 @@
 //!
 //! A face that is not planar ([`crate::front::mesh::is_planar`]) has no single plane. It goes
 //! through these steps as the fan of triangles from its first corner, each
-//! with the face's id.
+//! with the face's id. A planar quad that is strictly convex on screen and
+//! shares no plane is judged and shaded once, as a face, and queued as its
+//! two triangles ([`DrawStats::convex_quads`]): they cover exactly its
+//! samples, and the scan's triangle path costs about a quarter of a
+//! polygon's a row.
 //!
 //! No step needs a buffer per face: corners stream into the tables, so a
 //! face may have up to [`MAX_FACE_CORNERS`] corners.
