@@ -206,3 +206,31 @@ fn a_quad_with_a_shared_plane_stays_whole() {
         (0, 1, 1)
     );
 }
+
+/// A convex quad that does not fit is an error naming the face, never a
+/// quad drawn in part without one: with room for one polygon, its first
+/// triangle is queued (as `draw_mesh` documents for faces queued as
+/// triangles) and the second is `PolygonTableFull`.
+#[test]
+fn a_convex_quad_that_does_not_fit_is_an_error() {
+    let mesh = StaticMesh::new(&POSITIONS, &[0, 1, 2, 3], &[0]).unwrap();
+    let camera = Camera::reference(W as u16, H);
+    let mut renderer: Renderer<TableArrays<u32, 16, 1, 32>, ScanArrays<u32, Depth24, W, 8, 16>> =
+        Renderer::new(H, 0).unwrap();
+    let mut cache: VertexCache<16> = VertexCache::new();
+    let result = draw_mesh(
+        &mut renderer,
+        &mut cache,
+        &mesh,
+        &Mat4::IDENTITY,
+        &camera,
+        Cull::None,
+        |f| f.face + 1,
+    );
+    let error = result.unwrap_err();
+    assert_eq!(
+        (error.error, error.face),
+        (zline::Error::PolygonTableFull, Some(0))
+    );
+    assert_eq!(renderer.polygon_count(), 1);
+}

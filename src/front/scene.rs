@@ -647,7 +647,9 @@ impl Frame {
 /// `cache` must hold at least `mesh.vertex_count()` entries; it is reset
 /// here, so one cache serves every mesh of a frame. On `Err` (a table is
 /// full, or the mesh is malformed) the faces before the failing one stay in
-/// the tables, and the error names the face.
+/// the tables, and the error names the face; of a failing face queued as
+/// triangles (a fan, or a convex quad's two), those queued before the one
+/// that did not fit stay too.
 pub fn draw_mesh<C, T, M, const VM: usize>(
     tables: &mut T,
     cache: &mut VertexCache<VM>,
