@@ -1018,9 +1018,9 @@ where
     /// Draws a polygon of more than three corners, or a triangle that
     /// missed the fast path, whose corners are all in the vertex table: a
     /// convex quad as two triangles, any other as one polygon. Out of
-    /// line, so that the triangles' path in [`Self::part`] stays as small
-    /// as it was (a Cortex-M0+ drawing a mesh of triangles paid 0.9 % more
-    /// cycles a frame with this inline).
+    /// line: rare in a mesh of triangles, whose path in [`Self::part`]
+    /// stays small (on the RP2040 the frame's cycles are those of the code
+    /// before the quads' path was added, within 0.02 %).
     #[inline(never)]
     fn stored_polygon(&mut self, face: usize, corners: &[u16]) -> Result<(), Error> {
         if let &[i0, i1, i2, i3] = corners {
@@ -1092,9 +1092,9 @@ where
         }
         self.stats.convex_quads += 1;
         // The quad's outline for the shading (a front face, or culling is
-        // off). Shaded through `shade_front_face`, the shading closure's
-        // one call site: a second one kept it from being inlined there,
-        // which cost a Cortex-M0+ 1 % a frame.
+        // off). Shaded through `shade_front_face`, so that the shading
+        // closure keeps one call site and stays inlined there (with a
+        // second one, the firmware's build kept the closure out of line).
         let outline = Outline {
             corners: 4,
             twice_area,
