@@ -221,6 +221,23 @@ fn cuts_move_to_where_the_polygons_are() {
     assert!((30..40).contains(&cut), "cut at {cut}");
 }
 
+/// Work is counted on every row a polygon is active, not only where it
+/// starts: ten triangles from the top of the frame to the bottom put the
+/// cut near the middle (counting activations alone put it at row 15).
+#[test]
+fn cuts_follow_the_rows_polygons_are_active_on() {
+    let v = |x: i32, y: i32| ScreenVertex::new(x * S, y * S, 1000).unwrap();
+    let scene: Vec<Vec<ScreenVertex>> = (0..10)
+        .map(|k| vec![v(4 * k, 0), v(4 * k + 3, 0), v(4 * k, 40)])
+        .collect();
+    let mut renderer = BandedRenderer::<u32, Depth16>::new(&CAPS, W, H, 0, 2).unwrap();
+    renderer.set_cuts(&[5]).unwrap();
+    let rows = banded(&mut renderer, &mut [(), ()], |t, _| offer(t, &scene));
+    assert_eq!(rows, whole::<Depth16>(&CAPS, (W, H), |r| offer(r, &scene)));
+    let cut = renderer.bands().next().unwrap().end;
+    assert!((17..=21).contains(&cut), "cut at {cut}");
+}
+
 #[test]
 fn bad_bands_and_cuts_are_errors() {
     let new = |count| BandedRenderer::<u32, Depth16>::new(&CAPS, W, H, 0, count).map(|_| ());
