@@ -390,3 +390,48 @@ fn slivers_and_edge_on_triangles_stay_within_their_depth_range() {
         "the slivers should cover some samples ({drawn_total})"
     );
 }
+
+/// A storage with more polygon slots than the tables can address
+/// ([`MAX_POLYGONS`](zline::raster::fixed::MAX_POLYGONS), packed in 20
+/// bits of an edge-table entry) uses that many: the next polygon is
+/// `PolygonTableFull`, and the frame is drawn (a position past the limit
+/// once made the sort loop forever).
+#[test]
+fn polygons_past_the_tables_limit_are_an_error() {
+    use zline::raster::fixed::MAX_POLYGONS;
+    let slots = MAX_POLYGONS + 16;
+    let caps = zline::Capacities {
+        width: 16,
+        vertices: 16,
+        polygons: slots,
+        corners: 3 * slots,
+        active_polygons: 4,
+        pooled_edges: 0,
+    };
+    let mut r = zline::host::host_renderer::<u32, Depth16>(&caps, 16, 16, 0).unwrap();
+    // A triangle covering the sample of pixel (4, 4) alone: drawn when it
+    // is activated, never held in the active table.
+    let ids = [vtx(4.2, 4.2, 0.5), vtx(5.0, 4.2, 0.5), vtx(4.2, 5.0, 0.5)]
+        .map(|v| r.push_vertex(v).unwrap());
+    for k in 0..MAX_POLYGONS {
+        assert_eq!(
+            r.push_polygon(&ids, k as u32 + 1),
+            Ok(Admission::Queued(k as u32)),
+            "polygon {k}"
+        );
+    }
+    assert_eq!(r.push_polygon(&ids, 7), Err(Error::PolygonTableFull));
+    assert_eq!(r.polygon_count(), MAX_POLYGONS);
+    let mut drawn = Vec::new();
+    let mut sink = FnSink(|y: u16, colors: &[u32], _: &[u16]| {
+        for (x, &c) in colors.iter().enumerate() {
+            if c != 0 {
+                drawn.push((x, y, c));
+            }
+        }
+        Ok::<(), ()>(())
+    });
+    r.render(&mut sink).unwrap();
+    // Equal depths: the polygon added first keeps the pixel.
+    assert_eq!(drawn, [(4, 4, 1)]);
+}

@@ -6,6 +6,7 @@ use crate::front::mesh::{MeshArrays, SharedPlane, planar_face_bits};
 use crate::front::obj::{ObjError, ObjReader, Statement};
 use crate::front::scene::MAX_FACE_CORNERS;
 use crate::raster::Capacities;
+use crate::raster::fixed::MAX_POLYGONS;
 
 /// Positions and faces in growable storage, in the layout of
 /// [`StaticMesh`](crate::front::mesh::StaticMesh).
@@ -37,7 +38,7 @@ impl HostMesh {
         Capacities {
             width: usize::from(width),
             vertices: (self.positions.len() * 2 + 1024).min(1 << 16),
-            polygons: corners + 64,
+            polygons: (corners + 64).min(MAX_POLYGONS),
             corners: 3 * corners + 256,
             active_polygons: corners + 64,
             pooled_edges: 4096,

@@ -43,7 +43,8 @@ pub struct Capacities {
     pub width: usize,
     /// Vertices in the vertex table (at most 65,536).
     pub vertices: usize,
-    /// Polygons in the polygon table.
+    /// Polygons in the polygon table (at most
+    /// [`MAX_POLYGONS`](crate::raster::fixed::MAX_POLYGONS) are used).
     pub polygons: usize,
     /// Corners of all polygons together (3 per triangle); the edge table
     /// has as many entries.

@@ -33,7 +33,9 @@
 //! The tests below step edges between the guard band's corners over every
 //! row they cover and compare each crossing with the exact `i128` value.
 
-use crate::raster::fixed::{DIVISION_IS_CHEAP, HALF_PIXEL, SUBPIXEL_BITS, SUBPIXEL_STEPS};
+use crate::raster::fixed::{
+    DIVISION_IS_CHEAP, HALF_PIXEL, MAX_POLYGONS, SUBPIXEL_BITS, SUBPIXEL_STEPS,
+};
 use crate::raster::vertex::ScreenVertex;
 
 /// Edge-table entry, packed in 4 bytes: the row where edges of a polygon
@@ -44,10 +46,10 @@ use crate::raster::vertex::ScreenVertex;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
 pub struct EdgeEntry(u32);
 
-/// Bits of [`EdgeEntry`] holding the polygon's position.
-const POSITION_BITS: u32 = 20;
-/// Largest polygon table the packing can address.
-pub(crate) const MAX_POLYGONS: usize = 1 << POSITION_BITS;
+/// Bits of [`EdgeEntry`] holding the polygon's position: enough for
+/// [`MAX_POLYGONS`] positions.
+const POSITION_BITS: u32 = MAX_POLYGONS.trailing_zeros();
+const _: () = assert!(MAX_POLYGONS.is_power_of_two() && POSITION_BITS <= 20);
 
 impl EdgeEntry {
     /// An entry for unused slots.

@@ -32,8 +32,13 @@ pub const HALF_PIXEL: i32 = SUBPIXEL_STEPS / 2;
 /// Largest frame width or height, in pixels, that the renderer accepts.
 pub const MAX_FRAME_SIZE: usize = 4096;
 /// Most corners one polygon may have. It bounds the integer ranges of
-/// polygon set-up (see `src/scanline/plane.rs`); it costs no memory.
+/// polygon set-up (see `src/raster/plane.rs`); it costs no memory.
 pub const MAX_POLYGON_CORNERS: usize = 1024;
+/// Most polygons the tables hold (2^20): an edge-table entry packs a
+/// polygon's position into 20 bits. A storage with more polygon slots
+/// uses this many; the next polygon is
+/// [`Error::PolygonTableFull`](crate::Error::PolygonTableFull).
+pub const MAX_POLYGONS: usize = 1 << 20;
 /// Vertices must lie strictly inside `(-GUARD_BAND_PX, GUARD_BAND_PX)` on
 /// both axes, in pixels.
 pub const GUARD_BAND_PX: i32 = 8192;

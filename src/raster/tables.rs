@@ -19,8 +19,10 @@
 use core::ops::Range;
 
 use crate::error::Error;
-use crate::raster::edge::{EdgeEntry, MAX_POLYGONS};
-use crate::raster::fixed::{MAX_FRAME_SIZE, MAX_POLYGON_CORNERS, first_sample_at_or_after};
+use crate::raster::edge::EdgeEntry;
+use crate::raster::fixed::{
+    MAX_FRAME_SIZE, MAX_POLYGON_CORNERS, MAX_POLYGONS, first_sample_at_or_after,
+};
 use crate::raster::slots::Slots;
 use crate::raster::vertex::{Outline, OutlineBuilder, ScreenRect, ScreenVertex, TriangleTest};
 use crate::raster::wide::cross;
@@ -306,7 +308,7 @@ impl<S: TableStorage> Tables<S> {
         let room = corner_room(parts.corners.len(), parts.edges.len());
         TablesMut {
             vertices: Slots::new(parts.vertices, &mut st.vertices),
-            polygons: Slots::new(parts.polygons, &mut st.polygons),
+            polygons: Slots::new(usable_polygons(parts.polygons), &mut st.polygons),
             corners: Slots::new(&mut parts.corners[..room], &mut st.corners),
             edges: Slots::new(parts.edges, &mut st.edges),
             counts: &mut st.counts,
@@ -521,11 +523,12 @@ impl<S: TableStorage> Tables<S> {
             return Ok(Admission::Declined);
         };
         let room = corner_room(parts.corners.len(), parts.edges.len());
+        let polygons = usable_polygons(parts.polygons);
         let (Some(entry), Some(slots)) = (
-            parts.polygons.get_mut(st.polygons),
+            polygons.get_mut(st.polygons),
             parts.corners[..room].get_mut(st.corners..st.corners + 3),
         ) else {
-            return Err(if st.polygons >= parts.polygons.len() {
+            return Err(if st.polygons >= polygons.len() {
                 Error::PolygonTableFull
             } else {
                 Error::EdgeTableFull
@@ -1011,6 +1014,16 @@ impl<C: Copy> TablesMut<'_, C> {
         }
         self.edges.set_len(kept);
     }
+}
+
+/// The polygon slots the tables use: at most [`MAX_POLYGONS`], the most
+/// an edge-table entry and the sort can address (a storage with more
+/// slots leaves the rest unused, and the polygon past the limit is
+/// [`Error::PolygonTableFull`]).
+#[inline(always)]
+fn usable_polygons<T>(polygons: &mut [T]) -> &mut [T] {
+    let usable = polygons.len().min(MAX_POLYGONS);
+    &mut polygons[..usable]
 }
 
 /// Most samples in a triangle's bounding box for which the core tests
