@@ -9,7 +9,6 @@
 //! from `face_starts[f]` up to `face_starts[f + 1]` (or the end of
 //! `corners` for the last face), each corner a 0-based vertex index.
 
-use crate::front::geometry::{Vec3, newell_normal};
 use crate::front::quantized::QuantizedView;
 
 /// A polygon mesh: positions and faces of 3 or more corners.
@@ -353,24 +352,48 @@ pub fn is_planar<M: Mesh + ?Sized>(mesh: &M, index: usize) -> bool {
     if count <= 3 {
         return true;
     }
-    let position = |k: usize| Vec3::from_array(mesh.position(usize::from(corners[k])));
-    let normal = newell_normal(corners.iter().map(|&i| mesh.position(usize::from(i))));
-    // Relative to corner 0, everything scaled by `count` so the centroid
-    // needs no division; compared squared, so no square root either.
-    let origin = position(0);
-    let sum = (1..count).fold(Vec3::default(), |sum, k| sum + (position(k) - origin));
-    let n = count as f32;
-    let (mut radius2, mut deviation2) = (0.0f32, 0.0f32);
+    // In f64, relative to corner 0, so that no finite f32 corners overflow
+    // or underflow: a difference is below 2^129 in magnitude (and 0 or at
+    // least 2^-149); with up to 2^16 corners, `d` (below) stays under
+    // 2^146, the normal's components under 2^275, and the squares compared
+    // under 2^846, while a non-zero deviation squared stays above 2^-894.
+    // (In f32 a face with sides near 1e9 judged 4th and 6th powers both
+    // infinite, and one with sides near 1e-9 saw its deviation vanish.)
+    let origin = mesh.position(usize::from(corners[0])).map(f64::from);
+    let relative = |k: usize| {
+        let p = mesh.position(usize::from(corners[k]));
+        [0, 1, 2].map(|i| f64::from(p[i]) - origin[i])
+    };
+    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    // Newell's normal: the fan's cross products from corner 0.
+    let mut normal = [0.0f64; 3];
+    for k in 1..count - 1 {
+        let (p, q) = (relative(k), relative(k + 1));
+        normal[0] += p[1] * q[2] - p[2] * q[1];
+        normal[1] += p[2] * q[0] - p[0] * q[2];
+        normal[2] += p[0] * q[1] - p[1] * q[0];
+    }
+    // Everything scaled by `count` so the centroid needs no division;
+    // compared squared, so no square root either.
+    let mut sum = [0.0f64; 3];
+    for k in 1..count {
+        let p = relative(k);
+        sum = [0, 1, 2].map(|i| sum[i] + p[i]);
+    }
+    let n = count as f64;
+    let (mut radius2, mut deviation2) = (0.0f64, 0.0f64);
     for k in 0..count {
         // count · (corner - centroid)
-        let d = (position(k) - origin) * n - sum;
-        radius2 = radius2.max(d.dot(d));
-        let along = d.dot(normal);
+        let p = relative(k);
+        let d = [0, 1, 2].map(|i| p[i] * n - sum[i]);
+        radius2 = radius2.max(dot(d, d));
+        let along = dot(d, normal);
         deviation2 = deviation2.max(along * along);
     }
-    let length2 = normal.dot(normal);
+    let length2 = dot(normal, normal);
+    let tolerance = f64::from(PLANARITY_TOLERANCE);
     // distance = along / |normal| <= tolerance · radius, squared.
-    length2 > 0.0 && deviation2 <= PLANARITY_TOLERANCE * PLANARITY_TOLERANCE * radius2 * length2
+    length2 > 0.0 && deviation2 <= tolerance * tolerance * radius2 * length2
 }
 
 #[cfg(test)]
@@ -441,5 +464,48 @@ mod tests {
             both.with_planar_faces(&[]).err(),
             Some(MeshError::BadPlanarity)
         );
+    }
+
+    /// The test holds at every scale a finite `f32` corner allows: a flat
+    /// pentagon is planar and the same with one corner lifted by half its
+    /// size is not, from sides of 2^-120 to corners near `f32::MAX` (in
+    /// `f32` the powers overflowed from sides near 1e8 and the deviation
+    /// vanished below 1e-8).
+    #[test]
+    fn planarity_at_every_scale() {
+        const SHAPE: [[f32; 2]; 5] = [[0.0, 0.0], [1.0, 0.0], [1.5, 0.8], [0.6, 1.3], [-0.4, 0.7]];
+        for exponent in (-120..=126).step_by(2) {
+            let size = 2f32.powi(exponent);
+            let corners = |lift: f32| {
+                let mut p = SHAPE.map(|[x, y]| [x * size, y * size, 0.0]);
+                p[2][2] = lift * size;
+                p
+            };
+            let (flat, bent) = (corners(0.0), corners(0.5));
+            let face = [0, 1, 2, 3, 4];
+            let flat = StaticMesh::new(&flat, &face, &[0]).unwrap();
+            let bent = StaticMesh::new(&bent, &face, &[0]).unwrap();
+            assert!(is_planar(&flat, 0), "flat, size 2^{exponent}");
+            assert!(!is_planar(&bent, 0), "bent, size 2^{exponent}");
+        }
+        // At the extremes of f32: corners up to f32::MAX apart, and
+        // differences of the smallest subnormal.
+        let huge = [
+            [-f32::MAX, -f32::MAX, 0.0],
+            [f32::MAX, -f32::MAX, 0.0],
+            [f32::MAX, f32::MAX, f32::MAX],
+            [-f32::MAX, f32::MAX, 0.0],
+        ];
+        let huge = StaticMesh::new(&huge, &[0, 1, 2, 3], &[0]).unwrap();
+        assert!(!is_planar(&huge, 0));
+        let tiny = f32::from_bits(1);
+        let small = [
+            [0.0; 3],
+            [4.0 * tiny, 0.0, 0.0],
+            [4.0 * tiny, 4.0 * tiny, 2.0 * tiny],
+            [0.0, 4.0 * tiny, 0.0],
+        ];
+        let small = StaticMesh::new(&small, &[0, 1, 2, 3], &[0]).unwrap();
+        assert!(!is_planar(&small, 0));
     }
 }
