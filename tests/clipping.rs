@@ -60,6 +60,62 @@ impl View {
         [(x + 1.0) * 0.5 * self.width, (1.0 - y) * 0.5 * self.height]
     }
 
+    /// The bounding box `[x0, x1, y0, y1]` (pixels) of the part of `tri`
+    /// between the near plane and `far` and inside the frame, cut and
+    /// projected in f64; `None` when no part is.
+    fn visible_box(&self, tri: &[[f64; 3]; 3], far: f64) -> Option<[f64; 4]> {
+        // Sutherland-Hodgman against depth >= near, then depth <= far.
+        let cut = |polygon: Vec<[f64; 3]>, keep: &dyn Fn([f64; 3]) -> f64| {
+            let mut out = Vec::new();
+            for k in 0..polygon.len() {
+                let (p, q) = (polygon[k], polygon[(k + 1) % polygon.len()]);
+                let (dp, dq) = (keep(p), keep(q));
+                if dp >= 0.0 {
+                    out.push(p);
+                }
+                if (dp >= 0.0) != (dq >= 0.0) {
+                    let t = dp / (dp - dq);
+                    out.push([0, 1, 2].map(|i| p[i] + (q[i] - p[i]) * t));
+                }
+            }
+            out
+        };
+        let near = self.near;
+        let polygon = cut(tri.to_vec(), &|p| -p[2] - near);
+        let polygon = cut(polygon, &|p| far + p[2]);
+        // Projected (lines stay lines in front of the eye), then cut to the
+        // frame.
+        let mut polygon: Vec<[f64; 3]> = polygon
+            .into_iter()
+            .map(|p| {
+                let [x, y] = self.project(p);
+                [x, y, 0.0]
+            })
+            .collect();
+        let (w, h) = (self.width, self.height);
+        for side in [
+            &(|p: [f64; 3]| p[0]) as &dyn Fn([f64; 3]) -> f64,
+            &|p| w - p[0],
+            &|p| p[1],
+            &|p| h - p[1],
+        ] {
+            polygon = cut(polygon, side);
+        }
+        if polygon.len() < 3 {
+            return None;
+        }
+        let mut b = [
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        ];
+        for [x, y, _] in polygon {
+            b = [b[0].min(x), b[1].max(x), b[2].min(y), b[3].max(y)];
+        }
+        Some(b)
+    }
+
     /// The exact screen lines a clipped triangle's edges may lie on: each
     /// edge's projection (where part of it is in front of the near plane),
     /// the near plane's cut, and the guard band's four sides.
@@ -145,6 +201,27 @@ fn check_cut_edges(tri: [[f32; 3]; 3], view: View, far: f32) -> usize {
     .unwrap();
     assert_eq!(stats.non_finite, 0, "{tri:?}: a corner was lost");
     let exact = tri.map(|p| p.map(f64::from));
+    // The part in front of the near plane, cut and projected in f64: when
+    // its bounding box holds a sample of the frame (with a margin for the
+    // sub-pixel grid), the face is queued, or its snapped corners have no
+    // area; it is never judged outside or dropped.
+    if let Some([x0, x1, y0, y1]) = view.visible_box(&exact, f64::from(far)) {
+        let margin = 0.02;
+        let holds_sample = |low: f64, high: f64| {
+            let first = (low + margin - 0.5).ceil() + 0.5;
+            first <= high - margin
+        };
+        if holds_sample(x0, x1) && holds_sample(y0, y1) {
+            assert_eq!(stats.outside, 0, "{tri:?}");
+            assert!(
+                tables.polygons.len() + stats.degenerate as usize >= 1,
+                "{tri:?}: a face with samples on screen was dropped: {stats:?}"
+            );
+        }
+    }
+    if exact.iter().any(|p| -p[2] <= view.near) && stats.outside == 0 {
+        assert_eq!(stats.clipped, 1, "{tri:?}: a corner behind the near plane");
+    }
     let lines = view.lines(&exact);
     let step = 1.0 / f64::from(SUBPIXEL_STEPS);
     for (corners, _) in &tables.polygons {

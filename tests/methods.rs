@@ -82,6 +82,9 @@ fn methods_agree_where_they_should() {
                     cull_back: cull == Cull::Back,
                 },
             );
+            // The runner's reference is the float64 reference of this view
+            // (its size, angles and culling passed through).
+            assert!(reference.ids.iter().any(|&f| f != u32::MAX), "{name}");
             assert_eq!(get(Method::Reference).faces, reference.ids);
             for m in [Method::Scanline, Method::Interval] {
                 let c = compare(&reference, &get(m).faces);

@@ -349,10 +349,16 @@ mod tests {
                     let q0 = [x, y, 0];
                     let q1 = [x.wrapping_add(i16::MIN), y, i16::MAX];
                     let q2 = [x, y.wrapping_add(i16::MAX), i16::MIN];
-                    if test.side(&q0, &q1, &q2) != Side::Unsure {
+                    let side = test.side(&q0, &q1, &q2);
+                    if side != Side::Unsure {
                         named += 1;
                     }
-                    let _ = test.side(&q2, &q0, &q1);
+                    // Rotating the corners moves no plane: a side named
+                    // both ways is the same side.
+                    let rotated = test.side(&q2, &q0, &q1);
+                    if side != Side::Unsure && rotated != Side::Unsure {
+                        assert_eq!(side, rotated, "{q0:?} {q1:?} {q2:?}");
+                    }
                 }
             }
         }
