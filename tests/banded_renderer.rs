@@ -5,6 +5,8 @@
 
 mod common;
 
+use std::time::Duration;
+
 use proptest::prelude::*;
 use zline::front::scene::{Camera, Cull, VertexCache, draw_mesh, reference_model};
 use zline::host::{BandTables, BandedRenderer, host_renderer, shapes};
@@ -217,8 +219,10 @@ fn cuts_move_to_where_the_polygons_are() {
         .map(|t| (t.rows.clone(), t.polygons))
         .collect();
     assert_eq!(last, [(0..20, 0), (20..40, 40)]);
-    let cut = renderer.bands().next().unwrap().end;
-    assert!((30..40).contains(&cut), "cut at {cut}");
+    // Each of rows 30 to 39 holds 4 activations and 4 active polygons:
+    // 4 + 4·5 + 4 = 28 units, the others 4 (see `Band::work`). Half the
+    // total, (40·4 + 10·24)/2 = 200, is reached on row 32.
+    assert_eq!(renderer.bands().collect::<Vec<_>>(), [0..33, 33..40]);
 }
 
 /// Work is counted on every row a polygon is active, not only where it
@@ -234,8 +238,46 @@ fn cuts_follow_the_rows_polygons_are_active_on() {
     renderer.set_cuts(&[5]).unwrap();
     let rows = banded(&mut renderer, &mut [(), ()], |t, _| offer(t, &scene));
     assert_eq!(rows, whole::<Depth16>(&CAPS, (W, H), |r| offer(r, &scene)));
-    let cut = renderer.bands().next().unwrap().end;
-    assert!((17..=21).contains(&cut), "cut at {cut}");
+    // Rows hold 4 units of their own and 1 per active polygon (10 on
+    // every row), and 5 per activation: the ten on row 0, and again on
+    // row 5, the lower band's first row. Of 40·14 + 2·50 = 660 units, half
+    // is reached on row 16 (64 + 4·14 + 64 + 10·14 = 324, plus 14).
+    assert_eq!(renderer.bands().collect::<Vec<_>>(), [0..17, 17..40]);
+}
+
+/// Three bands share the work in thirds: the ten tall triangles again,
+/// from cuts after rows 0 and 1, and a frame whose work lies on one row
+/// leaves the cuts where they were (each band keeps at least one row).
+#[test]
+fn three_bands_share_the_work_in_thirds() {
+    let v = |x: i32, y: i32| ScreenVertex::new(x * S, y * S, 1000).unwrap();
+    let tall: Vec<Vec<ScreenVertex>> = (0..10)
+        .map(|k| vec![v(4 * k, 0), v(4 * k + 3, 0), v(4 * k, 40)])
+        .collect();
+    let mut renderer = BandedRenderer::<u32, Depth16>::new(&CAPS, W, H, 0, 3).unwrap();
+    renderer.set_cuts(&[1, 2]).unwrap();
+    let rows = banded(&mut renderer, &mut [(), (), ()], |t, _| offer(t, &tall));
+    assert_eq!(rows, whole::<Depth16>(&CAPS, (W, H), |r| offer(r, &tall)));
+    // Activations on rows 0, 1 and 2 (50 units each), 14 a row: of 660
+    // units, a third is reached on row 6 and two thirds on row 23.
+    assert_eq!(renderer.bands().collect::<Vec<_>>(), [0..7, 7..24, 24..40]);
+    // Forty triangles on one row (6 units each, 240 of 400): a third and
+    // two thirds of the work are both reached on that row. On row 20 the
+    // cuts go after it and after the next row (one cut a row); on the last
+    // row the second cut would leave the last band no row, and the cuts
+    // stay where they were.
+    let flat = |row: i32| -> Vec<Vec<ScreenVertex>> {
+        (0..40)
+            .map(|k| vec![v(k, row), v(k + 3, row), v(k, row + 1)])
+            .collect()
+    };
+    for (row, cuts) in [(20, [0..21, 21..22, 22..40]), (39, [0..5, 5..10, 10..40])] {
+        renderer.set_cuts(&[5, 10]).unwrap();
+        let scene = flat(row);
+        let rows = banded(&mut renderer, &mut [(), (), ()], |t, _| offer(t, &scene));
+        assert_eq!(rows, whole::<Depth16>(&CAPS, (W, H), |r| offer(r, &scene)));
+        assert_eq!(renderer.bands().collect::<Vec<_>>(), cuts, "row {row}");
+    }
 }
 
 #[test]
@@ -269,7 +311,20 @@ fn bad_bands_and_cuts_are_errors() {
         .map(|_| FnSink(|_: u16, _: &[u32], _: &[u16]| Ok::<(), ()>(())))
         .collect();
     let result = renderer.render(&mut [(), (), ()], &mut sinks, |_, _| Ok(()));
-    assert!(result.is_err());
+    assert_eq!(
+        result.err(),
+        Some(zline::RenderError::Table(Error::BadFrameSize))
+    );
+    let mut sinks: Vec<_> = (0..3)
+        .map(|_| FnSink(|_: u16, _: &[u32], _: &[u16]| Ok::<(), ()>(())))
+        .collect();
+    let result = renderer.render(&mut [(), ()], &mut sinks, |_, _| Ok(()));
+    assert_eq!(
+        result.err(),
+        Some(zline::RenderError::Table(Error::BadFrameSize))
+    );
+    let result = renderer.render(&mut [(), (), ()], &mut sinks, |_, _| Ok(()));
+    assert!(result.is_ok());
 }
 
 /// The threads each band's sink was called on, in one frame of `mesh`
@@ -298,9 +353,11 @@ fn sink_threads(
     threads.into_iter().map(|id| id.unwrap()).collect()
 }
 
-/// A frame whose bands had little work the frame before (and the first
-/// frame) is drawn on the calling thread alone; a frame of more work gives
-/// each band a thread.
+/// A frame whose bands had less work the frame before than the limit
+/// (and the first frame, with the default limit) is drawn on the calling
+/// thread alone; a frame of more work gives each band a thread. The
+/// limit decides, not the clock: with it at zero every frame has threads,
+/// at its largest none.
 #[test]
 fn small_frames_stay_on_the_calling_thread() {
     let here = std::thread::current().id();
@@ -324,23 +381,41 @@ fn small_frames_stay_on_the_calling_thread() {
         face_starts: vec![0, 3],
         ..Default::default()
     };
-    let mut renderer = BandedRenderer::<u32, Depth16>::new(&caps, 96, 72, 0, 2).unwrap();
-    for frame in 0..3 {
+    let big = shapes::torus_knot(2, 3, 1024, 8, 0.45);
+    let new = || BandedRenderer::<u32, Depth16>::new(&caps, 96, 72, 0, 2).unwrap();
+    // The default limit: the first frame (no work before it) stays.
+    for mesh in [&small, &big] {
+        assert_eq!(sink_threads(&mut new(), mesh, (96, 72)), [here, here]);
+    }
+    // No limit: threads from the first frame on, however small.
+    let mut renderer = new();
+    renderer.set_one_thread_below(Duration::ZERO);
+    for frame in 0..2 {
+        let threads = sink_threads(&mut renderer, &small, (96, 72));
+        assert_eq!(threads[0], here, "frame {frame}");
+        assert_ne!(threads[1], here, "frame {frame}");
+    }
+    // The largest limit: never, however large.
+    let mut renderer = new();
+    renderer.set_one_thread_below(Duration::MAX);
+    for frame in 0..2 {
         assert_eq!(
-            sink_threads(&mut renderer, &small, (96, 72)),
+            sink_threads(&mut renderer, &big, (96, 72)),
             [here, here],
             "frame {frame}"
         );
     }
-    // A torus knot of 16,384 triangles: over a millisecond of work even
-    // in an optimised build (0.34 ms for a quarter of it), so the second
-    // frame starts a thread for the second band.
-    let big = shapes::torus_knot(2, 3, 1024, 8, 0.45);
-    let mut renderer = BandedRenderer::<u32, Depth16>::new(&caps, 96, 72, 0, 2).unwrap();
+    // A limit between the two frames' work: the small mesh's frame after
+    // the large one's has threads, the large one's after the small one's
+    // has none.
+    let mut renderer = new();
+    sink_threads(&mut renderer, &big, (96, 72));
+    let big_work: Duration = renderer.last_frame().map(|b| b.build + b.scan).sum();
+    sink_threads(&mut renderer, &small, (96, 72));
+    let small_work: Duration = renderer.last_frame().map(|b| b.build + b.scan).sum();
+    assert!(small_work < big_work, "{small_work:?} {big_work:?}");
+    renderer.set_one_thread_below(small_work + (big_work - small_work) / 2);
+    sink_threads(&mut renderer, &big, (96, 72));
+    assert_ne!(sink_threads(&mut renderer, &small, (96, 72))[1], here);
     assert_eq!(sink_threads(&mut renderer, &big, (96, 72)), [here, here]);
-    let work: std::time::Duration = renderer.last_frame().map(|b| b.build + b.scan).sum();
-    assert!(work > std::time::Duration::from_micros(120), "{work:?}");
-    let second = sink_threads(&mut renderer, &big, (96, 72));
-    assert_eq!(second[0], here);
-    assert_ne!(second[1], here);
 }

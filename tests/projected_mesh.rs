@@ -373,6 +373,46 @@ fn render_mesh_on_a_large_mesh_uses_every_thread_and_equals_one_renderer() {
 }
 
 #[test]
+fn one_banded_renderer_draws_large_and_small_meshes_in_turn() {
+    // The face lists keep their room from frame to frame: a small mesh
+    // after a large one must not draw the large one's faces left in it,
+    // nor the large one after the small one miss any.
+    let large = shapes::torus_knot(2, 3, 1024, 12, 0.45);
+    let small = shapes::torus_knot(2, 3, 64, 8, 0.45);
+    let (width, height) = (160u16, 120u16);
+    let caps = large.capacities(width);
+    let camera = Camera::reference(width, height);
+    let one = |mesh: &HostMesh, model: &Mat4| {
+        rows_sized(&caps, (width, height), |r| {
+            let mut cache = Box::new(VertexCache::<65536>::new());
+            draw_mesh(r, &mut *cache, mesh, model, &camera, Cull::None, shade).unwrap();
+        })
+    };
+    let large_view = reference_model(&large, 30.0, 20.0).unwrap();
+    let small_view = reference_model(&small, 30.0, 20.0)
+        .unwrap()
+        .mul(&Mat4::translation(zline::front::geometry::Vec3::new(
+            0.4, 0.0, 0.0,
+        )));
+    let (large_rows, small_rows) = (one(&large, &large_view), one(&small, &small_view));
+    assert_ne!(large_rows, small_rows);
+    let mut renderer = BandedRenderer::<u32, Depth16>::new(&caps, width, height, 0, 2).unwrap();
+    for (frame, (mesh, view, expected)) in [
+        (&large, &large_view, &large_rows),
+        (&large, &large_view, &large_rows),
+        (&small, &small_view, &small_rows),
+        (&large, &large_view, &large_rows),
+        (&small, &small_view, &small_rows),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let rows = banded_rows(&mut renderer, mesh, view, &camera, Cull::None).unwrap();
+        assert_eq!(&rows, expected, "frame {frame}");
+    }
+}
+
+#[test]
 fn render_mesh_refuses_a_mesh_beyond_its_cache() {
     let mesh = HostMesh {
         positions: vec![[0.0; 3]; MESH_VERTICES + 1],

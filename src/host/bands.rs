@@ -222,7 +222,7 @@ pub struct BandTiming {
 /// frame whose bands took less than about 0.1 ms of work the frame before
 /// (and the first frame) is drawn band after band on the calling thread;
 /// on such small scenes one renderer on one thread is still a little
-/// faster.
+/// faster. [`Self::set_one_thread_below`] moves that limit.
 ///
 /// ```
 /// use zline::front::scene::{Camera, Cull, reference_model};
@@ -277,11 +277,14 @@ pub struct BandedRenderer<C: Copy, D: DepthFormat> {
     vertex_rows: Vec<i16>,
     /// [`Self::render_mesh`]'s faces for each band, per run of faces
     /// (`face_lists[run][band]`).
-    face_lists: Vec<Vec<Vec<u32>>>,
+    face_lists: Vec<Vec<FaceList>>,
     /// [`Self::render_mesh`]'s scratch for each band.
     scratch: Vec<MeshScratch>,
     /// What [`Self::render_mesh`]'s shared steps took in the last frame.
     shared: SharedSteps,
+    /// Below this much work in the last frame's bands, a frame stays on
+    /// the calling thread ([`ONE_THREAD_BELOW`] unless set).
+    one_thread_below: Duration,
 }
 
 /// A band's scratch in [`BandedRenderer::render_mesh`].
@@ -333,8 +336,8 @@ const ACTIVE_ROW_WORK: u32 = 1;
 /// on the calling thread: starting a thread and waiting for it costs
 /// 30-60 µs on a desktop, more than sharing such a frame saves. The
 /// peers bench's smallest scenes took 0.06-0.1 ms on two threads, 0.01-0.06
-/// on one.
-const ONE_THREAD_BELOW: Duration = Duration::from_micros(120);
+/// on one. The default of [`BandedRenderer::set_one_thread_below`].
+pub const ONE_THREAD_BELOW: Duration = Duration::from_micros(120);
 
 impl<C: Copy + Send + Sync, D: DepthFormat> BandedRenderer<C, D>
 where
@@ -372,7 +375,18 @@ where
             face_lists: Vec::new(),
             scratch: Vec::new(),
             shared: SharedSteps::default(),
+            one_thread_below: ONE_THREAD_BELOW,
         })
+    }
+
+    /// Draws the next frames on the calling thread alone, band after
+    /// band, while the bands' work in the frame before (building and
+    /// scanning, summed over the bands; none before the first frame) is
+    /// below `work`: [`Duration::ZERO`] always starts threads,
+    /// [`Duration::MAX`] never does. The default, [`ONE_THREAD_BELOW`],
+    /// is a few times what starting a thread costs on a desktop.
+    pub fn set_one_thread_below(&mut self, work: Duration) {
+        self.one_thread_below = work;
     }
 
     /// Each band's rows, polygons and times in the last frame drawn, top
@@ -416,6 +430,8 @@ where
         let work = self.bands.iter().flat_map(|band| band.work.iter().copied());
         let total: u64 = work.clone().map(u64::from).sum();
         let mut cuts = Vec::with_capacity(n - 1);
+        // At most 4,096 rows of under 2^23 each (see `draw_band`): sums
+        // below 2^35, and times at most 4,096 bands below 2^47.
         let mut sum = 0u64;
         for (row, w) in (0u16..).zip(work) {
             sum += u64::from(w);
@@ -528,7 +544,7 @@ where
         let build = |tables: &mut BandTables<'_, _>, x: &mut MeshScratch| {
             x.faces.clear();
             for run in lists_ref {
-                x.faces.extend_from_slice(&run[x.band]);
+                x.faces.extend_from_slice(run[x.band].faces());
             }
             draw_mesh_projected(
                 tables,
@@ -604,7 +620,7 @@ where
         let last: Duration = self.bands.iter().map(|b| b.last.build + b.last.scan).sum();
         let jobs = self.bands.iter_mut().zip(scratch).zip(sinks);
         let job = |((band, x), sink)| draw_band(band, x, sink, &build, test_triangles);
-        let stats = if last < ONE_THREAD_BELOW {
+        let stats = if last < self.one_thread_below {
             jobs.map(job).collect::<Vec<_>>()
         } else {
             on_threads(jobs, job)
@@ -680,32 +696,52 @@ fn sort_faces<M: Mesh>(
     faces: Range<usize>,
     bands: &[Range<u16>],
     height: u16,
-    out: &mut Vec<Vec<u32>>,
+    out: &mut Vec<FaceList>,
 ) {
     // Each list has room for every face, and a face is written at the
     // list's end whether it is kept or not, the length moving only when it
     // is: about half the faces reach a band, and a branch on it would be
-    // mispredicted as often.
-    out.resize_with(bands.len(), Vec::new);
+    // mispredicted as often. The room stays from frame to frame (written
+    // before it is read), so nothing is cleared.
+    out.resize_with(bands.len(), FaceList::default);
     for list in out.iter_mut() {
-        list.clear();
-        list.resize(faces.len() + 1, 0);
+        list.make_room(faces.len() + 1);
     }
-    let mut lengths: Vec<usize> = std::vec![0; bands.len()];
     for face in faces {
         // Faces are counted in u32 (`DrawStats`).
         let id = face as u32;
         // `None`: every band.
         let (first, end) =
             sample_rows(mesh.face(face), rows, height).unwrap_or((i16::MIN, i16::MAX));
-        for ((band, list), length) in bands.iter().zip(out.iter_mut()).zip(&mut lengths) {
-            list[*length] = id;
+        for (band, list) in bands.iter().zip(out.iter_mut()) {
+            list.room[list.len] = id;
             let reaches = first < end && first < band.end as i16 && end > band.start as i16;
-            *length += usize::from(reaches);
+            list.len += usize::from(reaches);
         }
     }
-    for (list, &length) in out.iter_mut().zip(&lengths) {
-        list.truncate(length);
+}
+
+/// One run's faces for one band ([`sort_faces`]): the first `len` entries
+/// of `room`, which has room for every face of the run and more.
+#[derive(Debug, Clone, Default)]
+struct FaceList {
+    room: Vec<u32>,
+    len: usize,
+}
+
+impl FaceList {
+    /// Empties the list, with room for `count` faces (the old entries stay
+    /// in the room, to be written over).
+    fn make_room(&mut self, count: usize) {
+        if self.room.len() < count {
+            self.room.resize(count, 0);
+        }
+        self.len = 0;
+    }
+
+    /// The faces in the list.
+    fn faces(&self) -> &[u32] {
+        &self.room[..self.len]
     }
 }
 
@@ -714,7 +750,19 @@ fn sort_faces<M: Mesh>(
 /// `None` when a corner is not projected or the face has fewer than three
 /// corners. (The first sample row at or below a corner is monotonic in
 /// its `y`, so the face's rows come from its corners' rows.)
+#[inline]
 fn sample_rows(corners: &[u16], rows: &[i16], height: u16) -> Option<(i16, i16)> {
+    if let &[a, b, c] = corners {
+        // The common case, a triangle, with no loop.
+        let row = |corner: u16| rows.get(usize::from(corner)).copied();
+        let (Some(a), Some(b), Some(c)) = (row(a), row(b), row(c)) else {
+            return None;
+        };
+        if a == NOT_PROJECTED || b == NOT_PROJECTED || c == NOT_PROJECTED {
+            return None;
+        }
+        return Some((a.min(b).min(c).max(0), a.max(b).max(c).min(height as i16)));
+    }
     if corners.len() < 3 {
         return None;
     }
@@ -765,7 +813,9 @@ where
         scan: built.elapsed(),
     };
     // Per row: its own upkeep, each polygon activated on it (those from
-    // above the band on its first), and each polygon active on it.
+    // above the band on its first), and each polygon active on it. The
+    // tables hold at most MAX_POLYGONS = 2^20 polygons, so `live` stays in
+    // 0..=2^20 and a row's work below 4 + 6·2^20 < 2^23 (u32).
     let n = rows.len();
     let mut active = std::vec![0i64; n + 1];
     band.work.clear();
@@ -787,4 +837,24 @@ where
         *w += live as u32 * ACTIVE_ROW_WORK;
     }
     Ok(stats)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Runs are equal shares of at least [`ITEMS_PER_THREAD`] items: a
+    /// large mesh is shared by every thread, a small one stays whole.
+    #[test]
+    fn runs_share_large_meshes_only() {
+        assert_eq!(ITEMS_PER_THREAD, 4096);
+        assert_eq!(runs(12_288, 2), 6144);
+        assert_eq!(runs(12_289, 3), 4097);
+        assert_eq!(runs(8192, 4), 4096);
+        assert_eq!(runs(8191, 2), 4096);
+        assert_eq!(runs(100, 4), 100);
+        assert_eq!(runs(1, 8), 1);
+        assert_eq!(runs(0, 3), 1);
+        assert_eq!(runs(10, 0), 10);
+    }
 }

@@ -14,7 +14,9 @@ mod rust_source;
 pub mod shapes;
 mod storage;
 
-pub use bands::{BandTables, BandTiming, BandedRenderer, MESH_VERTICES, SharedSteps};
+pub use bands::{
+    BandTables, BandTiming, BandedRenderer, MESH_VERTICES, ONE_THREAD_BELOW, SharedSteps,
+};
 pub use cli::{load_model, obj_files, parse_angle, parse_size, run_tool};
 pub use host_mesh::HostMesh;
 pub use machine::{cpu, now_utc};
