@@ -429,3 +429,95 @@ fn render_mesh_refuses_a_mesh_beyond_its_cache() {
         ))
     );
 }
+
+/// A mesh whose `position` panics for one vertex.
+struct PanicsAt {
+    mesh: HostMesh,
+    vertex: usize,
+}
+
+impl Mesh for PanicsAt {
+    fn vertex_count(&self) -> usize {
+        self.mesh.vertex_count()
+    }
+    fn position(&self, index: usize) -> [f32; 3] {
+        assert_ne!(index, self.vertex, "the mesh's own panic");
+        self.mesh.position(index)
+    }
+    fn face_count(&self) -> usize {
+        self.mesh.face_count()
+    }
+    fn face(&self, index: usize) -> &[u16] {
+        self.mesh.face(index)
+    }
+}
+
+/// A panic on any thread of a banded frame, in any step, reaches the
+/// caller: no thread is left waiting for the others. (The threads meet
+/// between the steps; a thread that panics opens the meeting.) The
+/// renderer draws the next frame as before.
+#[test]
+fn a_panic_in_a_banded_frame_reaches_the_caller() {
+    // A thread left waiting would hang the test: fail it instead.
+    let done = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
+    let watched = done.clone();
+    std::thread::spawn(move || {
+        std::thread::sleep(std::time::Duration::from_secs(60));
+        if !watched.load(std::sync::atomic::Ordering::Acquire) {
+            eprintln!("a banded frame with a panic did not return within 60 s");
+            std::process::exit(1);
+        }
+    });
+    let knot = shapes::torus_knot(2, 3, 1024, 12, 0.45);
+    let (width, height) = (160u16, 120u16);
+    let caps = knot.capacities(width);
+    let model = reference_model(&knot, 30.0, 20.0).unwrap();
+    let camera = Camera::reference(width, height);
+    let one = rows_sized(&caps, (width, height), |r| {
+        let mut cache = Box::new(VertexCache::<65536>::new());
+        draw_mesh(r, &mut *cache, &knot, &model, &camera, Cull::None, shade).unwrap();
+    });
+    let last = knot.vertex_count() - 1;
+    let mut renderer = BandedRenderer::<u32, Depth16>::new(&caps, width, height, 0, 2).unwrap();
+    for threads in [false, true] {
+        renderer.set_one_thread_below(if threads {
+            std::time::Duration::ZERO
+        } else {
+            std::time::Duration::MAX
+        });
+        // In the projection (the first chunk, which the calling thread
+        // takes, and the last), then in the shading of the last face (on
+        // the second band's thread, or the calling thread's last band).
+        for vertex in [0, last] {
+            let panics = PanicsAt {
+                mesh: knot.clone(),
+                vertex,
+            };
+            let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                banded_rows(&mut renderer, &panics, &model, &camera, Cull::None)
+            }));
+            assert!(result.is_err(), "threads {threads}, vertex {vertex}");
+        }
+        let faces = knot.face_count() as u32;
+        let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            let mut bands: Vec<Rows> = vec![Rows::new(); 2];
+            let mut sinks: Vec<_> = bands
+                .iter_mut()
+                .map(|rows| {
+                    FnSink(move |y: u16, c: &[u32], z: &[u16]| {
+                        rows.push((y, c.to_vec(), z.to_vec()));
+                        Ok::<(), ()>(())
+                    })
+                })
+                .collect();
+            renderer.render_mesh(&knot, &model, &camera, Cull::None, &mut sinks, |f| {
+                assert_ne!(f.face + 1, faces, "the shading's own panic");
+                shade(f)
+            })
+        }));
+        assert!(result.is_err(), "threads {threads}: the shading's panic");
+        let rows = banded_rows(&mut renderer, &knot, &model, &camera, Cull::None).unwrap();
+        assert_eq!(rows, one, "threads {threads}: the frame after");
+    }
+    done.store(true, std::sync::atomic::Ordering::Release);
+}

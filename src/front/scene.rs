@@ -705,23 +705,48 @@ pub fn project_vertices<M: Mesh>(
     first: usize,
     out: &mut [ProjectedVertex],
 ) -> Result<(), Error> {
+    let mut out = out.iter_mut();
+    project_vertices_with(
+        mesh,
+        model,
+        camera,
+        first..first + out.len(),
+        |_, vertex| {
+            if let Some(slot) = out.next() {
+                *slot = vertex;
+            }
+        },
+    )
+}
+
+/// [`project_vertices`] for the vertices in `indices`, each handed to
+/// `store` with its index (for storage other than a slice, such as the
+/// host's banded renderer's, shared by its threads).
+pub(crate) fn project_vertices_with<M: Mesh>(
+    mesh: &M,
+    model: &Mat4,
+    camera: &Camera,
+    indices: core::ops::Range<usize>,
+    mut store: impl FnMut(usize, ProjectedVertex),
+) -> Result<(), Error> {
     let quantized = mesh.quantized();
     let frame = Frame::new(model, camera, Cull::None, quantized.as_ref());
     let positions = quantized
         .filter(|_| frame.fixed.is_some())
         .map(|q| q.positions);
-    for (index, slot) in (first..).zip(out) {
+    for index in indices {
         if index >= mesh.vertex_count() {
             return Err(Error::MeshIndexOutOfRange);
         }
         let fates = (ProjectedVertex::NeedsClip, ProjectedVertex::NonFinite);
-        *slot = frame.vertex(
+        let vertex = frame.vertex(
             mesh,
             positions,
             index,
             |v| Ok(ProjectedVertex::Screen(v)),
             fates,
         )?;
+        store(index, vertex);
     }
     Ok(())
 }
@@ -764,11 +789,40 @@ where
     T: PolygonTables<C> + ?Sized,
     M: Mesh,
 {
+    let count = projected.len();
+    draw_mesh_from(
+        tables,
+        cache,
+        (projected, count),
+        faces,
+        mesh,
+        (model, camera, cull),
+        shade,
+    )
+}
+
+/// [`draw_mesh_projected`] with the projection of the first `count`
+/// vertices in any [`VertexSource`].
+pub(crate) fn draw_mesh_from<C, T, M, P, const VM: usize>(
+    tables: &mut T,
+    cache: &mut VertexCache<VM>,
+    (projected, count): (P, usize),
+    faces: Option<&[u32]>,
+    mesh: &M,
+    (model, camera, cull): (&Mat4, &Camera, Cull),
+    shade: impl FnMut(&FaceInfo) -> C,
+) -> Result<DrawStats, DrawError>
+where
+    C: Copy,
+    T: PolygonTables<C> + ?Sized,
+    M: Mesh,
+    P: VertexSource,
+{
     let fail = |error| DrawError { face: None, error };
     let Some(slots) = cache.slots.get_mut(..mesh.vertex_count()) else {
         return Err(fail(Error::VertexCacheTooSmall));
     };
-    if projected.len() > slots.len() {
+    if count > slots.len() {
         return Err(fail(Error::MeshIndexOutOfRange));
     }
     if let Some(faces) = faces {
@@ -877,7 +931,7 @@ where
 /// it itself: nowhere in [`draw_mesh`], in the projection given to
 /// [`draw_mesh_projected`]. (A type, so that `draw_mesh` pays nothing for
 /// it.)
-trait VertexSource: Copy {
+pub(crate) trait VertexSource: Copy {
     /// Vertex `index`, if it was projected beforehand.
     fn projected(self, index: usize) -> Option<ProjectedVertex>;
 }

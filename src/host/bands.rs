@@ -8,15 +8,20 @@
 //! [`scan`] does for several scanners over one set of tables).
 //!
 //! [`BandedRenderer::render_mesh`] shares the front end's first steps
-//! between the threads: the mesh's vertices are projected once, each
-//! thread taking a run of them, and then each thread sorts a run of the
+//! between the threads: the mesh's vertices are projected once, the
+//! threads taking chunks of them, and then the threads sort chunks of the
 //! faces into the bands their rows reach. Each band then builds its tables
-//! from that projection and its own faces. ([`BandedRenderer::render`],
+//! from that projection and its own faces. The threads start once a frame
+//! and meet between the steps ([`SpinBarrier`]), sharing the projection
+//! through atomics, with no lock and no copy. ([`BandedRenderer::render`],
 //! given a closure that draws the whole scene, transforms every vertex
 //! and judges every face in every band.)
 
 use std::boxed::Box;
 use std::ops::Range;
+use std::sync::atomic::Ordering::{AcqRel, Acquire, Relaxed, Release};
+use std::sync::atomic::{AtomicBool, AtomicI16, AtomicU32, AtomicU64, AtomicUsize};
+use std::sync::{OnceLock, RwLock};
 use std::time::{Duration, Instant};
 use std::vec::Vec;
 
@@ -24,7 +29,8 @@ use crate::error::{Error, RenderError};
 use crate::front::geometry::Mat4;
 use crate::front::mesh::Mesh;
 use crate::front::scene::{
-    Camera, Cull, FaceInfo, ProjectedVertex, VertexCache, draw_mesh_projected, project_vertices,
+    Camera, Cull, FaceInfo, ProjectedVertex, VertexCache, VertexSource, draw_mesh_from,
+    project_vertices_with,
 };
 use crate::raster::depth::DepthFormat;
 use crate::raster::fixed::first_sample_at_or_after;
@@ -269,15 +275,9 @@ pub struct BandTiming {
 pub struct BandedRenderer<C: Copy, D: DepthFormat> {
     bands: Vec<Band<C, D>>,
     height: u16,
-    /// [`Self::render_mesh`]'s projection of the mesh's vertices.
-    projected: Vec<ProjectedVertex>,
-    /// The first sample row at or below each projected vertex
-    /// ([`NOT_PROJECTED`] for the others): 2 bytes a vertex, so that
-    /// sorting the faces into bands reads little memory.
-    vertex_rows: Vec<i16>,
-    /// [`Self::render_mesh`]'s faces for each band, per run of faces
-    /// (`face_lists[run][band]`).
-    face_lists: Vec<Vec<FaceList>>,
+    /// [`Self::render_mesh`]'s projection of the mesh's vertices and the
+    /// faces it sorted into the bands, shared by the frame's threads.
+    shared_front: SharedFront,
     /// [`Self::render_mesh`]'s scratch for each band.
     scratch: Vec<MeshScratch>,
     /// What [`Self::render_mesh`]'s shared steps took in the last frame.
@@ -312,11 +312,13 @@ pub struct SharedSteps {
 /// (a face's corners are `u16` indices).
 pub const MESH_VERTICES: usize = 1 << 16;
 
-/// Fewest vertices (or faces) [`BandedRenderer::render_mesh`] gives a
-/// thread of its own to project (or sort into bands): about 0.1 ms of work
-/// on a desktop core, a few times what starting the thread costs. Smaller
-/// meshes use fewer threads.
-const ITEMS_PER_THREAD: usize = 4096;
+/// Vertices a thread of [`BandedRenderer::render_mesh`] projects at a
+/// time (about 20 µs of work on a desktop core).
+const VERTEX_CHUNK: usize = 2048;
+/// Faces a thread of [`BandedRenderer::render_mesh`] sorts into bands at
+/// a time (about 20 µs of work on a desktop core): each chunk has a list
+/// per band.
+const FACE_CHUNK: usize = 4096;
 
 /// The row of a vertex that is not projected.
 const NOT_PROJECTED: i16 = i16::MIN;
@@ -370,9 +372,7 @@ where
         Ok(Self {
             bands,
             height,
-            projected: Vec::new(),
-            vertex_rows: Vec::new(),
-            face_lists: Vec::new(),
+            shared_front: SharedFront::default(),
             scratch: Vec::new(),
             shared: SharedSteps::default(),
             one_thread_below: ONE_THREAD_BELOW,
@@ -445,6 +445,11 @@ where
         cuts
     }
 
+    /// The bands' work in the last frame: building and scanning, summed.
+    fn bands_work(&self) -> Duration {
+        self.bands.iter().map(|b| b.last.build + b.last.scan).sum()
+    }
+
     /// Moves the cuts to [`Self::balanced_cuts`] when they are usable.
     fn balance(&mut self) {
         let cuts = self.balanced_cuts();
@@ -456,21 +461,24 @@ where
     /// with these arguments followed by one renderer's `render` would, with
     /// the work spread over one thread per band:
     ///
-    /// 1. the mesh's vertices are projected once ([`project_vertices`]),
-    ///    each thread taking an equal run of them;
-    /// 2. each thread takes an equal run of the faces and sorts them into
-    ///    the bands that hold a sample row between their corners' (a face
-    ///    with a corner that needs clipping goes to every band);
-    /// 3. each band, on its own thread (on the calling thread, when the
-    ///    last frame's bands had little work: see the type's notes),
-    ///    builds its tables from the projection and its faces
-    ///    ([`draw_mesh_projected`]) and scans its rows into its entry of
-    ///    `sinks`, as [`Self::render`] does.
+    /// 1. the mesh's vertices are projected once (as
+    ///    [`project_vertices`](crate::front::scene::project_vertices)
+    ///    would), the threads taking chunks of them until none is left;
+    /// 2. the threads take chunks of the faces and sort them into the
+    ///    bands that hold a sample row between their corners' (a face with
+    ///    a corner that needs clipping goes to every band);
+    /// 3. each band builds its tables from the projection and its faces
+    ///    (as [`draw_mesh_projected`](crate::front::scene::draw_mesh_projected)
+    ///    would) and scans its rows into its entry of `sinks`, as
+    ///    [`Self::render`] does.
     ///
-    /// Steps 1 and 2 use fewer threads for small meshes (a few thousand
-    /// vertices or faces per thread). `shade` is called from several
+    /// One thread a band does all three, the first on the calling thread;
+    /// when the last frame's bands had little work (see the type's notes),
+    /// the calling thread does everything. `shade` is called from several
     /// threads, for the faces each band keeps (a face reaching two bands is
     /// shaded in both). The mesh may have up to [`MESH_VERTICES`] vertices.
+    /// A panic on one thread (in `shade`, or in the mesh's methods) is
+    /// raised on the calling thread once every thread has stopped.
     #[allow(clippy::too_many_arguments)]
     pub fn render_mesh<M, K, S>(
         &mut self,
@@ -492,45 +500,15 @@ where
             return Err(RenderError::Table(Error::VertexCacheTooSmall));
         }
         let n = self.bands.len();
-        // 1. The projection.
-        let start = Instant::now();
-        // Every entry is written below: the old values may stay.
-        let mut projected = core::mem::take(&mut self.projected);
-        projected.resize(count, ProjectedVertex::NonFinite);
-        let mut rows = core::mem::take(&mut self.vertex_rows);
-        rows.resize(count, NOT_PROJECTED);
-        let run = runs(count, n);
-        let parts = projected.chunks_mut(run).zip(rows.chunks_mut(run));
-        let results = on_threads(parts.enumerate(), |(k, (part, rows))| {
-            project_vertices(mesh, model, camera, k * run, part)?;
-            for (row, vertex) in rows.iter_mut().zip(part.iter()) {
-                *row = vertex_row(vertex);
-            }
-            Ok(())
-        });
-        let projected_at = Instant::now();
-        if let Err(e) = results.into_iter().collect::<Result<Vec<()>, Error>>() {
-            self.projected = projected;
-            self.vertex_rows = rows;
-            return Err(RenderError::Table(e));
+        if sinks.len() != n {
+            return Err(RenderError::Table(Error::BadFrameSize));
         }
-        // 2. The faces, sorted into bands.
         let faces = mesh.face_count();
-        let run = runs(faces, n);
-        let mut lists = core::mem::take(&mut self.face_lists);
-        lists.resize_with(faces.div_ceil(run.max(1)), Vec::new);
-        let bands: Vec<Range<u16>> = self.bands().collect();
-        let (rows_ref, bands_ref, height) = (&rows, &bands, self.height);
-        on_threads(lists.iter_mut().enumerate(), |(k, out)| {
-            let faces = k * run..((k + 1) * run).min(faces);
-            sort_faces(mesh, rows_ref, faces, bands_ref, height, out);
-        });
-        let projected_ref = &projected;
-        self.shared = SharedSteps {
-            project: projected_at - start,
-            sort_faces: projected_at.elapsed(),
-        };
-        // 3. The bands.
+        let front = &mut self.shared_front;
+        front.projection.resize(count);
+        front
+            .lists
+            .resize_with(faces.div_ceil(FACE_CHUNK), RwLock::default);
         let mut scratch = core::mem::take(&mut self.scratch);
         scratch.resize_with(n, || MeshScratch {
             band: 0,
@@ -540,33 +518,127 @@ where
         for (band, x) in scratch.iter_mut().enumerate() {
             x.band = band;
         }
-        let lists_ref = &lists;
+        let bands: Vec<Range<u16>> = self.bands.iter().map(|b| b.rows.clone()).collect();
+        let front = &self.shared_front;
+        let height = self.height;
+        // The shared steps: each thread takes chunk after chunk of the
+        // vertices, then of the faces, until none is left (a thread that
+        // starts late takes fewer).
+        let (next_vertices, next_faces) = (AtomicUsize::new(0), AtomicUsize::new(0));
+        let project = || loop {
+            let first = next_vertices
+                .fetch_add(1, Relaxed)
+                .saturating_mul(VERTEX_CHUNK);
+            if first >= count {
+                return Ok(());
+            }
+            let indices = first..(first + VERTEX_CHUNK).min(count);
+            front.projection.project(mesh, model, camera, indices)?;
+        };
+        let sort = || loop {
+            let chunk = next_faces.fetch_add(1, Relaxed);
+            let Some(lists) = front.lists.get(chunk) else {
+                return;
+            };
+            let first = chunk * FACE_CHUNK;
+            let chunk_faces = first..(first + FACE_CHUNK).min(faces);
+            let mut lists = lists.write().unwrap_or_else(|e| e.into_inner());
+            sort_faces(
+                mesh,
+                &front.projection.rows,
+                chunk_faces,
+                &bands,
+                height,
+                &mut lists,
+            );
+        };
         let build = |tables: &mut BandTables<'_, _>, x: &mut MeshScratch| {
             x.faces.clear();
-            for run in lists_ref {
+            for run in &front.lists {
+                let run = run.read().unwrap_or_else(|e| e.into_inner());
                 x.faces.extend_from_slice(run[x.band].faces());
             }
-            draw_mesh_projected(
+            draw_mesh_from(
                 tables,
                 &mut *x.cache,
-                projected_ref,
+                (&front.projection, count),
                 Some(&x.faces),
                 mesh,
-                model,
-                camera,
-                cull,
+                (model, camera, cull),
                 &shade,
             )
             .map(|_| ())
             .map_err(Error::from)
         };
         // The triangles of a band's faces reach it (see `sort_faces`).
-        let result = self.render_bands(&mut scratch, sinks, build, false);
-        self.projected = projected;
-        self.vertex_rows = rows;
-        self.face_lists = lists;
+        let draw = |(band, x, sink): (&mut Band<C, D>, &mut MeshScratch, &mut K)| {
+            draw_band(band, x, sink, &build, false)
+        };
+        let start = Instant::now();
+        // When the projection and the sort ended (on the first thread).
+        let steps = [OnceLock::new(), OnceLock::new()];
+        let one_thread = self.bands_work() < self.one_thread_below;
+        let jobs = self
+            .bands
+            .iter_mut()
+            .zip(scratch.iter_mut())
+            .zip(sinks.iter_mut());
+        let jobs = jobs.map(|((band, x), sink)| (band, x, sink));
+        let stats = if one_thread {
+            // Step after step on this thread.
+            let projected = project();
+            let _ = steps[0].set(Instant::now());
+            match projected {
+                Ok(()) => {
+                    sort();
+                    let _ = steps[1].set(Instant::now());
+                    jobs.map(draw).collect::<Vec<_>>()
+                }
+                Err(e) => std::vec![Err(RenderError::Table(e))],
+            }
+        } else {
+            // One thread a band, all started at once, meeting twice: once
+            // every vertex is projected, once every face is sorted. (A
+            // thread start costs 40-80 µs here, a meeting under 1 µs.)
+            let barrier = SpinBarrier::new(n);
+            let (barrier, steps) = (&barrier, &steps);
+            on_threads(jobs.enumerate(), |(k, job)| {
+                let _poison = barrier.poison_on_panic();
+                let projected = project();
+                if projected.is_err() {
+                    barrier.fail();
+                }
+                if !barrier.wait() {
+                    // A thread failed (or panicked): its error is the frame's.
+                    return projected
+                        .map(|()| FrameStats::default())
+                        .map_err(RenderError::Table);
+                }
+                if k == 0 {
+                    let _ = steps[0].set(Instant::now());
+                }
+                sort();
+                if !barrier.wait() {
+                    // Only when another thread is panicking: the scope
+                    // raises its panic once every thread has returned.
+                    return Ok(FrameStats::default());
+                }
+                if k == 0 {
+                    let _ = steps[1].set(Instant::now());
+                }
+                draw(job)
+            })
+        };
+        let projected = steps[0].get().copied().unwrap_or(start);
+        let sorted = steps[1].get().copied().unwrap_or(projected);
+        self.shared = SharedSteps {
+            project: projected - start,
+            sort_faces: sorted - projected,
+        };
         self.scratch = scratch;
-        result
+        let stats = stats.into_iter().collect::<Result<Vec<_>, _>>()?;
+        self.balance();
+        Ok(stats)
     }
 
     /// Draws one frame. For each band, on its own thread (or all on the
@@ -617,7 +689,7 @@ where
         }
         // The bands' work in the last frame: below a thread start's worth,
         // they all run on the calling thread (the first frame too).
-        let last: Duration = self.bands.iter().map(|b| b.last.build + b.last.scan).sum();
+        let last = self.bands_work();
         let jobs = self.bands.iter_mut().zip(scratch).zip(sinks);
         let job = |((band, x), sink)| draw_band(band, x, sink, &build, test_triangles);
         let stats = if last < self.one_thread_below {
@@ -629,17 +701,6 @@ where
         self.balance();
         Ok(stats)
     }
-}
-
-/// The length of each of at most `threads` equal runs of `items` items,
-/// none shorter than [`ITEMS_PER_THREAD`] (one run holds them all when
-/// there are fewer); at least 1.
-fn runs(items: usize, threads: usize) -> usize {
-    items
-        .div_ceil(threads.max(1))
-        .max(ITEMS_PER_THREAD)
-        .min(items)
-        .max(1)
 }
 
 /// `job` for each of `items`, each on a thread of its own but the first,
@@ -680,6 +741,168 @@ fn vertex_row(vertex: &ProjectedVertex) -> i16 {
     }
 }
 
+/// What [`BandedRenderer::render_mesh`]'s threads share in a frame: the
+/// projection, and the faces sorted into bands by each run of faces
+/// (`lists[run][band]`), each run written by one thread and read by
+/// every band.
+#[derive(Debug, Default)]
+struct SharedFront {
+    projection: SharedProjection,
+    lists: Vec<RwLock<Vec<FaceList>>>,
+}
+
+/// Scratch only: a clone starts empty.
+impl Clone for SharedFront {
+    fn clone(&self) -> Self {
+        Self::default()
+    }
+}
+
+/// A mesh's projected vertices, each written by the thread projecting it
+/// and read by every thread once they have met (see [`SpinBarrier`]): a
+/// vertex is two atomic words (plain loads and stores on a desktop), so
+/// the threads share it with no lock and no copy.
+#[derive(Debug, Default)]
+struct SharedProjection {
+    /// x (low half) and y (high half) of a projected vertex, as bits.
+    xy: Vec<AtomicU64>,
+    /// Its depth (below 2^24), or [`NEEDS_CLIP`] or [`NON_FINITE`].
+    z: Vec<AtomicU32>,
+    /// The first sample row at or below each projected vertex
+    /// ([`NOT_PROJECTED`] for the others): 2 bytes a vertex, so that
+    /// sorting the faces into bands reads little memory.
+    rows: Vec<AtomicI16>,
+}
+
+/// [`SharedProjection::z`] of a vertex whose faces are clipped.
+const NEEDS_CLIP: u32 = u32::MAX - 1;
+/// [`SharedProjection::z`] of a vertex that is not finite.
+const NON_FINITE: u32 = u32::MAX;
+const _: () = assert!(crate::raster::fixed::DEPTH_MAX < NEEDS_CLIP);
+
+impl SharedProjection {
+    /// Room for `count` vertices (the old values stay, to be written over).
+    fn resize(&mut self, count: usize) {
+        self.xy.resize_with(count, AtomicU64::default);
+        self.z.resize_with(count, AtomicU32::default);
+        self.rows.resize_with(count, AtomicI16::default);
+    }
+
+    /// Projects the vertices in `indices` into their entries.
+    fn project<M: Mesh>(
+        &self,
+        mesh: &M,
+        model: &Mat4,
+        camera: &Camera,
+        indices: Range<usize>,
+    ) -> Result<(), Error> {
+        project_vertices_with(mesh, model, camera, indices, |index, vertex| {
+            let (xy, z) = match vertex {
+                ProjectedVertex::Screen(v) => {
+                    (u64::from(v.x as u32) | u64::from(v.y as u32) << 32, v.z)
+                }
+                ProjectedVertex::NeedsClip => (0, NEEDS_CLIP),
+                ProjectedVertex::NonFinite => (0, NON_FINITE),
+            };
+            if let (Some(a), Some(b), Some(r)) =
+                (self.xy.get(index), self.z.get(index), self.rows.get(index))
+            {
+                a.store(xy, Relaxed);
+                b.store(z, Relaxed);
+                r.store(vertex_row(&vertex), Relaxed);
+            }
+        })
+    }
+}
+
+impl VertexSource for &SharedProjection {
+    #[inline(always)]
+    fn projected(self, index: usize) -> Option<ProjectedVertex> {
+        let (xy, z) = (
+            self.xy.get(index)?.load(Relaxed),
+            self.z.get(index)?.load(Relaxed),
+        );
+        Some(match z {
+            NEEDS_CLIP => ProjectedVertex::NeedsClip,
+            NON_FINITE => ProjectedVertex::NonFinite,
+            z => ProjectedVertex::Screen(ScreenVertex {
+                x: xy as u32 as i32,
+                y: (xy >> 32) as u32 as i32,
+                z,
+            }),
+        })
+    }
+}
+
+/// Where the threads of one frame wait for each other between steps,
+/// spinning (a meeting costs well under a microsecond, where starting
+/// threads afresh for each step cost tens), then yielding if it takes
+/// long. It opens early, with `false`, when a thread has failed or is
+/// panicking (see [`Self::poison_on_panic`]), so no thread waits forever.
+#[derive(Debug)]
+struct SpinBarrier {
+    threads: usize,
+    arrived: AtomicUsize,
+    generation: AtomicUsize,
+    failed: AtomicBool,
+}
+
+impl SpinBarrier {
+    fn new(threads: usize) -> Self {
+        Self {
+            threads,
+            arrived: AtomicUsize::new(0),
+            generation: AtomicUsize::new(0),
+            failed: AtomicBool::new(false),
+        }
+    }
+
+    /// Opens the barrier for good: every wait returns `false`.
+    fn fail(&self) {
+        self.failed.store(true, Release);
+    }
+
+    /// A guard that fails the barrier if its thread unwinds.
+    fn poison_on_panic(&self) -> impl Drop + '_ {
+        struct Guard<'a>(&'a SpinBarrier);
+        impl Drop for Guard<'_> {
+            fn drop(&mut self) {
+                if std::thread::panicking() {
+                    self.0.fail();
+                }
+            }
+        }
+        Guard(self)
+    }
+
+    /// Waits until every thread has arrived: `true`, unless the barrier
+    /// has failed.
+    fn wait(&self) -> bool {
+        let generation = self.generation.load(Acquire);
+        if self.failed.load(Acquire) {
+            return false;
+        }
+        if self.arrived.fetch_add(1, AcqRel) + 1 == self.threads {
+            self.arrived.store(0, Relaxed);
+            self.generation.fetch_add(1, Release);
+            return !self.failed.load(Acquire);
+        }
+        let mut spins = 0u32;
+        while self.generation.load(Acquire) == generation {
+            if self.failed.load(Acquire) {
+                return false;
+            }
+            if spins < 1 << 14 {
+                spins += 1;
+                std::hint::spin_loop();
+            } else {
+                std::thread::yield_now();
+            }
+        }
+        !self.failed.load(Acquire)
+    }
+}
+
 /// Sorts `faces` of `mesh` into the bands they can reach, `out[band]`
 /// holding the band's faces in increasing order, from the first sample
 /// row at or below each vertex (`rows`, see [`vertex_row`]). A face goes
@@ -692,7 +915,7 @@ fn vertex_row(vertex: &ProjectedVertex) -> i16 {
 /// it.
 fn sort_faces<M: Mesh>(
     mesh: &M,
-    rows: &[i16],
+    rows: &[AtomicI16],
     faces: Range<usize>,
     bands: &[Range<u16>],
     height: u16,
@@ -751,10 +974,10 @@ impl FaceList {
 /// corners. (The first sample row at or below a corner is monotonic in
 /// its `y`, so the face's rows come from its corners' rows.)
 #[inline]
-fn sample_rows(corners: &[u16], rows: &[i16], height: u16) -> Option<(i16, i16)> {
+fn sample_rows(corners: &[u16], rows: &[AtomicI16], height: u16) -> Option<(i16, i16)> {
+    let row = |corner: u16| rows.get(usize::from(corner)).map(|r| r.load(Relaxed));
     if let &[a, b, c] = corners {
         // The common case, a triangle, with no loop.
-        let row = |corner: u16| rows.get(usize::from(corner)).copied();
         let (Some(a), Some(b), Some(c)) = (row(a), row(b), row(c)) else {
             return None;
         };
@@ -768,8 +991,8 @@ fn sample_rows(corners: &[u16], rows: &[i16], height: u16) -> Option<(i16, i16)>
     }
     let (mut low, mut high) = (i16::MAX, NOT_PROJECTED);
     for &corner in corners {
-        match rows.get(usize::from(corner)) {
-            Some(&row) if row != NOT_PROJECTED => {
+        match row(corner) {
+            Some(row) if row != NOT_PROJECTED => {
                 low = low.min(row);
                 high = high.max(row);
             }
@@ -837,24 +1060,4 @@ where
         *w += live as u32 * ACTIVE_ROW_WORK;
     }
     Ok(stats)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// Runs are equal shares of at least [`ITEMS_PER_THREAD`] items: a
-    /// large mesh is shared by every thread, a small one stays whole.
-    #[test]
-    fn runs_share_large_meshes_only() {
-        assert_eq!(ITEMS_PER_THREAD, 4096);
-        assert_eq!(runs(12_288, 2), 6144);
-        assert_eq!(runs(12_289, 3), 4097);
-        assert_eq!(runs(8192, 4), 4096);
-        assert_eq!(runs(8191, 2), 4096);
-        assert_eq!(runs(100, 4), 100);
-        assert_eq!(runs(1, 8), 1);
-        assert_eq!(runs(0, 3), 1);
-        assert_eq!(runs(10, 0), 10);
-    }
 }
