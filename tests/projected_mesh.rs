@@ -314,6 +314,16 @@ fn banded_rows<M: Mesh + Sync>(
     camera: &Camera,
     cull: Cull,
 ) -> Result<Rows, String> {
+    banded_rows_shaded(renderer, mesh, (model, camera, cull), shade)
+}
+
+/// [`banded_rows`] with the faces coloured by `shade`.
+fn banded_rows_shaded<M: Mesh + Sync>(
+    renderer: &mut BandedRenderer<u32, Depth16>,
+    mesh: &M,
+    (model, camera, cull): (&Mat4, &Camera, Cull),
+    shade: impl Fn(&FaceInfo) -> u32 + Sync,
+) -> Result<Rows, String> {
     let mut bands: Vec<Rows> = vec![Rows::new(); renderer.bands().count()];
     let mut sinks: Vec<_> = bands
         .iter_mut()
@@ -500,17 +510,8 @@ fn a_panic_in_a_banded_frame_reaches_the_caller() {
         }
         let faces = knot.face_count() as u32;
         let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-            let mut bands: Vec<Rows> = vec![Rows::new(); 2];
-            let mut sinks: Vec<_> = bands
-                .iter_mut()
-                .map(|rows| {
-                    FnSink(move |y: u16, c: &[u32], z: &[u16]| {
-                        rows.push((y, c.to_vec(), z.to_vec()));
-                        Ok::<(), ()>(())
-                    })
-                })
-                .collect();
-            renderer.render_mesh(&knot, &model, &camera, Cull::None, &mut sinks, |f| {
+            let view = (&model, &camera, Cull::None);
+            banded_rows_shaded(&mut renderer, &knot, view, |f| {
                 assert_ne!(f.face + 1, faces, "the shading's own panic");
                 shade(f)
             })
