@@ -130,12 +130,13 @@ impl Renderer for ZlineRenderer<'_> {
 }
 
 /// zline drawing the frame in horizontal bands on several threads
-/// ([`BandedRenderer::render_mesh`]): the threads project the mesh's
-/// vertices (each an equal run of them), then each builds its band's
-/// tables from that projection (judging every face, keeping those that
-/// reach its rows) and scans its rows into its own part of the frame. The same frame as [`ZlineRenderer`], bit for
-/// bit. Timed by the wall clock, not thread CPU time (the work is on
-/// several threads); the timed region is [`ZlineRenderer`]'s.
+/// ([`BandedRenderer::render_mesh`]): the threads, started once a frame,
+/// project the mesh's vertices and sort its faces into the bands their
+/// rows reach (both in chunks), then each builds its band's tables from
+/// that projection and its faces and scans its rows into its own part of
+/// the frame. The same frame as [`ZlineRenderer`], bit for bit. Timed by
+/// the wall clock, not thread CPU time (the work is on several threads);
+/// the timed region is [`ZlineRenderer`]'s.
 pub struct ZlineBandsRenderer<'a> {
     scene: &'a Scene,
     renderer: BandedRenderer<Rgb565, Depth16>,
