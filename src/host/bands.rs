@@ -602,6 +602,9 @@ where
             // thread start costs 40-80 µs here, a meeting under 1 µs.)
             let barrier = SpinBarrier::new(n);
             let (barrier, steps) = (&barrier, &steps);
+            // Should starting a thread fail (a panic), the threads already
+            // started must not wait for it.
+            let _poison = barrier.poison_on_panic();
             on_threads(jobs.enumerate(), |(k, job)| {
                 let _poison = barrier.poison_on_panic();
                 let projected = project();
