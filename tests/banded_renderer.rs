@@ -168,7 +168,6 @@ fn a_mesh_in_bands_equals_one_renderer_culled_or_not() {
 
 #[test]
 fn band_tables_decline_what_misses_the_band() {
-    let v = |x: i32, y: i32| ScreenVertex::new(x * S, y * S, 1000).unwrap();
     let mut renderer = host_renderer::<u32, Depth16>(&CAPS, W, H, 0).unwrap();
     let mut band = BandTables::new(&mut renderer.tables, 10..20);
     assert_eq!(band.rows(), 10..20);
@@ -178,21 +177,21 @@ fn band_tables_decline_what_misses_the_band() {
     };
     // Rows 0 to 5, and rows 20 to 29: outside.
     assert_eq!(
-        offer_triangle(v(0, 0), v(20, 0), v(0, 6)),
+        offer_triangle(at(0, 0), at(20, 0), at(0, 6)),
         Ok(Admission::Declined)
     );
     assert_eq!(
-        offer_triangle(v(0, 20), v(20, 20), v(0, 30)),
+        offer_triangle(at(0, 20), at(20, 20), at(0, 30)),
         Ok(Admission::Declined)
     );
     // Rows 5 to 10 (its last sample row is the band's first), and one off
     // the frame: queued, and counted off-screen as ever.
     assert_eq!(
-        offer_triangle(v(0, 5), v(20, 5), v(0, 11)),
+        offer_triangle(at(0, 5), at(20, 5), at(0, 11)),
         Ok(Admission::Queued(0))
     );
     assert_eq!(
-        offer_triangle(v(-30, 12), v(-20, 12), v(-30, 18)),
+        offer_triangle(at(-30, 12), at(-20, 12), at(-30, 18)),
         Ok(Admission::OffScreen)
     );
     assert_eq!(renderer.polygon_count(), 1);
@@ -201,11 +200,10 @@ fn band_tables_decline_what_misses_the_band() {
 #[test]
 fn cuts_move_to_where_the_polygons_are() {
     // Thin triangles starting on rows 30 to 39 only.
-    let v = |x: i32, y: i32| ScreenVertex::new(x * S, y * S, 1000).unwrap();
     let scene: Vec<Vec<ScreenVertex>> = (0..40)
         .map(|k| {
             let (x, y) = (k % 40, 30 + k / 4);
-            vec![v(x, y), v(x + 2, y), v(x, y + 1)]
+            vec![at(x, y), at(x + 2, y), at(x, y + 1)]
         })
         .collect();
     let mut renderer = BandedRenderer::<u32, Depth16>::new(&CAPS, W, H, 0, 2).unwrap();
@@ -225,15 +223,25 @@ fn cuts_move_to_where_the_polygons_are() {
     assert_eq!(renderer.bands().collect::<Vec<_>>(), [0..33, 33..40]);
 }
 
+/// A vertex at pixel corner `(x, y)`, at one depth.
+fn at(x: i32, y: i32) -> ScreenVertex {
+    ScreenVertex::new(x * S, y * S, 1000).unwrap()
+}
+
+/// Ten thin triangles from the top of the frame (row 0) to the bottom
+/// (row 40), side by side.
+fn tall_triangles() -> Vec<Vec<ScreenVertex>> {
+    (0..10)
+        .map(|k| vec![at(4 * k, 0), at(4 * k + 3, 0), at(4 * k, 40)])
+        .collect()
+}
+
 /// Work is counted on every row a polygon is active, not only where it
 /// starts: ten triangles from the top of the frame to the bottom put the
 /// cut near the middle (counting activations alone put it at row 15).
 #[test]
 fn cuts_follow_the_rows_polygons_are_active_on() {
-    let v = |x: i32, y: i32| ScreenVertex::new(x * S, y * S, 1000).unwrap();
-    let scene: Vec<Vec<ScreenVertex>> = (0..10)
-        .map(|k| vec![v(4 * k, 0), v(4 * k + 3, 0), v(4 * k, 40)])
-        .collect();
+    let scene = tall_triangles();
     let mut renderer = BandedRenderer::<u32, Depth16>::new(&CAPS, W, H, 0, 2).unwrap();
     renderer.set_cuts(&[5]).unwrap();
     let rows = banded(&mut renderer, &mut [(), ()], |t, _| offer(t, &scene));
@@ -246,14 +254,12 @@ fn cuts_follow_the_rows_polygons_are_active_on() {
 }
 
 /// Three bands share the work in thirds: the ten tall triangles again,
-/// from cuts after rows 0 and 1, and a frame whose work lies on one row
+/// from cuts after rows 0 and 1. A frame whose work lies on one row cuts
+/// after it and after the next (one cut a row), or, on the last row,
 /// leaves the cuts where they were (each band keeps at least one row).
 #[test]
 fn three_bands_share_the_work_in_thirds() {
-    let v = |x: i32, y: i32| ScreenVertex::new(x * S, y * S, 1000).unwrap();
-    let tall: Vec<Vec<ScreenVertex>> = (0..10)
-        .map(|k| vec![v(4 * k, 0), v(4 * k + 3, 0), v(4 * k, 40)])
-        .collect();
+    let tall = tall_triangles();
     let mut renderer = BandedRenderer::<u32, Depth16>::new(&CAPS, W, H, 0, 3).unwrap();
     renderer.set_cuts(&[1, 2]).unwrap();
     let rows = banded(&mut renderer, &mut [(), (), ()], |t, _| offer(t, &tall));
@@ -268,7 +274,7 @@ fn three_bands_share_the_work_in_thirds() {
     // stay where they were.
     let flat = |row: i32| -> Vec<Vec<ScreenVertex>> {
         (0..40)
-            .map(|k| vec![v(k, row), v(k + 3, row), v(k, row + 1)])
+            .map(|k| vec![at(k, row), at(k + 3, row), at(k, row + 1)])
             .collect()
     };
     for (row, cuts) in [(20, [0..21, 21..22, 22..40]), (39, [0..5, 5..10, 10..40])] {

@@ -74,6 +74,19 @@ fn mesh_rows<M: Mesh>((mesh, model, camera, cull): View<'_, M>) -> Rows {
     })
 }
 
+/// [`mesh_rows`] for a large mesh, in a `caps`-sized renderer of
+/// `width` x `height`, no culling.
+fn large_mesh_rows(
+    caps: &Capacities,
+    (width, height): (u16, u16),
+    (mesh, model, camera): (&HostMesh, &Mat4, &Camera),
+) -> Rows {
+    rows_sized(caps, (width, height), |r| {
+        let mut cache = Box::new(VertexCache::<65536>::new());
+        draw_mesh(r, &mut *cache, mesh, model, camera, Cull::None, shade).unwrap();
+    })
+}
+
 /// The rows `draw_mesh_projected` draws from `projection` and `faces`.
 fn projected_rows<M: Mesh>(
     (mesh, model, camera, cull): View<'_, M>,
@@ -371,10 +384,7 @@ fn render_mesh_on_a_large_mesh_uses_every_thread_and_equals_one_renderer() {
     let caps = mesh.capacities(width);
     let model = reference_model(&mesh, 30.0, 20.0).unwrap();
     let camera = Camera::reference(width, height);
-    let one = rows_sized(&caps, (width, height), |r| {
-        let mut cache = Box::new(VertexCache::<65536>::new());
-        draw_mesh(r, &mut *cache, &mesh, &model, &camera, Cull::None, shade).unwrap();
-    });
+    let one = large_mesh_rows(&caps, (width, height), (&mesh, &model, &camera));
     let mut renderer = BandedRenderer::<u32, Depth16>::new(&caps, width, height, 0, 2).unwrap();
     for frame in 0..2 {
         let rows = banded_rows(&mut renderer, &mesh, &model, &camera, Cull::None).unwrap();
@@ -393,10 +403,7 @@ fn one_banded_renderer_draws_large_and_small_meshes_in_turn() {
     let caps = large.capacities(width);
     let camera = Camera::reference(width, height);
     let one = |mesh: &HostMesh, model: &Mat4| {
-        rows_sized(&caps, (width, height), |r| {
-            let mut cache = Box::new(VertexCache::<65536>::new());
-            draw_mesh(r, &mut *cache, mesh, model, &camera, Cull::None, shade).unwrap();
-        })
+        large_mesh_rows(&caps, (width, height), (mesh, model, &camera))
     };
     let large_view = reference_model(&large, 30.0, 20.0).unwrap();
     let small_view = reference_model(&small, 30.0, 20.0)
@@ -483,10 +490,7 @@ fn a_panic_in_a_banded_frame_reaches_the_caller() {
     let caps = knot.capacities(width);
     let model = reference_model(&knot, 30.0, 20.0).unwrap();
     let camera = Camera::reference(width, height);
-    let one = rows_sized(&caps, (width, height), |r| {
-        let mut cache = Box::new(VertexCache::<65536>::new());
-        draw_mesh(r, &mut *cache, &knot, &model, &camera, Cull::None, shade).unwrap();
-    });
+    let one = large_mesh_rows(&caps, (width, height), (&knot, &model, &camera));
     let last = knot.vertex_count() - 1;
     let mut renderer = BandedRenderer::<u32, Depth16>::new(&caps, width, height, 0, 2).unwrap();
     for threads in [false, true] {

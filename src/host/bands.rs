@@ -445,9 +445,12 @@ where
         cuts
     }
 
-    /// The bands' work in the last frame: building and scanning, summed.
-    fn bands_work(&self) -> Duration {
-        self.bands.iter().map(|b| b.last.build + b.last.scan).sum()
+    /// Whether the next frame is drawn on the calling thread alone: its
+    /// bands' work in the last frame (building and scanning, summed; none
+    /// before the first) was below [`Self::set_one_thread_below`]'s limit.
+    fn on_one_thread(&self) -> bool {
+        let work: Duration = self.bands.iter().map(|b| b.last.build + b.last.scan).sum();
+        work < self.one_thread_below
     }
 
     /// Moves the cuts to [`Self::balanced_cuts`] when they are usable.
@@ -577,7 +580,7 @@ where
         let start = Instant::now();
         // When the projection and the sort ended (on the first thread).
         let steps = [OnceLock::new(), OnceLock::new()];
-        let one_thread = self.bands_work() < self.one_thread_below;
+        let one_thread = self.on_one_thread();
         let jobs = self
             .bands
             .iter_mut()
@@ -690,12 +693,12 @@ where
         if scratch.len() != n || sinks.len() != n {
             return Err(RenderError::Table(Error::BadFrameSize));
         }
-        // The bands' work in the last frame: below a thread start's worth,
-        // they all run on the calling thread (the first frame too).
-        let last = self.bands_work();
+        // Little work in the last frame (or none, before the first): all
+        // bands on the calling thread.
+        let one_thread = self.on_one_thread();
         let jobs = self.bands.iter_mut().zip(scratch).zip(sinks);
         let job = |((band, x), sink)| draw_band(band, x, sink, &build, test_triangles);
-        let stats = if last < self.one_thread_below {
+        let stats = if one_thread {
             jobs.map(job).collect::<Vec<_>>()
         } else {
             on_threads(jobs, job)
