@@ -67,11 +67,11 @@ const ROW_BUFFERS: usize = 64;
 /// Rows per DMA buffer (`src/lcd.rs`): each buffer holds this many rows,
 /// sent and cleared by one transfer each, so the per-transfer work is paid
 /// once per eight rows. It divides both `HEIGHT` and `ROW_BUFFERS`.
-const ROWS_PER_BUFFER: usize = if HEIGHT % 8 == 0 {
+const ROWS_PER_BUFFER: usize = if HEIGHT.is_multiple_of(8) {
     8
-} else if HEIGHT % 4 == 0 {
+} else if HEIGHT.is_multiple_of(4) {
     4
-} else if HEIGHT % 2 == 0 {
+} else if HEIGHT.is_multiple_of(2) {
     2
 } else {
     1

@@ -148,7 +148,7 @@ fn coordinate(bytes: &mut Bytes<'_>, size: u16) -> i32 {
         1 => (bytes.u32() as i32) % GUARD_BAND,
         2 => {
             let inset = i32::from(bytes.u8());
-            if bytes.u8() % 2 == 0 {
+            if bytes.u8().is_multiple_of(2) {
                 GUARD_BAND - 1 - inset
             } else {
                 1 - GUARD_BAND + inset

@@ -179,13 +179,13 @@ pub fn uv_sphere(slices: usize, stacks: usize) -> Option<HostMesh> {
 pub fn sphere_with_triangles(triangles: usize) -> Option<HostMesh> {
     let half = triangles / 2;
     // A UV sphere has `half + 2` vertices.
-    if triangles % 2 != 0 || half + 2 > usize::from(u16::MAX) + 1 {
+    if !triangles.is_multiple_of(2) || half + 2 > usize::from(u16::MAX) + 1 {
         return None;
     }
     // slices · rings = half; pick the divisor pair nearest slices = 2 · rings
     // (a sphere's meridians are twice as long as its half-circles).
     let (slices, rings) = (1..=half)
-        .filter(|r| half % r == 0)
+        .filter(|r| half.is_multiple_of(*r))
         .map(|r| (half / r, r))
         .filter(|&(s, r)| s >= 3 && s >= r)
         .min_by_key(|&(s, r)| s.abs_diff(2 * r))?;

@@ -783,10 +783,11 @@ impl<C: Copy> ScanState<'_, '_, C> {
         // A band's scan may activate it further down.
         let rows_below = i32::from(row) - i32::from(polygon.first_row);
         let stepped = |dz_dx: i64, dz_dy: i64, first: i64| {
-            if D::NARROW && in_range {
-                if let Some(narrow) = D::narrow_row(first, dz_dx, dz_dy, rows_below) {
-                    return (SpanDepth::Narrow, Some(narrow));
-                }
+            if D::NARROW
+                && in_range
+                && let Some(narrow) = D::narrow_row(first, dz_dx, dz_dy, rows_below)
+            {
+                return (SpanDepth::Narrow, Some(narrow));
             }
             let depth = SpanDepth::Stepped {
                 dz_dx,
