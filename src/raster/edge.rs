@@ -33,6 +33,7 @@
 //! The tests below step edges between the guard band's corners over every
 //! row they cover and compare each crossing with the exact `i128` value.
 
+use crate::raster::BRANCH_FREE;
 use crate::raster::fixed::{
     DIVISION_IS_CHEAP, HALF_PIXEL, MAX_POLYGONS, SUBPIXEL_BITS, SUBPIXEL_STEPS,
 };
@@ -123,8 +124,40 @@ fn floor_div_rem_by(n: i32, d: i32, by_steps: bool) -> (i32, i32) {
         }
         return (q, r);
     }
-    let (q, r) = (n / d, n % d);
-    if r < 0 { (q - 1, r + d) } else { (q, r) }
+    floor_from_truncated(n / d, n % d, d, BRANCH_FREE)
+}
+
+/// The floor quotient and remainder from the truncated ones (`q`, `r`,
+/// `|r| < d`), with a mask or a branch: the remainder's sign is the
+/// edge's slope's, and a branch on it would miss half the time on a host.
+#[inline(always)]
+fn floor_from_truncated(q: i32, r: i32, d: i32, branch_free: bool) -> (i32, i32) {
+    if branch_free {
+        let borrow = r >> 31; // -1 or 0
+        (q + borrow, r + (d & borrow))
+    } else if r < 0 {
+        (q - 1, r + d)
+    } else {
+        (q, r)
+    }
+}
+
+/// The ceiling of `n / den` for `0 <= n < 2·den` (0, 1 or 2) and what it
+/// leaves, `q·den - n`, with masks or branches (which of the three it is
+/// depends on a corner's sub-pixel position). `den < 2^30`, so `2·den - n`
+/// fits.
+#[inline(always)]
+fn small_ceil_div_rem(n: i32, den: i32, branch_free: bool) -> (i32, i32) {
+    if branch_free {
+        let (one, two) = (-i32::from(n > 0), -i32::from(n > den)); // -1 or 0
+        (-(one + two), (den & one) + (den & two) - n)
+    } else if n == 0 {
+        (0, 0)
+    } else if n <= den {
+        (1, den - n)
+    } else {
+        (2, 2 * den - n)
+    }
 }
 
 /// Active-edge-table entry (opaque): an edge crossing the current
@@ -203,13 +236,7 @@ impl ActiveEdge {
             // quotient by den = 256·dy is 0, 1 or 2, with no division.
             let a = s + along * step;
             let n = dy * (a & (SUBPIXEL_STEPS - 1)) + along * rest;
-            let (q, r) = if n == 0 {
-                (0, 0)
-            } else if n <= den {
-                (1, den - n)
-            } else {
-                (2, 2 * den - n)
-            };
+            let (q, r) = small_ceil_div_rem(n, den, BRANCH_FREE);
             (whole + (a >> SUBPIXEL_BITS) + q, r)
         } else {
             // Crossing x at the sample line, minus half a pixel, times den:
@@ -252,8 +279,23 @@ impl ActiveEdge {
     /// Moves the crossing down one scanline.
     #[inline]
     pub fn advance(&mut self) {
+        self.advance_as::<BRANCH_FREE>();
+    }
+
+    /// [`Self::advance`], with or without a branch (both are tested on the
+    /// host).
+    #[inline(always)]
+    fn advance_as<const BRANCH_FREE: bool>(&mut self) {
+        // 0 <= remainder, step_remainder < den < 2^30: |r| < 2^30.
         let r = self.remainder - self.step_remainder;
-        if r >= 0 {
+        if BRANCH_FREE {
+            // Whether the remainder goes below zero depends on the row
+            // and the slope, so a predicted branch misses about half the
+            // time: the sign becomes a mask instead (-1 or 0).
+            let borrow = r >> 31;
+            self.x += self.step - borrow;
+            self.remainder = r + (self.den & borrow);
+        } else if r >= 0 {
             self.x += self.step;
             self.remainder = r;
         } else {
@@ -340,7 +382,71 @@ mod tests {
         }
     }
 
+    /// The branch-free helpers (hosts) and the branching ones (32-bit
+    /// Arm) agree, and give the floor and the small ceiling.
+    #[test]
+    fn branch_free_divisions_equal_branching_ones() {
+        for d in [1i32, 2, 3, 255, 256, 1 << 20, (1 << 30) - 1] {
+            for n in [
+                -2 * d + 1,
+                -d - 1,
+                -d,
+                -d + 1,
+                -1,
+                0,
+                1,
+                d - 1,
+                d,
+                d + 1,
+                2 * d - 1,
+            ] {
+                let want = (n.div_euclid(d), n.rem_euclid(d));
+                for branch_free in [true, false] {
+                    if n.abs() < 2 * d {
+                        let (q, r) = (n / d, n % d);
+                        assert_eq!(
+                            floor_from_truncated(q, r, d, branch_free),
+                            want,
+                            "{n} / {d}"
+                        );
+                    }
+                    if (0..2 * d).contains(&n) {
+                        let (wide_n, wide_d) = (i64::from(n), i64::from(d));
+                        let q = (wide_n + wide_d - 1) / wide_d;
+                        let want = (q as i32, (q * wide_d - wide_n) as i32);
+                        assert_eq!(
+                            small_ceil_div_rem(n, d, branch_free),
+                            want,
+                            "ceil {n} / {d}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+
     proptest::proptest! {
+        /// The branch-free step (hosts) and the branching one (32-bit Arm)
+        /// agree, over the whole range of the state (`den < 2^30`).
+        #[test]
+        fn branch_free_steps_equal_branching_ones(
+            den in 1..1i32 << 30, remainder in 0..1i32 << 30, step_remainder in 0..1i32 << 30,
+            x in -(1i32 << 23)..1 << 23, step in -(1i32 << 22)..1 << 22,
+        ) {
+            let (remainder, step_remainder) = (remainder % den, step_remainder % den);
+            let edge = ActiveEdge { x, remainder, step, step_remainder, den, ..ActiveEdge::EMPTY };
+            let (mut branch_free, mut branching) = (edge, edge);
+            for _ in 0..3 {
+                branch_free.advance_as::<true>();
+                branching.advance_as::<false>();
+                proptest::prop_assert_eq!(
+                    (branch_free.x, branch_free.remainder),
+                    (branching.x, branching.remainder)
+                );
+                proptest::prop_assert!((0..den).contains(&branching.remainder));
+            }
+        }
+
         #[test]
         fn random_edges_step_exactly(
             x0 in -G..=G, x1 in -G..=G, y0 in -G..=G, dy in 1..=2 * G,

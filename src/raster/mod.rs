@@ -14,9 +14,10 @@
 //!   tables and scanner.
 //! * [`zbuffer`]: the z-buffer methods it is compared with (a full-frame
 //!   or banded depth buffer, and the painter's pass), on the same tables.
-//! * `plane`, `edge`, `active`, `wide`: the plane set-up, the exact edge
-//!   DDA, the active tables, exact wide products for cores without a long
-//!   multiply (internal).
+//! * `plane`, `edge`, `active`, `lanes`, `wide`: the plane set-up, the
+//!   exact edge DDA, the active tables, the branch-free span blocks for
+//!   hosts, exact wide products for cores without a long multiply
+//!   (internal).
 //!
 //! Only one row of depth and one of colour exist: nothing is frame-sized.
 
@@ -25,6 +26,7 @@ pub mod capacities;
 pub mod depth;
 mod edge;
 pub mod fixed;
+pub(crate) mod lanes;
 mod plane;
 pub mod scan;
 mod slots;
@@ -43,6 +45,18 @@ pub use tables::{
 
 use crate::error::Error;
 use vertex::{Outline, ScreenVertex};
+
+/// Whether the hot loops avoid data-dependent branches: on every target
+/// but 32-bit Arm. A host predicts branches and pays 15-20 cycles for each
+/// miss, and the edge steps, the short spans' ends, the depth test, the
+/// corner sort and the quotients' signs go either way about half the
+/// time: branch-free, the peers bench's frames took a third less time
+/// while running more instructions (README, "Speed against peers"). A
+/// Cortex-M0+ predicts nothing, and there the branching code is as short
+/// or shorter (`cargo qemu`: branch-free edge steps took 0.3 % more
+/// instructions with 16-bit depth), so it keeps it. Each branch-free form
+/// is tested against its branching one on the host.
+pub(crate) const BRANCH_FREE: bool = !cfg!(target_arch = "arm");
 
 /// What scene building needs from a renderer: its frame, its vertex table
 /// and its polygon table. [`Renderer`] implements it for every

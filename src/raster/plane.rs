@@ -387,6 +387,14 @@ pub(crate) fn float_gradient(n: i64, d: u32) -> Option<i64> {
         .wrapping_shl(PLANE_FRAC_BITS)
         .wrapping_add(half)
         .wrapping_sub(g.wrapping_mul(d));
+    // A negative estimate's truncation is mostly one above the floor, a
+    // positive one's mostly the floor: a branch on the gradient's sign
+    // would miss half the time, so the first step down is a mask (-1 or
+    // 0), and the loops after it mostly run no step. (|rest| < 3d stays
+    // below 2^34.)
+    let borrow = rest >> 63;
+    g += borrow;
+    rest += d & borrow;
     while rest < 0 {
         g -= 1;
         rest += d;

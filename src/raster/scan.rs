@@ -22,10 +22,12 @@
 use core::ops::Range;
 
 use crate::error::{Error, RenderError};
+use crate::raster::BRANCH_FREE;
 use crate::raster::active::{ActivePolygon, EdgePool, NO_EDGE, NO_ROW, SpanDepth};
 use crate::raster::depth::{DepthFormat, IN_RANGE};
 use crate::raster::edge::ActiveEdge;
 use crate::raster::fixed::first_sample_at_or_after;
+use crate::raster::lanes::{LANES, block, fill_block};
 use crate::raster::plane::{Plane, TrianglePlane};
 use crate::raster::slots::{OrderedSlots, Slots};
 use crate::raster::tables::{PolygonEntry, Prepared};
@@ -361,8 +363,8 @@ impl<C: Copy, D: DepthFormat> RowBuffers<'_, C, D> {
     /// stays in range (see [`IN_RANGE`]): depths from the accumulator,
     /// placed at the first pixel from the row's column-0 value
     /// ([`DepthFormat::accumulator_at`]), with no range check, no rounding
-    /// and no call per span; whether
-    /// any pixel was in the row. (With the `profile` feature it is kept out
+    /// and no call per span, on a host in branch-free blocks
+    /// ([`crate::raster::lanes`]); whether any pixel was in the row. (With the `profile` feature it is kept out
     /// of line: the profile's "spans" stage.)
     #[cfg_attr(feature = "profile", inline(never))]
     #[cfg_attr(not(feature = "profile"), inline(always))]
@@ -380,18 +382,42 @@ impl<C: Copy, D: DepthFormat> RowBuffers<'_, C, D> {
             return false;
         }
         let (first, last) = (start as usize, end as usize);
+        let (mut acc, step) = accumulator_at(start);
+        if self.write != PixelWrite::NearerOrFirstAdded {
+            // The other methods' rules, out of line: the scanline's span
+            // loop stays as it was.
+            let (depths, colors) = (&mut self.depth[first..last], &mut self.color[first..last]);
+            other_rule_in_range::<C, D>(depths, colors, color, (acc, step), self.write);
+            return true;
+        }
+        let mut first = first;
+        if BRANCH_FREE {
+            // Blocks while the row holds one from `first` (see `lanes`);
+            // the scalar loop below finishes a span near the row's end.
+            while let Some((depths, keys, colors)) = block(self.depth, self.key, self.color, first)
+            {
+                fill_block::<C, D>(
+                    depths,
+                    keys,
+                    colors,
+                    last - first,
+                    (key, color),
+                    (acc, step),
+                );
+                first += LANES;
+                if first >= last {
+                    return true;
+                }
+                for _ in 0..LANES {
+                    acc = D::advance(acc, step);
+                }
+            }
+        }
         let (depths, keys, colors) = (
             &mut self.depth[first..last],
             &mut self.key[first..last],
             &mut self.color[first..last],
         );
-        let (mut acc, step) = accumulator_at(start);
-        if self.write != PixelWrite::NearerOrFirstAdded {
-            // The other methods' rules, out of line: the scanline's span
-            // loop stays as it was.
-            other_rule_in_range::<C, D>(depths, colors, color, (acc, step), self.write);
-            return true;
-        }
         for ((stored, stored_key), pixel) in depths.iter_mut().zip(keys).zip(colors) {
             let depth = D::value(acc);
             if depth < *stored || (depth == *stored && depth != D::CLEAR && key < *stored_key) {
@@ -1314,6 +1340,34 @@ fn fill_spans_and_step<C: Copy>(
 /// permutation.
 #[inline]
 fn sort_by_y(corners: [(u16, ScreenVertex); 3]) -> ([(u16, ScreenVertex); 3], bool) {
+    sort_by_y_as::<BRANCH_FREE>(corners)
+}
+
+/// [`sort_by_y`] with or without branches (both are tested on the host).
+#[inline(always)]
+fn sort_by_y_as<const BRANCH_FREE: bool>(
+    corners: [(u16, ScreenVertex); 3],
+) -> ([(u16, ScreenVertex); 3], bool) {
+    if BRANCH_FREE {
+        // The same three compare-and-swaps, always made, on the corners'
+        // indices (selects of small integers: the corners come in any
+        // order, so each branch would miss often, and selecting whole
+        // corners went through the stack). The third swaps nothing when
+        // the second did not: the first already ordered that pair.
+        let y = |k: usize| corners[k].1.y;
+        let sort_pair = |upper: usize, lower: usize| {
+            let swap = y(lower) < y(upper);
+            let select = core::hint::select_unpredictable;
+            (select(swap, lower, upper), select(swap, upper, lower), swap)
+        };
+        let (top, mid, first) = sort_pair(0, 1);
+        let (mid, bot, second) = sort_pair(mid, 2);
+        let (top, mid, third) = sort_pair(top, mid);
+        return (
+            [corners[top], corners[mid], corners[bot]],
+            first ^ second ^ third,
+        );
+    }
     let [mut top, mut mid, mut bot] = corners;
     let mut odd = false;
     if mid.1.y < top.1.y {
@@ -1496,6 +1550,42 @@ fn fill_span<C: Copy, D: DepthFormat, const MODE: u8>(
                 let value = plane.value_at_pixel(x0 + k as i32, i32::from(row));
                 write(D::quantize(value), stored, stored_key, pixel);
             }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Both forms of the corner sort agree for every order of three
+    /// corners, ties included: sorted by y, stable, and the parity that
+    /// of the permutation.
+    #[test]
+    fn corner_sorts_agree_and_are_stable() {
+        for code in 0..27 {
+            let ys = [code % 3, code / 3 % 3, code / 9];
+            let corners: [(u16, ScreenVertex); 3] = core::array::from_fn(|k| {
+                (
+                    k as u16,
+                    ScreenVertex {
+                        x: 0,
+                        y: ys[k],
+                        z: 0,
+                    },
+                )
+            });
+            let (sorted, odd) = sort_by_y_as::<true>(corners);
+            assert_eq!((sorted, odd), sort_by_y_as::<false>(corners), "{ys:?}");
+            let mut want = corners;
+            want.sort_by_key(|&(_, v)| v.y); // stable
+            assert_eq!(sorted, want, "{ys:?}");
+            let order = sorted.map(|(k, _)| usize::from(k));
+            let inversions = (0..3)
+                .flat_map(|i| (i + 1..3).map(move |j| (i, j)))
+                .filter(|&(i, j)| order[i] > order[j])
+                .count();
+            assert_eq!(odd, inversions % 2 == 1, "{ys:?}");
         }
     }
 }
