@@ -30,7 +30,7 @@
 //! | | [`raster::zbuffer`] | the z-buffer of K rows (a band, or the whole frame) on the same tables, formats and fill rule |
 //! | | [`raster::capacities`] | [`Capacities`] by name, and the [`Renderer`] bundle of tables and scanner |
 //! | | `raster::plane`, `raster::edge`, `raster::active`, `raster::slots`, `raster::wide` (internal) | the plane set-up, the exact edge DDA, the active tables, the capacity-erased lists they live in (the active polygon table's with an order array of slots), exact 32x32→64 products for cores without a long multiply |
-//! | blitter | [`sink`] | finished rows to a `DrawTarget` ([`DrawTargetSink`]), a closure ([`FnSink`]) or a checksum ([`Crc32Sink`]); or drawn straight into a sink's own buffers ([`LentRow`]) |
+//! | blitter | [`sink`] | finished rows to a `DrawTarget` ([`DrawTargetSink`]), a closure ([`FnSink`]) or a checksum ([`Crc32Sink`]); or drawn straight into a sink's own buffers ([`LentRow`]), a frame buffer's rows for one ([`FrameBufferSink`]) |
 //! | | [`error`] | what can go wrong, by name |
 //! | comparison (feature `std`) | [`methods`] | the renderers and checks zline is measured against: every method behind one input and output ([`methods::Method`], [`methods::MethodRenderer`]), the interval scanline, the painter's algorithm, the float64 reference, the exact oracle |
 //! | | `methods::reference` | the float64 ray-cast reference ([`methods::ReferenceFrame`]) |
@@ -90,7 +90,7 @@ pub use raster::{
     Admission, Capacities, FrameStats, PolygonTables, Renderer, ScanArrays, ScanStorage, Scanner,
     TableArrays, TableStorage, Tables, scan,
 };
-pub use sink::{Crc32Sink, DrawTargetSink, FnSink, LentRow, RowSink};
+pub use sink::{Crc32Sink, DrawTargetSink, FnSink, FrameBufferSink, LentRow, RowSink};
 
 /// Compiles the README's code examples as doctests.
 #[cfg(doctest)]

@@ -156,6 +156,69 @@ where
     }
 }
 
+/// A frame buffer in memory, row-major from the top, `width` pixels a
+/// row: the scanner draws each row straight into it (the sink lends its
+/// rows, [`RowSink::lend_row`]), so no row is copied. For a frame in RAM
+/// that is sent or shown later; a display goes through
+/// [`DrawTargetSink`]. A row that does not fit the buffer, or is wider
+/// than `width`, is [`Error::BadFrameSize`](crate::Error::BadFrameSize).
+#[derive(Debug)]
+pub struct FrameBufferSink<'a, C> {
+    pixels: &'a mut [C],
+    width: usize,
+    first_row: u16,
+}
+
+impl<'a, C> FrameBufferSink<'a, C> {
+    /// Rows go to `pixels`, row `y` from index `y·width`.
+    pub fn new(pixels: &'a mut [C], width: usize) -> Self {
+        Self::from_row(pixels, width, 0)
+    }
+
+    /// Rows from `first_row` on go to `pixels`, row `y` from index `(y -
+    /// first_row)·width`: the part of a frame that one band of rows
+    /// draws.
+    pub fn from_row(pixels: &'a mut [C], width: usize, first_row: u16) -> Self {
+        Self {
+            pixels,
+            width,
+            first_row,
+        }
+    }
+
+    /// The first `len` pixels of row `y` in the buffer.
+    fn row(&mut self, y: u16, len: usize) -> Result<&mut [C], crate::Error> {
+        let start = y
+            .checked_sub(self.first_row)
+            .and_then(|index| usize::from(index).checked_mul(self.width))
+            .filter(|_| len <= self.width);
+        start
+            .and_then(|start| self.pixels.get_mut(start..start.checked_add(len)?))
+            .ok_or(crate::Error::BadFrameSize)
+    }
+}
+
+impl<C: Copy, Z> RowSink<C, Z> for FrameBufferSink<'_, C> {
+    type Error = crate::Error;
+
+    fn write_row(&mut self, y: u16, colors: &[C], _depths: &[Z]) -> Result<(), crate::Error> {
+        self.row(y, colors.len())?.copy_from_slice(colors);
+        Ok(())
+    }
+
+    fn lend_row(
+        &mut self,
+        y: u16,
+        width: usize,
+        _background: C,
+    ) -> Result<Option<LentRow<'_, C>>, crate::Error> {
+        Ok(Some(LentRow {
+            colors: self.row(y, width)?,
+            filled: false,
+        }))
+    }
+}
+
 /// CRC-32 of a frame (the IEEE 802.3 / zlib CRC) as it would leave for an
 /// ST7789: each pixel as Rgb565 big-endian, row after row. Two frames with
 /// the same CRC are, for all practical purposes, the same pixels; the

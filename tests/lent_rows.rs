@@ -9,8 +9,8 @@ use proptest::prelude::*;
 use zline::host::ScanVecs;
 use zline::raster::fixed::SUBPIXEL_STEPS;
 use zline::{
-    Depth16, Depth24, DepthFormat, Error, FnSink, LentRow, RenderError, RowSink, Scanner,
-    ScreenVertex, scan,
+    Depth16, Depth24, DepthFormat, Error, FnSink, FrameBufferSink, LentRow, RenderError, RowSink,
+    Scanner, ScreenVertex, scan,
 };
 
 const W: u16 = 40;
@@ -189,4 +189,94 @@ fn a_buffer_shorter_than_the_row_is_an_error() {
         Err(RenderError::Table(Error::BadFrameSize))
     ));
     assert!(lender.rows.is_empty());
+}
+
+/// The frame a copying sink assembles from `rows` (`width` pixels each).
+fn frame_of(rows: &Rows, width: usize, height: usize) -> Vec<u32> {
+    let mut frame = vec![0; width * height];
+    for (y, colors, _) in rows {
+        frame[usize::from(*y) * width..][..width].copy_from_slice(colors);
+    }
+    frame
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(32))]
+
+    /// `FrameBufferSink` draws in place the frame a copying sink gets, the
+    /// whole frame at once or in two bands into their parts of it, over
+    /// a frame that held something else.
+    #[test]
+    fn a_frame_buffer_sink_gets_the_copied_frame(
+        scene in prop::collection::vec(common::random_polygon(W, H, 8, 6), 1..=10),
+        cut in 0u16..=H,
+    ) {
+        let (copied, _) = both::<Depth16>(&scene, 0..H, false);
+        let (w, h) = (usize::from(W), usize::from(H));
+        let want = frame_of(&copied, w, h);
+        let mut tables = common::scene_tables(&scene, &common::small_caps(W), W, H);
+        let prepared = tables.prepare();
+        let mut scanner = Scanner::new(
+            ScanVecs::<u32, Depth16>::new(&common::small_caps(W), 0),
+            BACKGROUND,
+        );
+        let mut frame = vec![0xDEAD; w * h];
+        scan(&prepared, &mut scanner, 0..H, &mut FrameBufferSink::new(&mut frame, w)).unwrap();
+        prop_assert_eq!(&frame, &want);
+        let mut banded = vec![0xDEAD; w * h];
+        let (top, bottom) = banded.split_at_mut(usize::from(cut) * w);
+        scan(&prepared, &mut scanner, 0..cut, &mut FrameBufferSink::new(top, w)).unwrap();
+        let mut lower = FrameBufferSink::from_row(bottom, w, cut);
+        scan(&prepared, &mut scanner, cut..H, &mut lower).unwrap();
+        prop_assert_eq!(&banded, &want);
+    }
+}
+
+#[test]
+fn a_frame_buffer_too_small_or_too_narrow_is_an_error() {
+    let scene = vec![vec![
+        ScreenVertex::new(S, S, 100).unwrap(),
+        ScreenVertex::new(30 * S, 2 * S, 100).unwrap(),
+        ScreenVertex::new(9 * S, 20 * S, 100).unwrap(),
+    ]];
+    let mut tables = common::scene_tables(&scene, &common::small_caps(W), W, H);
+    let prepared = tables.prepare();
+    let mut scanner = Scanner::new(
+        ScanVecs::<u32, Depth16>::new(&common::small_caps(W), 0),
+        BACKGROUND,
+    );
+    let (w, h) = (usize::from(W), usize::from(H));
+    // One pixel short of the last row; rows narrower than the frame's;
+    // a band's sink asked for a row above its band.
+    let mut short = vec![0; w * h - 1];
+    let mut narrow = vec![0; w * h];
+    let mut band = vec![0; w * h];
+    let results = [
+        scan(
+            &prepared,
+            &mut scanner,
+            0..H,
+            &mut FrameBufferSink::new(&mut short, w),
+        ),
+        scan(
+            &prepared,
+            &mut scanner,
+            0..H,
+            &mut FrameBufferSink::new(&mut narrow, w - 1),
+        ),
+        scan(
+            &prepared,
+            &mut scanner,
+            0..H,
+            &mut FrameBufferSink::from_row(&mut band, w, 1),
+        ),
+    ];
+    for result in results {
+        assert!(
+            matches!(result, Err(RenderError::Sink(Error::BadFrameSize))),
+            "{result:?}"
+        );
+    }
+    // Every row but the last one was drawn before the short buffer ran out.
+    assert_ne!(short[w..2 * w], vec![0; w][..]);
 }

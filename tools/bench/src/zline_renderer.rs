@@ -1,9 +1,6 @@
 //! zline behind the [`Renderer`] trait. Everything that depends on zline's
 //! rendering API is in this file, so an API change is adapted here alone.
 
-use embedded_graphics::pixelcolor::Rgb565;
-use embedded_graphics::pixelcolor::raw::RawU16;
-use embedded_graphics::prelude::IntoStorage;
 use zline::front::geometry::Mat4 as ZMat4;
 use zline::front::scene::{
     Camera, Cull as ZCull, FaceInfo, VertexCache, draw_mesh, reference_model,
@@ -11,7 +8,7 @@ use zline::front::scene::{
 use zline::front::shade::Shading;
 use zline::host::{BandedRenderer, ScanVecs, TableVecs, host_renderer};
 use zline::methods::HostScanline;
-use zline::{Depth16, FnSink, Renderer as ZRenderer};
+use zline::{Depth16, FrameBufferSink, Renderer as ZRenderer};
 
 use crate::framebuffer::Frame565;
 use crate::renderer::Renderer;
@@ -26,21 +23,22 @@ use crate::view::{Cull, Scene, View};
 /// when `--cull back`, faces running clockwise on screen; clip; project;
 /// shade each face with `Shading::lambert()`, converted to Rgb565; offer
 /// it to the tables), then prepare the tables (bucket sort by first row)
-/// and scan every row with the one z row, each finished row copied into the
-/// same Rgb565 frame the peers draw into. Shading: each face's colour
+/// and scan every row with the one z row, drawn straight into its row of
+/// the same Rgb565 frame the peers draw into (`FrameBufferSink`, zline's
+/// colour type being the frame's raw `u16`). Shading: each face's colour
 /// from the same per-face Lambert table the peers use
 /// ([`Scene::face_colors`], computed before timing); zline's shading
 /// closure looks it up by face id. Face ids (untimed) come from a second,
 /// host-sized render of the same view.
 pub struct ZlineRenderer<'a> {
     scene: &'a Scene,
-    renderer: ZRenderer<TableVecs<Rgb565>, ScanVecs<Rgb565, Depth16>>,
+    renderer: ZRenderer<TableVecs<u16>, ScanVecs<u16, Depth16>>,
     cache: Box<VertexCache<65536>>,
     frame: Frame565,
     model: ZMat4,
     camera: Camera,
     cull: ZCull,
-    colors: Vec<Rgb565>,
+    colors: Vec<u16>,
     view: View,
 }
 
@@ -52,7 +50,7 @@ impl<'a> ZlineRenderer<'a> {
             &scene.mesh.capacities(view.width),
             view.width,
             view.height,
-            Rgb565::new(0, 0, 0),
+            0,
         )
         .map_err(|e| format!("zline: {e}"))?;
         let model = reference_model(mesh, view.yaw_deg, view.pitch_deg)
@@ -68,11 +66,7 @@ impl<'a> ZlineRenderer<'a> {
                 Cull::None => ZCull::None,
                 Cull::Back => ZCull::Back,
             },
-            colors: scene
-                .face_colors(view)
-                .into_iter()
-                .map(|raw| Rgb565::from(RawU16::new(raw)))
-                .collect(),
+            colors: scene.face_colors(view),
             view: *view,
         })
     }
@@ -97,15 +91,8 @@ impl Renderer for ZlineRenderer<'_> {
         )
         .map_err(|e| format!("zline: {e}"))?;
         let width = self.frame.width;
-        let pixels = &mut self.frame.pixels;
         self.renderer
-            .render(&mut FnSink(|y: u16, colors: &[Rgb565], _: &[u16]| {
-                let row = &mut pixels[usize::from(y) * width..][..width];
-                for (out, c) in row.iter_mut().zip(colors) {
-                    *out = c.into_storage();
-                }
-                Ok::<(), ()>(())
-            }))
+            .render(&mut FrameBufferSink::new(&mut self.frame.pixels, width))
             .map(|_| ())
             .map_err(|e| format!("zline: {e:?}"))
     }
@@ -139,12 +126,12 @@ impl Renderer for ZlineRenderer<'_> {
 /// the timed region is [`ZlineRenderer`]'s.
 pub struct ZlineBandsRenderer<'a> {
     scene: &'a Scene,
-    renderer: BandedRenderer<Rgb565, Depth16>,
+    renderer: BandedRenderer<u16, Depth16>,
     frame: Frame565,
     model: ZMat4,
     camera: Camera,
     cull: ZCull,
-    colors: Vec<Rgb565>,
+    colors: Vec<u16>,
     name: String,
 }
 
@@ -157,7 +144,7 @@ impl<'a> ZlineBandsRenderer<'a> {
             &scene.mesh.capacities(view.width),
             view.width,
             view.height,
-            Rgb565::new(0, 0, 0),
+            0,
             threads,
         )
         .map_err(|e| format!("zline: {e}"))?;
@@ -185,20 +172,13 @@ impl Renderer for ZlineBandsRenderer<'_> {
 
     fn render(&mut self) -> Result<(), String> {
         let width = self.frame.width;
-        // Each band's sink writes into its own rows of the frame.
+        // Each band draws into its own rows of the frame.
         let mut rest = &mut self.frame.pixels[..];
         let mut sinks = Vec::new();
         for rows in self.renderer.bands() {
             let (part, tail) = rest.split_at_mut(rows.len() * width);
             rest = tail;
-            let first = rows.start;
-            sinks.push(FnSink(move |y: u16, colors: &[Rgb565], _: &[u16]| {
-                let row = &mut part[usize::from(y - first) * width..][..width];
-                for (out, c) in row.iter_mut().zip(colors) {
-                    *out = c.into_storage();
-                }
-                Ok::<(), ()>(())
-            }));
+            sinks.push(FrameBufferSink::from_row(part, width, rows.start));
         }
         let colors = &self.colors;
         self.renderer
