@@ -1406,8 +1406,9 @@ fn clip_face<M: Mesh + ?Sized>(
 /// The back-face test and the shading of a face the core accepted: its
 /// colour, or `None` (counted) for a culled back face. Screen y points
 /// down, so a face counter-clockwise as the viewer sees it has negative
-/// area. (Not inlined: the profile's "shade" stage.)
-#[inline(never)]
+/// area. (With the `profile` feature it is kept out of line: the
+/// profile's "shade" stage.)
+#[cfg_attr(feature = "profile", inline(never))]
 fn shade_front_face<C, M: Mesh>(
     frame: &Frame,
     mesh: &M,
