@@ -27,6 +27,18 @@
 //! | spans | `RowBuffers::fill`, `RowBuffers::fill_in_range` |
 //! | sink | `profile::copy_row` |
 //! | row upkeep | `scan_rows`, less activation, spans and sink |
+//!
+//! Instructions are not time: a host also waits on memory and on
+//! mispredicted branches. `--perf-report` reads a sampling profile of the
+//! same frames instead and prints each stage's share of the samples, by
+//! each function's own samples (perf cannot see the inlined stages
+//! inclusive):
+//!
+//! ```sh
+//! perf record -e cpu-clock -F 5000 -o perf.data \
+//!     target/release/examples/profile ../shared/meshes/stanford-bunny.obj --size 800x600 --frames 400
+//! cargo run --release --features profile --example profile -- --perf-report perf.data
+//! ```
 
 use std::process::ExitCode;
 
@@ -181,6 +193,85 @@ fn report(path: &str) -> Result<(), String> {
     Ok(())
 }
 
+/// Each function's own share of the samples, in percent, from `perf
+/// report`.
+fn perf_self(path: &str) -> Result<Vec<(f64, String)>, String> {
+    let out = std::process::Command::new("perf")
+        .args([
+            "report",
+            "-i",
+            path,
+            "--no-children",
+            "--sort",
+            "symbol",
+            "--stdio",
+        ])
+        .output()
+        .map_err(|e| format!("perf report: {e}"))?;
+    let text = String::from_utf8_lossy(&out.stdout);
+    Ok(text
+        .lines()
+        .filter_map(|line| {
+            let (share, rest) = line.trim().split_once('%')?;
+            let share: f64 = share.trim().parse().ok()?;
+            let name = rest.trim().strip_prefix("[.]")?.trim();
+            Some((share, format!("{name} ")))
+        })
+        .collect())
+}
+
+fn perf_report(path: &str) -> Result<(), String> {
+    let rows = perf_self(path)?;
+    let stages: [(&str, &[&str]); 7] = [
+        ("transform", &["transform_vertex", "Frame::project"]),
+        ("shade (back-face test, colour)", &["shade_front_face"]),
+        (
+            "table building (per face: corners, outline, sample test)",
+            &["offer_triangle", "::part ", "scene::draw_mesh ", "face_of"],
+        ),
+        (
+            "sorting (bucket sort, edge table)",
+            &["Tables<S>::prepare", "radix_sort_by_row"],
+        ),
+        (
+            "polygon/edge activation (one-row triangles drawn there)",
+            &[
+                "ScanState<C>::activate_",
+                "value_at_pixel",
+                "RowBuffers<C,D>::fill ",
+            ],
+        ),
+        ("spans (depth test and write)", &["fill_in_range"]),
+        (
+            "row upkeep (edge stepping, active tables, row clearing)",
+            &[
+                "scan_row ",
+                "switch_triangle",
+                "scan_rows",
+                "clear_color_row",
+                "fill_and_step",
+            ],
+        ),
+    ];
+    println!("| stage | share of the samples |");
+    println!("|---|---:|");
+    let mut staged = 0.0;
+    for (name, keys) in stages {
+        let share: f64 = rows
+            .iter()
+            .filter(|(_, symbol)| keys.iter().any(|k| symbol.contains(k)))
+            .map(|(share, _)| share)
+            .sum();
+        staged += share;
+        println!("| {name} | {share:.1} % |");
+    }
+    println!(
+        "| the rest (the colour closure, the sink, loading the mesh) | {:.1} % |",
+        100.0 - staged
+    );
+    Ok(())
+}
+
 fn run(args: &[String]) -> Result<(), String> {
     let (mut path, mut size, mut cull, mut count) = (None, (800, 600), Cull::None, 4);
     let mut live_shading = false;
@@ -189,6 +280,7 @@ fn run(args: &[String]) -> Result<(), String> {
         let mut value = || it.next().ok_or_else(|| format!("{a} needs a value"));
         match a.as_str() {
             "--report" => return report(value()?),
+            "--perf-report" => return perf_report(value()?),
             "--lambert" => live_shading = true,
             "--size" => size = parse_size(value()?)?,
             "--cull" => {
@@ -217,7 +309,7 @@ fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     run_tool(
         "profile",
-        "usage: profile MODEL.obj [--size WxH] [--cull none|back] [--frames N] | profile --report CALLGRIND.OUT",
+        "usage: profile MODEL.obj [--size WxH] [--cull none|back] [--frames N] | profile --report CALLGRIND.OUT | profile --perf-report PERF.DATA",
         move || run(&args),
     )
 }
