@@ -29,7 +29,7 @@
 //! | | [`raster::depth`] | the depth formats a row stores ([`Depth16`], [`Depth24`]) |
 //! | | [`raster::zbuffer`] | the z-buffer of K rows (a band, or the whole frame) on the same tables, formats and fill rule |
 //! | | [`raster::capacities`] | [`Capacities`] by name, and the [`Renderer`] bundle of tables and scanner |
-//! | | `raster::plane`, `raster::edge`, `raster::active`, `raster::slots`, `raster::wide` (internal) | the plane set-up, the exact edge DDA, the active tables, the capacity-erased lists they live in (the active polygon table's with an order array of slots), exact 32x32→64 products for cores without a long multiply |
+//! | | `raster::plane`, `raster::edge`, `raster::active`, `raster::slots`, `raster::lanes`, `raster::wide` (internal) | the plane set-up, the exact edge DDA, the active tables, the capacity-erased lists they live in (the active polygon table's with an order array of slots), the branch-free span blocks for hosts, exact 32x32→64 products for cores without a long multiply |
 //! | blitter | [`sink`] | finished rows to a `DrawTarget` ([`DrawTargetSink`]), a closure ([`FnSink`]) or a checksum ([`Crc32Sink`]); or drawn straight into a sink's own buffers ([`LentRow`]), a frame buffer's rows for one ([`FrameBufferSink`]) |
 //! | | [`error`] | what can go wrong, by name |
 //! | comparison (feature `std`) | [`methods`] | the renderers and checks zline is measured against: every method behind one input and output ([`methods::Method`], [`methods::MethodRenderer`]), the interval scanline, the painter's algorithm, the float64 reference, the exact oracle |
