@@ -169,19 +169,28 @@ fn an_unfilled_buffer_is_cleared_and_tiny_triangles_land_in_it() {
     );
 }
 
-#[test]
-fn a_buffer_shorter_than_the_row_is_an_error() {
-    let scene = vec![vec![
+/// One triangle across most of the frame.
+fn one_triangle() -> Vec<Vec<ScreenVertex>> {
+    vec![vec![
         ScreenVertex::new(S, S, 100).unwrap(),
         ScreenVertex::new(30 * S, 2 * S, 100).unwrap(),
         ScreenVertex::new(9 * S, 20 * S, 100).unwrap(),
-    ]];
-    let mut tables = common::scene_tables(&scene, &common::small_caps(W), W, H);
-    let prepared = tables.prepare();
-    let mut scanner = Scanner::new(
+    ]]
+}
+
+/// A z16 scanner for the frame, on `Vec`s.
+fn z16_scanner() -> Scanner<ScanVecs<u32, Depth16>> {
+    Scanner::new(
         ScanVecs::<u32, Depth16>::new(&common::small_caps(W), 0),
         BACKGROUND,
-    );
+    )
+}
+
+#[test]
+fn a_buffer_shorter_than_the_row_is_an_error() {
+    let mut tables = common::scene_tables(&one_triangle(), &common::small_caps(W), W, H);
+    let prepared = tables.prepare();
+    let mut scanner = z16_scanner();
     let mut lender = Lender::new(usize::from(W) - 1, true);
     let result = scan(&prepared, &mut scanner, 0..H, &mut lender);
     assert!(matches!(
@@ -216,10 +225,7 @@ proptest! {
         let want = frame_of(&copied, w, h);
         let mut tables = common::scene_tables(&scene, &common::small_caps(W), W, H);
         let prepared = tables.prepare();
-        let mut scanner = Scanner::new(
-            ScanVecs::<u32, Depth16>::new(&common::small_caps(W), 0),
-            BACKGROUND,
-        );
+        let mut scanner = z16_scanner();
         let mut frame = vec![0xDEAD; w * h];
         scan(&prepared, &mut scanner, 0..H, &mut FrameBufferSink::new(&mut frame, w)).unwrap();
         prop_assert_eq!(&frame, &want);
@@ -234,17 +240,9 @@ proptest! {
 
 #[test]
 fn a_frame_buffer_too_small_or_too_narrow_is_an_error() {
-    let scene = vec![vec![
-        ScreenVertex::new(S, S, 100).unwrap(),
-        ScreenVertex::new(30 * S, 2 * S, 100).unwrap(),
-        ScreenVertex::new(9 * S, 20 * S, 100).unwrap(),
-    ]];
-    let mut tables = common::scene_tables(&scene, &common::small_caps(W), W, H);
+    let mut tables = common::scene_tables(&one_triangle(), &common::small_caps(W), W, H);
     let prepared = tables.prepare();
-    let mut scanner = Scanner::new(
-        ScanVecs::<u32, Depth16>::new(&common::small_caps(W), 0),
-        BACKGROUND,
-    );
+    let mut scanner = z16_scanner();
     let (w, h) = (usize::from(W), usize::from(H));
     // One pixel short of the last row; rows narrower than the frame's;
     // a band's sink asked for a row above its band.
