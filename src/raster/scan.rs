@@ -364,8 +364,9 @@ impl<C: Copy, D: DepthFormat> RowBuffers<'_, C, D> {
     /// placed at the first pixel from the row's column-0 value
     /// ([`DepthFormat::accumulator_at`]), with no range check, no rounding
     /// and no call per span, on a host in branch-free blocks
-    /// ([`crate::raster::lanes`]); whether any pixel was in the row. (With the `profile` feature it is kept out
-    /// of line: the profile's "spans" stage.)
+    /// ([`crate::raster::lanes`]); whether any pixel was in the row. (With
+    /// the `profile` feature it is kept out of line: the profile's "spans"
+    /// stage.)
     #[cfg_attr(feature = "profile", inline(never))]
     #[cfg_attr(not(feature = "profile"), inline(always))]
     fn fill_in_range(
@@ -408,6 +409,10 @@ impl<C: Copy, D: DepthFormat> RowBuffers<'_, C, D> {
                 if first >= last {
                     return true;
                 }
+                // Stepped here, not returned by the block: LLVM folds
+                // these into one `acc + LANES·step` apart from the lanes'
+                // chain, and a returned accumulator measured 10 % slower
+                // in the peers bench.
                 for _ in 0..LANES {
                     acc = D::advance(acc, step);
                 }
