@@ -114,7 +114,7 @@ pub fn render_intervals<C: Copy, D: DepthFormat, K: RowSink<C, D::Value>>(
                     segments.push(Segment {
                         start,
                         end,
-                        key: polygon.id + 1,
+                        key: polygon.id() + 1,
                         position,
                         plane: entry.1,
                     });

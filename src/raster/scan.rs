@@ -30,7 +30,7 @@ use crate::raster::fixed::first_sample_at_or_after;
 use crate::raster::lanes::{LANES, block, fill_block};
 use crate::raster::plane::{Plane, TrianglePlane};
 use crate::raster::slots::{OrderedSlots, Slots};
-use crate::raster::tables::{PolygonEntry, Prepared};
+use crate::raster::tables::{PolygonEntry, Prepared, entry_corner_ids};
 use crate::raster::vertex::{ScreenVertex, TriangleTest};
 use crate::raster::wide::{cross, mul_i64_small};
 use crate::sink::{LentRow, RowSink};
@@ -746,7 +746,7 @@ impl<C: Copy> ScanState<'_, '_, C> {
         };
         let entry = ActivePolygon::new(
             position as u32,
-            polygon.id + 1,
+            polygon.id() + 1,
             polygon.end_row,
             polygon.color,
             depth,
@@ -794,9 +794,15 @@ impl<C: Copy> ScanState<'_, '_, C> {
         rows: &mut RowBuffers<'_, C, D>,
     ) -> Result<(), Error> {
         let polygon = self.tables.polygons[position];
-        let start = polygon.corner_start as usize;
         let (corners, vertices) = (self.tables.corners, self.tables.vertices);
-        let ids = [corners[start], corners[start + 1], corners[start + 2]];
+        let ids = match polygon.triangle() {
+            Some(ids) => ids,
+            // A triangle sharing a plane: its corners from the list.
+            None => match *entry_corner_ids(&polygon, corners) {
+                [a, b, c] => [a, b, c],
+                _ => return self.activate_general(position, row),
+            },
+        };
         // Not `ids.map`: on a Cortex-M0+ that became a loop through
         // `try_from_fn`, 90 cycles for three loads.
         let vertex = |k: usize| vertices[usize::from(ids[k])];
@@ -896,7 +902,7 @@ impl<C: Copy> ScanState<'_, '_, C> {
         let set = |entry: &mut ActivePolygon<C>| {
             entry.set_triangle(
                 position as u32,
-                polygon.id + 1,
+                polygon.id() + 1,
                 polygon.end_row,
                 switch_row,
                 polygon.color,
@@ -957,7 +963,7 @@ impl<C: Copy> ScanState<'_, '_, C> {
             return true; // No area: nothing to draw.
         };
         let source = SpanSource::Exact(plane, row);
-        if rows.fill(start, stop, polygon.id + 1, polygon.color, &source) {
+        if rows.fill(start, stop, polygon.id() + 1, polygon.color, &source) {
             self.stats.spans += 1;
         }
         true
@@ -1407,12 +1413,11 @@ pub(crate) fn for_each_edge(
 
 /// The corners of a polygon-table entry, as vertices.
 pub(crate) fn entry_corners<'a, C>(
-    polygon: &PolygonEntry<C>,
+    polygon: &'a PolygonEntry<C>,
     corners: &'a [u16],
     vertices: &'a [ScreenVertex],
 ) -> impl Iterator<Item = ScreenVertex> + Clone + 'a {
-    let start = polygon.corner_start as usize;
-    corners[start..start + polygon.corner_count()]
+    entry_corner_ids(polygon, corners)
         .iter()
         .map(move |&i| vertices[usize::from(i)])
 }
