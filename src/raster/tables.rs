@@ -35,7 +35,7 @@ use crate::raster::wide::cross;
 /// corners would cost a cache miss). Its corners are in the corner list
 /// too, where [`Tables::share_plane`] and the capacity accounting find
 /// them. The entry stays 16 bytes with a 2-byte colour: the id, the
-/// corner count and the shared-plane flag share one word ([`Self::tag`]).
+/// corner count and the shared-plane flag share one word.
 #[derive(Debug, Clone, Copy)]
 pub struct PolygonEntry<C> {
     /// A triangle's vertex-table indices ([`Self::triangle`]); for any
