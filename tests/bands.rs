@@ -100,6 +100,57 @@ proptest! {
     }
 }
 
+/// A small triangle two or three rows tall (at most 4 columns wide), with
+/// depths far apart, anywhere in the frame.
+fn small_triangle() -> impl Strategy<Value = Vec<ScreenVertex>> {
+    (
+        0..(i32::from(W) - 5) * S,
+        0..(i32::from(H) - 4) * S,
+        prop::array::uniform3((0..4 * S, 0..3 * S, 0u32..16_000_000)),
+    )
+        .prop_map(|(x0, y0, corners)| {
+            corners
+                .iter()
+                .map(|&(dx, dy, z)| ScreenVertex::new(x0 + dx, y0 + dy, z).unwrap())
+                .collect()
+        })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// A band that starts on a small triangle's last row draws that row
+    /// as one scan does: stepped from the triangle's first row, not as a
+    /// triangle of one row (whose exact depths may differ by a step of
+    /// the format). The pipeline fuzzer found it (a warped cube in bands
+    /// of the banded renderer: one pixel one z16 step apart).
+    #[test]
+    fn bands_starting_on_a_small_triangles_last_row_equal_one_scan(
+        scene in prop::collection::vec(small_triangle(), 1..=12),
+    ) {
+        let cuts: Vec<u16> = (1..H).collect();
+        check_bands::<Depth16>(&scene, &cuts);
+        check_bands::<Depth24>(&scene, &cuts);
+    }
+}
+
+/// The smallest scene the property above found against the code before
+/// the fix (20,000 cases): one triangle over rows 20–22, whose exact depth
+/// at its last row's pixel is one z16 step from the stepped one.
+#[test]
+fn a_band_on_a_triangles_last_row_steps_it_from_its_first() {
+    let v = |x: i32, y: i32, z: u32| ScreenVertex::new(x, y, z).unwrap();
+    let scene = vec![vec![
+        v(8953, 5346, 6_088_302),
+        v(9120, 6071, 6_631_425),
+        v(9231, 5562, 3_333_644),
+    ]];
+    check_bands::<Depth16>(&scene, &[22]);
+    let cuts: Vec<u16> = (1..H).collect();
+    check_bands::<Depth16>(&scene, &cuts);
+    check_bands::<Depth24>(&scene, &cuts);
+}
+
 #[test]
 fn every_single_row_band_equals_one_scan() {
     // A tall triangle, a concave U and a quad: each band starts inside

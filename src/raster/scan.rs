@@ -808,7 +808,15 @@ impl<C: Copy> ScanState<'_, '_, C> {
         let vertex = |k: usize| vertices[usize::from(ids[k])];
         let [a, b, c] = [vertex(0), vertex(1), vertex(2)];
         let shared = polygon.shared_plane().is_some();
-        if !shared && polygon.end_row == row + 1 && self.draw_tiny_row(a, b, c, &polygon, row, rows)
+        // Only a triangle of one row, activated on it: one that a band
+        // activates on its last row (having started above the band) is
+        // stepped from its first row as one scan over the whole frame
+        // steps it, where the tiny path's exact values could differ from
+        // the stepped ones by one step of the depth format.
+        if !shared
+            && polygon.end_row == row + 1
+            && polygon.first_row == row
+            && self.draw_tiny_row(a, b, c, &polygon, row, rows)
         {
             return Ok(());
         }
