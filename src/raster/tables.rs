@@ -108,9 +108,14 @@ impl<C: Copy> PolygonEntry<C> {
         if let (3, Some(&[a, b, c])) = (count, corners.get(start..start + 3)) {
             return Self::new_triangle([a, b, c], rows, id, color);
         }
-        let mut entry = Self::new_triangle([0; 3], rows, id, color);
+        let mut entry = Self {
+            corners: [0; 3],
+            first_row: rows.0,
+            end_row: rows.1,
+            tag: id | (count as u32) << ID_BITS,
+            color,
+        };
         entry.set_corner_start(start);
-        entry.tag = id | (count as u32) << ID_BITS;
         entry
     }
 }
