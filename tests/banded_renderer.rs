@@ -425,3 +425,54 @@ fn small_frames_stay_on_the_calling_thread() {
     assert_ne!(sink_threads(&mut renderer, &small, (96, 72))[1], here);
     assert_eq!(sink_threads(&mut renderer, &big, (96, 72)), [here, here]);
 }
+
+/// Issue 28, item 1: a banded renderer sized exactly by one renderer's
+/// [`Capacities::from_stats`] draws every cut of a scene of concave
+/// polygons (a band starting inside a concave polygon once needed more
+/// pooled edges than the whole frame).
+fn check_exact_capacities(scene: &[Vec<ScreenVertex>], cuts: &[u16]) {
+    let (width, height) = (41u16, 12u16);
+    let mut one = host_renderer::<u32, Depth16>(&CAPS, width, height, 0).unwrap();
+    offer(&mut one, scene);
+    let mut rows = Rows::new();
+    let stats = one
+        .render(&mut FnSink(|y: u16, c: &[u32], z: &[u16]| {
+            rows.push((y, c.to_vec(), z.iter().map(|&v| v.into()).collect()));
+            Ok::<(), ()>(())
+        }))
+        .unwrap();
+    let exact = Capacities::from_stats(&stats, usize::from(width));
+    let mut bounds: Vec<u16> = cuts.iter().map(|c| 1 + c % (height - 1)).collect();
+    bounds.sort_unstable();
+    bounds.dedup();
+    let mut renderer =
+        BandedRenderer::<u32, Depth16>::new(&exact, width, height, 0, bounds.len() + 1).unwrap();
+    renderer.set_cuts(&bounds).unwrap();
+    renderer.set_one_thread_below(Duration::ZERO);
+    let mut scratch = vec![(); bounds.len() + 1];
+    let banded_rows = banded(&mut renderer, &mut scratch, |t, _| offer(t, scene));
+    assert_eq!(banded_rows, rows, "cuts {bounds:?} at {exact:?}");
+}
+
+#[test]
+fn exact_capacities_fit_a_band_inside_concave_quads() {
+    let v = |x: i32, y: i32| ScreenVertex::new(x, y, 0).unwrap();
+    let scene = vec![
+        vec![v(0, 0), v(0, 385), v(0, 129), v(129, 1665)],
+        vec![v(0, 1665), v(0, 0), v(0, 1666), v(129, 385)],
+    ];
+    check_exact_capacities(&scene, &[0]);
+    check_exact_capacities(&scene, &[1]);
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    #[test]
+    fn exact_capacities_fit_every_band(
+        scene in prop::collection::vec(common::random_polygon(41, 12, 3, 6), 1..=4),
+        cuts in prop::collection::vec(0u16..12, 1..4),
+    ) {
+        check_exact_capacities(&scene, &cuts);
+    }
+}

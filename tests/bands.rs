@@ -214,3 +214,83 @@ fn array_and_vec_storage_give_the_same_frame() {
     assert!(a.iter().flat_map(|(_, c)| c).any(|&c| c == 1));
     assert!(a.iter().flat_map(|(_, c)| c).any(|&c| c == 2));
 }
+
+/// Scans `scene` once over the whole frame, sizes a scanner exactly by
+/// that scan's [`Capacities::from_stats`], and scans every band of `cuts`
+/// with it: each band must fit (no `ActiveEdgesFull`, no
+/// `ActivePolygonsFull`) and the bands' rows must be the whole scan's.
+fn bands_fit_the_whole_frames_capacities(
+    scene: &[Vec<ScreenVertex>],
+    cuts: &[u16],
+    width: u16,
+    height: u16,
+) {
+    let caps = common::small_caps(width);
+    let mut tables = common::scene_tables(scene, &caps, width, height);
+    let prepared = tables.prepare();
+    let mut whole = Scanner::new(ScanVecs::<u32, Depth16>::new(&caps, 0), 0);
+    let mut one = Rows::new();
+    let stats = scan(
+        &prepared,
+        &mut whole,
+        0..height,
+        &mut FnSink(|y: u16, c: &[u32], z: &[u16]| {
+            one.push((y, c.to_vec(), z.iter().map(|&v| v.into()).collect()));
+            Ok::<(), ()>(())
+        }),
+    )
+    .unwrap();
+    let exact = Capacities::from_stats(&stats, usize::from(width));
+    let mut bounds: Vec<u16> = cuts.iter().map(|c| c % (height + 1)).collect();
+    bounds.extend([0, height]);
+    bounds.sort_unstable();
+    let mut joined = Rows::new();
+    for band in bounds.windows(2) {
+        let mut scanner = Scanner::new(ScanVecs::<u32, Depth16>::new(&exact, 0), 0);
+        let band_stats = scan(
+            &prepared,
+            &mut scanner,
+            band[0]..band[1],
+            &mut FnSink(|y: u16, c: &[u32], z: &[u16]| {
+                joined.push((y, c.to_vec(), z.iter().map(|&v| v.into()).collect()));
+                Ok::<(), ()>(())
+            }),
+        )
+        .unwrap_or_else(|e| panic!("band {band:?} at {exact:?}: {e:?}"));
+        assert!(band_stats.peak_pooled_edges <= stats.peak_pooled_edges);
+        assert!(band_stats.peak_active_polygons <= stats.peak_active_polygons);
+    }
+    assert_eq!(joined, one, "bands {bounds:?}");
+}
+
+/// Issue 28, item 1: a band that starts inside two concave quads
+/// activates each with the edges crossing its first row. Their pooled
+/// edges must then never outnumber one scan's: before the fix, the band
+/// below row 1 kept both quads' first pair of edges inline and, when
+/// those ended on row 3, held the other four in the pool, where one scan
+/// over the whole frame held three.
+#[test]
+fn a_band_inside_concave_polygons_fits_the_frames_pooled_edges() {
+    let v = |x: i32, y: i32| ScreenVertex::new(x, y, 0).unwrap();
+    let scene = vec![
+        vec![v(0, 0), v(0, 385), v(0, 129), v(129, 1665)],
+        vec![v(0, 1665), v(0, 0), v(0, 1666), v(129, 385)],
+    ];
+    bands_fit_the_whole_frames_capacities(&scene, &[1], 41, 12);
+    let cuts: Vec<u16> = (1..12).collect();
+    bands_fit_the_whole_frames_capacities(&scene, &cuts, 41, 12);
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    /// Any cut of any scene of concave polygons: scanners sized exactly
+    /// by the whole frame's statistics draw every band.
+    #[test]
+    fn bands_fit_capacities_from_the_whole_frames_stats(
+        scene in prop::collection::vec(common::random_polygon(41, 12, 3, 6), 1..=4),
+        cuts in prop::collection::vec(0u16..=12, 1..4),
+    ) {
+        bands_fit_the_whole_frames_capacities(&scene, &cuts, 41, 12);
+    }
+}

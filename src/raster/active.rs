@@ -286,6 +286,13 @@ impl<C: Copy> ActivePolygon<C> {
     }
 
     /// Steps every edge to `next_row`, dropping those that ended there.
+    /// Where an edge of the pair ended, the pool's first edge takes its
+    /// place: so a polygon holds in the pool only the edges beyond two
+    /// that cover the row, whatever its history, and a band that starts
+    /// inside a polygon (activating it with the edges crossing its first
+    /// row) pools no more than one scan over the whole frame does on that
+    /// row ([`FrameStats::peak_pooled_edges`](crate::raster::FrameStats::peak_pooled_edges)
+    /// covers every band).
     #[inline]
     pub(crate) fn advance_edges(&mut self, next_row: u16, pool: &mut EdgePool<'_>) {
         let mut k = 0;
@@ -302,6 +309,14 @@ impl<C: Copy> ActivePolygon<C> {
         if self.extra != NO_EDGE {
             let head = pool.advance_list(self.extra, next_row);
             self.extra = pool.sort_list(head);
+            while usize::from(self.pair_len) < self.pair.len() {
+                let Some((edge, rest)) = pool.pop_front(self.extra) else {
+                    break;
+                };
+                self.extra = rest;
+                self.pair[usize::from(self.pair_len)] = edge;
+                self.pair_len += 1;
+            }
         }
     }
 }
@@ -391,6 +406,19 @@ impl<'a> EdgePool<'a> {
             index = next;
         }
         sorted
+    }
+
+    /// Takes the first edge of the list starting at `head` out of the pool
+    /// (it stays live, held by its polygon's pair); returns it and the new
+    /// head, or `None` for an empty list.
+    fn pop_front(&mut self, head: u32) -> Option<(ActiveEdge, u32)> {
+        let edges = self.edges.as_mut_slice();
+        let entry = edges.get_mut(head as usize)?;
+        let (edge, next) = (*entry, entry.next);
+        entry.next = self.free;
+        self.free = head;
+        self.pooled -= 1;
+        Some((edge, next))
     }
 
     /// Steps the list starting at `head` to `next_row`, freeing edges that

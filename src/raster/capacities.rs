@@ -58,7 +58,11 @@ pub struct Capacities {
 
 impl Capacities {
     /// The capacities a frame of `width` pixels with these counts needs
-    /// (take the [`FrameStats::max`] over every frame to be shown).
+    /// (take the [`FrameStats::max`] over every frame to be shown). They
+    /// also fit a scanner of any band of the frame's rows, and each band
+    /// of a banded renderer: a band holds no more polygons, corners or
+    /// vertices than the frame, and needs no more active polygons or
+    /// pooled edges on any row than one scan of the frame.
     pub fn from_stats(stats: &FrameStats, width: usize) -> Self {
         let n = |count: u32| count as usize;
         Self {

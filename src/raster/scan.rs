@@ -172,7 +172,9 @@ pub struct FrameStats {
     pub peak_active_edges: u32,
     /// Largest number of those held in the edge pool, beyond each
     /// polygon's inline pair (zero for triangles and other convex
-    /// polygons).
+    /// polygons). A polygon pools only the edges beyond two that cover
+    /// the row, so a scan of any band of the frame's rows needs no more
+    /// than one scan of the whole frame.
     pub peak_pooled_edges: u32,
     /// Spans filled.
     pub spans: u32,
