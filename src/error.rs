@@ -63,6 +63,13 @@ pub enum Error {
     /// [`Tables::share_plane`](crate::raster::Tables::share_plane) was
     /// called when no polygon had just been queued.
     NoPolygonToShare,
+    /// A mesh face that needs clipping reaches too far for its distance
+    /// from the eye to be clipped within the sub-pixel grid: its
+    /// clip-space size is more than
+    /// [`CLIP_RANGE`](crate::front::scene::CLIP_RANGE) times the view
+    /// frustum's smallest `w` (for a perspective camera, the near
+    /// distance).
+    ClipRange,
 }
 
 impl fmt::Display for Error {
@@ -100,6 +107,10 @@ impl fmt::Display for Error {
             Error::NoPolygonToShare => {
                 f.write_str("a shared plane was given with no polygon queued just before it")
             }
+            Error::ClipRange => f.write_str(
+                "face too large for its distance from the eye to be clipped exactly \
+                 (clip-space size over 2^28 times the near plane's w)",
+            ),
         }
     }
 }

@@ -1,18 +1,24 @@
 //! Clipping against the near and far planes and the guard band: faces are
 //! cut, never lost, and every cut edge lands within one step of the
 //! 1/256-pixel grid of the exact edge (float64, computed in view space
-//! independently of the pipeline's clip-space arithmetic).
+//! independently of the pipeline's clip-space arithmetic). Over the whole
+//! `f32` range: a face within the clipper's range (`CLIP_RANGE`) is drawn
+//! as a reference in double-double arithmetic draws it, and a face beyond
+//! it is refused with `Error::ClipRange`, never drawn wrong or dropped.
 
 mod common;
 
 use common::{Recorder, capture};
 use proptest::prelude::*;
 use zline::front::geometry::{Mat4, Vec3};
-use zline::front::mesh::StaticMesh;
-use zline::front::scene::{CLIP_BAND_PX, Camera, Cull, VertexCache, draw_mesh};
+use zline::front::mesh::{Mesh, StaticMesh};
+use zline::front::scene::{
+    CLIP_BAND_PX, CLIP_RANGE, Camera, Cull, DrawError, VertexCache, draw_mesh,
+};
+use zline::methods::clip_reference::{FaceError, clipped_face, compare_face};
 use zline::raster::fixed::SUBPIXEL_STEPS;
 use zline::raster::{ScanArrays, TableArrays};
-use zline::{Depth24, Renderer};
+use zline::{Depth24, Error, Renderer};
 
 type R = Renderer<TableArrays<u32, 64, 16, 64>, ScanArrays<u32, Depth24, 160, 16, 16>>;
 
@@ -327,28 +333,266 @@ fn issue_7_item_3_huge_ground_quad_is_cut_not_dropped() {
     );
 }
 
-/// Points from tiny to huge, either side of the eye.
+/// The clipper's size of a face (see `CLIP_RANGE`): the largest sum of
+/// the absolute terms of a corner's transform, in f64.
+fn clip_size(model: &Mat4, camera: &Camera, corners: &[[f32; 3]]) -> f64 {
+    let abs = |m: &Mat4| m.m.map(|row| row.map(|v| f64::from(v).abs()));
+    let mul = |a: [[f64; 4]; 4], b: [[f64; 4]; 4]| {
+        let mut r = [[0.0; 4]; 4];
+        for i in 0..4 {
+            for j in 0..4 {
+                r[i][j] = (0..4).map(|k| a[i][k] * b[k][j]).sum();
+            }
+        }
+        r
+    };
+    let m = mul(abs(&camera.projection), mul(abs(&camera.view), abs(model)));
+    corners
+        .iter()
+        .flat_map(|p| {
+            let p = [
+                f64::from(p[0]).abs(),
+                f64::from(p[1]).abs(),
+                f64::from(p[2]).abs(),
+                1.0,
+            ];
+            m.map(|row| (0..4).map(|k| row[k] * p[k]).sum::<f64>())
+        })
+        .fold(0.0, f64::max)
+}
+
+/// What became of one face drawn through a perspective camera.
+#[derive(Debug)]
+enum Outcome {
+    /// Drawn: how far from the reference.
+    Drawn(FaceError),
+    /// Refused as beyond the clipper's range.
+    Refused,
+}
+
+/// Draws the face `corners` with `model` through `camera` (a perspective
+/// camera with near distance `near`) and judges it against the
+/// double-double reference. Refusal and drawing must follow the range
+/// rule: refused only beyond `CLIP_RANGE · near`, drawn within it.
+fn judge_face(model: &Mat4, camera: &Camera, near: f64, corners: &[[f32; 3]]) -> Outcome {
+    let n = corners.len() as u16;
+    let indices: Vec<u16> = (0..n).collect();
+    let mesh = StaticMesh::new(corners, &indices, &[0]).unwrap();
+    let (w, h) = (camera.width, camera.height);
+    let mut tables = Recorder::new(w, h);
+    let mut cache: VertexCache<8> = VertexCache::new();
+    let ratio = clip_size(model, camera, corners) / (CLIP_RANGE * near);
+    match draw_mesh(
+        &mut tables,
+        &mut cache,
+        &mesh,
+        model,
+        camera,
+        Cull::None,
+        |_| 1,
+    ) {
+        Err(DrawError {
+            error: Error::ClipRange,
+            ..
+        }) => {
+            assert!(
+                ratio > 1.0 - 1e-6,
+                "refused within the range ({ratio}): {corners:?}"
+            );
+            Outcome::Refused
+        }
+        Err(e) => panic!("{e}: {corners:?}"),
+        Ok(stats) => {
+            // Beyond the range only a face that needed no clipping (inside
+            // the clip band) or lay wholly outside a plane is drawn.
+            assert!(
+                ratio < 1.0 + 1e-6 || stats.clipped == 0,
+                "clipped beyond the range ({ratio}): {corners:?}"
+            );
+            assert_eq!(stats.non_finite, 0, "{corners:?}: a corner was lost");
+            if ratio > 2f64.powi(40) {
+                // Far beyond the range (a face culled as wholly outside a
+                // plane, with a margin for the arithmetic's error): the
+                // reference's own 106 bits no longer judge it.
+                assert!(
+                    tables.polygons.is_empty() && stats.outside >= 1 && stats.clipped == 0,
+                    "{corners:?}: {stats:?}"
+                );
+                return Outcome::Drawn(FaceError::default());
+            }
+            let drawn: Vec<_> = tables.polygons.iter().map(|(p, _)| p.clone()).collect();
+            // A face that is not planar is drawn as its fan of triangles.
+            let reference: Vec<_> = if corners.len() > 3 && !mesh.face_is_planar(0) {
+                (1..corners.len() - 1)
+                    .map(|k| clipped_face(model, camera, &[corners[0], corners[k], corners[k + 1]]))
+                    .collect()
+            } else {
+                vec![clipped_face(model, camera, corners)]
+            };
+            Outcome::Drawn(compare_face(&drawn, &reference, (w, h), 1.0 / 128.0))
+        }
+    }
+}
+
+/// Within the range: corners within one sub-pixel step of the reference
+/// polygon's boundary (half a step of snapping, and the arithmetic),
+/// depths within 2^-20, and every sample the reference covers covered
+/// (samples within 1/128 pixel of its boundary excused).
+fn assert_exact(outcome: &Outcome, what: &str) {
+    if let Outcome::Drawn(e) = outcome {
+        let step = 1.0 / f64::from(SUBPIXEL_STEPS);
+        assert!(
+            e.position_px <= step,
+            "{what}: corner {} px off: {e:?}",
+            e.position_px
+        );
+        assert!(
+            e.depth <= 2f64.powi(-20),
+            "{what}: depth {} off: {e:?}",
+            e.depth
+        );
+        assert_eq!(e.wrong_samples, 0, "{what}: {e:?}");
+    }
+}
+
+/// A camera at the origin looking down -Z, pitched down by `pitch`
+/// degrees (the ground below it comes into view).
+fn pitched_camera(pitch: f32, fov: f32, (w, h): (u16, u16), near: f32, far: f32) -> Camera {
+    let view = Mat4::rotation_x(pitch.to_radians());
+    Camera::perspective(view, fov, w, h, near, far)
+}
+
+/// Issue 28, item 2: a ground triangle and a ground quad one unit below
+/// the eye, of every half-size from 1 to `f32::MAX`: each is drawn as the
+/// reference draws it, or refused beyond the clipper's range. Before, at
+/// half-size 1e16 the triangle drew 1,440 pixels beyond the far cut, and
+/// from about 3e15 the faces were dropped (counted non-finite, outside or
+/// degenerate).
+#[test]
+fn ground_faces_of_every_size_are_exact_or_refused() {
+    let (near, far) = (0.1f32, 100.0f32);
+    let camera = pitched_camera(20.0, 60.0, (64, 48), near, far);
+    let mut sizes: Vec<f32> = (0..128).map(|k| 2f32.powi(k)).collect();
+    sizes.extend([1e7, 1e8, 3e14, 3e15, 1e16, 3e16, f32::MAX]);
+    let (mut drawn, mut refused) = (0, 0);
+    for s in sizes {
+        let triangle = [[-s, -1.0, s], [s, -1.0, s], [0.0, -1.0, -s]];
+        let quad = [[-s, -1.0, s], [s, -1.0, s], [s, -1.0, -s], [-s, -1.0, -s]];
+        for corners in [&triangle[..], &quad[..]] {
+            let outcome = judge_face(&Mat4::IDENTITY, &camera, f64::from(near), corners);
+            assert_exact(
+                &outcome,
+                &format!("half-size {s:e}, {} corners", corners.len()),
+            );
+            match outcome {
+                Outcome::Drawn(..) => drawn += 1,
+                Outcome::Refused => refused += 1,
+            }
+        }
+    }
+    // Up to about 2^24 (2^28 near distances) drawn, beyond refused.
+    assert!(
+        drawn >= 2 * 24 && refused >= 2 * 100,
+        "{drawn} drawn, {refused} refused"
+    );
+    let s = 1e16f32;
+    let triangle = [[-s, -1.0, s], [s, -1.0, s], [0.0, -1.0, -s]];
+    assert!(matches!(
+        judge_face(&Mat4::IDENTITY, &camera, f64::from(near), &triangle),
+        Outcome::Refused
+    ));
+}
+
+/// A finite `f32` anywhere in its range: either sign, any exponent.
+fn any_magnitude() -> impl Strategy<Value = f32> {
+    (any::<bool>(), 1.0f32..2.0, -126i32..=127).prop_map(|(negative, mantissa, exponent)| {
+        let v = (mantissa * 2f32.powi(exponent)).min(f32::MAX);
+        if negative { -v } else { v }
+    })
+}
+
+/// A coordinate from tiny to huge, or an ordinary one.
 fn coordinate() -> impl Strategy<Value = f32> {
-    prop_oneof![
-        -2.0f32..2.0,
-        -2000.0f32..2000.0,
-        (-1e7f32..1e7).prop_filter("not tiny", |v| v.abs() > 1.0),
-    ]
+    prop_oneof![-2.0f32..2.0, -2000.0f32..2000.0, any_magnitude()]
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(200))]
+    #![proptest_config(ProptestConfig::with_cases(400))]
 
-    /// Random triangles crossing the near plane, the far plane and the
-    /// guard band, random fields of view and near distances.
+    /// Random triangles and quads with coordinates anywhere in the f32
+    /// range, through random perspective cameras (turned, not moved, so
+    /// that the f32 transform of the corners that need no clipping loses
+    /// nothing to cancellation), scaled by a model matrix of any
+    /// magnitude: exact within the clipper's range, refused beyond it.
     #[test]
-    fn every_cut_edge_lands_on_an_exact_edge(
-        tri in prop::array::uniform3(prop::array::uniform3(coordinate())),
-        fov in 20.0f64..150.0,
-        near in prop_oneof![Just(0.001f64), Just(0.01), Just(0.1), Just(1.0)],
-        size in prop_oneof![Just((64.0f64, 48.0f64)), Just((160.0, 120.0)), Just((320.0, 240.0))],
+    fn faces_of_any_magnitude_are_exact_or_refused(
+        corners in prop::collection::vec(prop::array::uniform3(coordinate()), 3..=4),
+        scale in prop_oneof![Just(1.0f32), any_magnitude().prop_map(f32::abs)],
+        (yaw, pitch) in (-180.0f32..180.0, -89.0f32..89.0),
+        fov in 20.0f32..150.0,
+        near in prop_oneof![Just(0.001f32), Just(0.01), Just(0.1), Just(1.0), Just(1e4)],
+        depth_ratio in prop_oneof![Just(10.0f32), Just(1e3), Just(1e6)],
+        size in prop_oneof![Just((64u16, 48u16)), Just((160, 120)), Just((320, 240))],
     ) {
-        let view = View { fov_deg: fov, width: size.0, height: size.1, near };
-        check_cut_edges(tri, view, 1e9);
+        let view = Mat4::rotation_x(pitch.to_radians()).mul(&Mat4::rotation_y(yaw.to_radians()));
+        let camera = Camera::perspective(view, fov, size.0, size.1, near, near * depth_ratio);
+        let model = Mat4::scale(Vec3::new(scale, scale, scale));
+        let finite = model.m.iter().flatten().all(|v| v.is_finite());
+        prop_assume!(finite);
+        // A quad's corners must lie in one plane for one polygon.
+        let corners: Vec<[f32; 3]> = if corners.len() == 4 {
+            let mut c = corners.clone();
+            c[3] = [c[0][0] + c[2][0] - c[1][0], c[0][1] + c[2][1] - c[1][1], c[0][2] + c[2][2] - c[1][2]];
+            if !c[3].iter().all(|v| v.is_finite()) { c.truncate(3); }
+            c
+        } else {
+            corners
+        };
+        let outcome = judge_face(&model, &camera, f64::from(near), &corners);
+        assert_exact(&outcome, &format!("{corners:?} scale {scale:e}"));
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(400))]
+
+    /// Faces through a visible point (on screen, between the near and far
+    /// planes) reaching out to sizes from 1/16 to 2^32 near distances, so
+    /// that most are clipped and many lie near the limit of the
+    /// clipper's range: exact within it, refused beyond it.
+    #[test]
+    fn faces_through_the_view_are_exact_or_refused(
+        (yaw, pitch) in (-180.0f64..180.0, -89.0f64..89.0),
+        fov in 20.0f32..150.0,
+        near in prop_oneof![Just(0.001f32), Just(0.1), Just(1.0), Just(1e4)],
+        depth_ratio in prop_oneof![Just(10.0f32), Just(1e3), Just(1e6)],
+        size in prop_oneof![Just((64u16, 48u16)), Just((160, 120)), Just((320, 240))],
+        (sx, sy, along) in (-0.9f64..0.9, -0.9f64..0.9, 0.0f64..1.0),
+        reach in prop::collection::vec((prop::array::uniform3(-1.0f64..1.0), -4.0f64..32.0), 2..=3),
+    ) {
+        let view = Mat4::rotation_x(pitch.to_radians() as f32)
+            .mul(&Mat4::rotation_y(yaw.to_radians() as f32));
+        let far = near * depth_ratio;
+        let camera = Camera::perspective(view, fov, size.0, size.1, near, far);
+        // The visible point in view space, then in world space (the view
+        // is a rotation: its transpose undoes it).
+        let t = (f64::from(fov).to_radians() / 2.0).tan();
+        let aspect = f64::from(size.0) / f64::from(size.1);
+        let distance = f64::from(near) * (f64::from(depth_ratio)).powf(along).min(0.999 * f64::from(depth_ratio));
+        let p = [sx * t * aspect * distance, sy * t * distance, -distance];
+        let r = view.m;
+        let world: [f64; 3] = core::array::from_fn(|i| (0..3).map(|k| f64::from(r[k][i]) * p[k]).sum());
+        let mut corners = vec![world.map(|c| c as f32)];
+        for (direction, log_reach) in &reach {
+            let length = f64::from(near) * 2f64.powf(*log_reach);
+            corners.push(core::array::from_fn(|i| (world[i] + direction[i] * length) as f32));
+        }
+        if corners.len() == 4 {
+            // A parallelogram: one plane.
+            corners[3] = core::array::from_fn(|i| corners[0][i] + corners[2][i] - corners[1][i]);
+        }
+        prop_assume!(corners.iter().flatten().all(|c| c.is_finite()));
+        let outcome = judge_face(&Mat4::IDENTITY, &camera, f64::from(near), &corners);
+        assert_exact(&outcome, &format!("{corners:?}"));
     }
 }

@@ -10,10 +10,16 @@
 //!
 //! **Precision.** Clipping runs in `f64` on positions transformed in `f64`
 //! (rare: only faces crossing the near or far plane or the guard band take
-//! this path). A cut corner on the near plane divides by a small `w`, so
-//! `f32` would amplify its rounding by `|p| / w`; in `f64` a cut edge lands
-//! within far less than the 1/256-pixel grid of the exact one for any
-//! finite `f32` input (`tests/clipping.rs`).
+//! this path). A cut corner divides by its `w`, which near the eye is
+//! small, so the arithmetic's rounding (a few units of `2^-53` of the
+//! face's size) is amplified by `size / w`: in `f32` a cut edge moved by
+//! pixels. In `f64`, a face up to `2^28` times the near distance in size
+//! has every cut corner within 1/256 pixel of the exact one and its depth
+//! within `2^-20`; [`draw_mesh`](crate::front::scene::draw_mesh) refuses
+//! a larger face that needs clipping
+//! ([`CLIP_RANGE`](crate::front::scene::CLIP_RANGE)). `tests/clipping.rs`
+//! checks both against a reference in double-double arithmetic over the
+//! whole `f32` range.
 //!
 //! **Watertight.** Each intersection is computed from the inside end of the
 //! edge towards the outside end, whichever way the polygon walks the edge,
@@ -97,6 +103,17 @@ pub fn outside_mask(p: ClipPoint, planes: &[[f64; 4]]) -> u32 {
         .iter()
         .enumerate()
         .filter(|(_, q)| p.dot(**q) < 0.0)
+        .fold(0, |mask, (k, _)| mask | 1 << k)
+}
+
+/// [`outside_mask`] where `p` lies outside a plane by more than
+/// `margin`: the planes it lies beyond for certain when each of its
+/// distances may be off by `margin`.
+pub fn outside_mask_beyond(p: ClipPoint, planes: &[[f64; 4]], margin: f64) -> u32 {
+    planes
+        .iter()
+        .enumerate()
+        .filter(|(_, q)| p.dot(**q) < -margin)
         .fold(0, |mask, (k, _)| mask | 1 << k)
 }
 

@@ -18,8 +18,12 @@
 //!    far plane, or outside the clipping band ([`CLIP_BAND_PX`] pixels
 //!    around the frame's centre) is clipped in homogeneous space, in `f64`
 //!    ([`crate::front::clip`]): cut, never dropped or turned inside out, with the
-//!    cut edges within the sub-pixel grid of the exact ones. Corners that
-//!    needed no clipping keep their shared vertex, so clipped and unclipped
+//!    cut corners within 1/256 pixel of the exact ones, for faces within the
+//!    clipper's range ([`CLIP_RANGE`]: up to `2^28` near distances for a
+//!    perspective camera); a larger face that needs clipping is refused
+//!    with [`Error::ClipRange`]. A vertex within the `f32` transform's error
+//!    of the near or far plane is the clipper's too. Corners that needed no
+//!    clipping keep their shared vertex, so clipped and unclipped
 //!    neighbours stay watertight.
 //! 5. The core leaves out faces of **zero area** and faces covering **no
 //!    pixel sample** ([`DrawStats::degenerate`], [`DrawStats::off_screen`]).
@@ -452,13 +456,129 @@ enum Corner {
     NonFinite,
 }
 
+/// How far a face that needs clipping may reach, relative to the view
+/// frustum's nearest point: its clip-space size (the largest sum of the
+/// absolute terms of a corner's transform, `|projection| · |view| ·
+/// |model| · |p|`, over its corners and coordinates) at most `2^28` times
+/// the smallest clip-space `w` in the frustum (for a perspective camera,
+/// the near distance). Within it, the `f64` transform and clipper place
+/// every corner a cut makes within 1/256 pixel of the exact cut of the
+/// given `f32` positions and matrices, and its depth within `2^-20`
+/// (`tests/clipping.rs` checks both against a reference in twice `f64`'s
+/// precision, over the whole `f32` range). A face beyond it is refused
+/// with [`Error::ClipRange`]; a face wholly outside one frustum plane is
+/// culled first, whatever its size.
+///
+/// (The `f64` arithmetic's error on a corner is a few units of `2^-53`
+/// times that size, and it is divided by `w` when projected: at `2^28`
+/// that is below `2^-22` of the frame's half-size, and of the depth
+/// range.)
+pub const CLIP_RANGE: f64 = (1u64 << 28) as f64;
+
+/// The `f32` front end's error on a vertex's distance to the near or far
+/// plane, per unit of the sum of the absolute terms of its transform
+/// (`2^-20`): the `f32` product of the three matrices and the transform
+/// err by a few units of `2^-24` of those terms on `z` and on `w`. A vertex
+/// nearer to one of those planes than that may lie on either side of it;
+/// it goes to the `f64` clipper, which decides. (With far 10^6 times near,
+/// a vertex a millionth of the far distance beyond the far plane passed
+/// the `f32` test, and a face grazing the far plane kept it: a corner 200
+/// pixels off.)
+const NEAR_FAR_ERROR: f32 = 1.0 / (1u32 << 20) as f32;
+
+/// A bound on the `f64` transform's error on a plane's distance to a
+/// corner, per unit of the corner's clip-space size: the product of the
+/// three matrices (two products of four terms) and the transform (four
+/// more) err by at most about 12 units of `2^-53` of the size on each
+/// coordinate, and a frustum plane sums two coordinates. `2^-46` is eight
+/// times that.
+const CLIP_ERROR: f64 = 1.0 / (1u64 << 46) as f64;
+
+/// The `f64` state of a frame for faces that need clipping.
+#[derive(Debug, Clone, Copy)]
+struct Clip64 {
+    /// `projection · view · model`.
+    mvp: [[f64; 4]; 4],
+    /// `|projection| · |view| · |model|` (entrywise absolute values): a
+    /// corner's transform terms, whose sum bounds the arithmetic's error.
+    mvp_abs: [[f64; 4]; 4],
+    /// The smallest clip-space `w` in the view frustum (with the guard
+    /// band): below it no cut corner can lie.
+    w_near: f64,
+}
+
+impl Clip64 {
+    fn new([projection, view, model]: &[Mat4; 3]) -> Self {
+        let abs = |m: &Mat4| m.m.map(|row| row.map(|v| f64::from(v).abs()));
+        let mvp = mul64(&to64(projection), &mul64(&to64(view), &to64(model)));
+        let mvp_abs = mul64(&abs(projection), &mul64(&abs(view), &abs(model)));
+        Self {
+            mvp,
+            mvp_abs,
+            w_near: 0.0,
+        }
+    }
+}
+
+/// The smallest clip-space `w` of a point of view space inside the
+/// frustum `|x|, |y| <= g·w`, `|z| <= w` of `projection` (`0` when it cannot
+/// be found: a singular projection).
+///
+/// The frustum is a cone in clip space, and view space the hyperplane
+/// `r · c = 1` where `r` is the last row of the projection's inverse; the
+/// cone's edges `k = (±gx, ±gy, ±1, 1)` meet it at `w = 1 / (r · k)` where
+/// `r · k > 0`, and the smallest of those is the frustum's smallest `w`.
+fn frustum_w_near(projection: &Mat4, (gx, gy): (f64, f64)) -> f64 {
+    // r solves projection^T · r = e_3 (Gaussian elimination, partial
+    // pivoting).
+    let mut a = [[0.0f64; 5]; 4];
+    for (i, row) in a.iter_mut().enumerate() {
+        for (j, cell) in row.iter_mut().take(4).enumerate() {
+            *cell = f64::from(projection.m[j][i]);
+        }
+        row[4] = if i == 3 { 1.0 } else { 0.0 };
+    }
+    for col in 0..4 {
+        let Some(pivot) = (col..4).max_by(|&p, &q| a[p][col].abs().total_cmp(&a[q][col].abs()))
+        else {
+            return 0.0;
+        };
+        // (A zero or NaN pivot: singular, or not finite.)
+        let usable = a[pivot][col].abs() > 0.0;
+        if !usable {
+            return 0.0;
+        }
+        a.swap(col, pivot);
+        let pivot_row = a[col];
+        for (k, row) in a.iter_mut().enumerate() {
+            if k != col {
+                let f = row[col] / pivot_row[col];
+                for (x, p) in row[col..].iter_mut().zip(&pivot_row[col..]) {
+                    *x -= f * p;
+                }
+            }
+        }
+    }
+    let r: [f64; 4] = core::array::from_fn(|i| a[i][4] / a[i][i]);
+    let mut largest = 0.0f64;
+    for sx in [-gx, gx] {
+        for sy in [-gy, gy] {
+            for sz in [-1.0, 1.0] {
+                largest = largest.max(r[0] * sx + r[1] * sy + r[2] * sz + r[3]);
+            }
+        }
+    }
+    let w = 1.0 / largest;
+    if w.is_finite() && w > 0.0 { w } else { 0.0 }
+}
+
 /// Per-draw constants.
 struct Frame {
     mvp: Mat4,
-    /// The same product in `f64`, for faces that need clipping: made the
-    /// first time one does (on a core without an FPU it is hundreds of
-    /// soft-float operations, every frame).
-    mvp64: OnceCell<[[f64; 4]; 4]>,
+    /// The same product and the frustum's nearest `w` in `f64`, for faces
+    /// that need clipping: made the first time one does (on a core without
+    /// an FPU it is hundreds of soft-float operations, every frame).
+    clip64: OnceCell<Clip64>,
     /// What `mvp64` is the product of: projection, view and model.
     factors: [Mat4; 3],
     model_view: Mat4,
@@ -466,6 +586,10 @@ struct Frame {
     height: f32,
     /// Guard band half-widths in NDC units, x and y.
     guard: (f32, f32),
+    /// The sum of the absolute terms of the `z` and `w` rows of
+    /// `|projection| · |view| · |model|`: per unit of a position's largest
+    /// coordinate, and the constant (see [`Frame::inside_guard`]).
+    near_far_terms: (f32, f32),
     cull: Cull,
     /// The integer front end, for a quantized mesh whose matrices fit it.
     fixed: Option<FixedFrame>,
@@ -501,9 +625,23 @@ impl Frame {
                 camera.height,
             )
         });
+        // Only the f32 front end uses them: the integer one takes every
+        // vertex when it takes the mesh (and on a core without an FPU the
+        // two products cost about 10,000 instructions a draw).
+        let near_far_terms = if fixed.is_some() {
+            (0.0, 0.0)
+        } else {
+            let abs = |m: &Mat4| Mat4 {
+                m: m.m.map(|row| row.map(f32::abs)),
+            };
+            let terms = abs(&camera.projection).mul(&abs(&camera.view).mul(&abs(model)));
+            let [z, w] = [terms.m[2], terms.m[3]];
+            (z[0] + z[1] + z[2] + w[0] + w[1] + w[2], z[3] + w[3])
+        };
         Self {
             mvp,
-            mvp64: OnceCell::new(),
+            near_far_terms,
+            clip64: OnceCell::new(),
             factors: [camera.projection, camera.view, *model],
             model_view,
             fixed,
@@ -517,11 +655,17 @@ impl Frame {
         }
     }
 
-    /// Whether a clip-space point lies inside the near, far and guard-band
-    /// planes.
-    fn inside_guard(&self, p: Vec4) -> bool {
+    /// Whether the clip-space point `p` of a position whose largest
+    /// coordinate is `extent` lies inside the guard-band planes, and
+    /// inside the near and far planes by more than the `f32` transform's
+    /// error ([`NEAR_FAR_ERROR`]): nearer to one of those, it is the `f64`
+    /// clipper's to decide. (Outside the guard band by a rounding, a point
+    /// is still far inside the core's.)
+    fn inside_guard(&self, p: Vec4, extent: f32) -> bool {
         let (gx, gy) = self.guard;
-        p.z >= -p.w && p.z <= p.w && p.x.abs() <= gx * p.w && p.y.abs() <= gy * p.w
+        let (per_unit, constant) = self.near_far_terms;
+        let margin = (per_unit * extent + constant) * NEAR_FAR_ERROR;
+        p.z + p.w > margin && p.w - p.z > margin && p.x.abs() <= gx * p.w && p.y.abs() <= gy * p.w
     }
 
     /// Transforms mesh vertex `index` to clip space and classifies it: a
@@ -553,10 +697,15 @@ impl Frame {
                 None => Ok(needs_clip),
             };
         }
-        let p = self.clip_position(mesh, index);
+        let position = mesh.position(index);
+        let p = self.mvp.transform_point(Vec3::from_array(position));
+        let extent = position[0]
+            .abs()
+            .max(position[1].abs())
+            .max(position[2].abs());
         let stored = if !p.is_finite() {
             None
-        } else if self.inside_guard(p) {
+        } else if self.inside_guard(p, extent) {
             self.project(p)
         } else {
             None
@@ -568,21 +717,60 @@ impl Frame {
         }
     }
 
-    /// Clip-space position in `f32` (not checked for finiteness).
-    fn clip_position<M: Mesh + ?Sized>(&self, mesh: &M, index: usize) -> Vec4 {
-        self.mvp
-            .transform_point(Vec3::from_array(mesh.position(index)))
+    /// The frame's `f64` state for clipping, made on first use.
+    fn clip64(&self) -> &Clip64 {
+        self.clip64.get_or_init(|| {
+            let mut clip = Clip64::new(&self.factors);
+            let (gx, gy) = self.guard;
+            clip.w_near = frustum_w_near(&self.factors[0], (f64::from(gx), f64::from(gy)));
+            clip
+        })
     }
 
     /// Clip-space position in `f64`.
     fn clip_position64<M: Mesh + ?Sized>(&self, mesh: &M, index: usize) -> ClipPoint {
         let p = mesh.position(index).map(f64::from);
         let row = |r: [f64; 4]| r[0] * p[0] + r[1] * p[1] + r[2] * p[2] + r[3];
-        let m = self.mvp64.get_or_init(|| {
-            let [projection, view, model] = &self.factors;
-            mul64(&to64(projection), &mul64(&to64(view), &to64(model)))
-        });
+        let m = &self.clip64().mvp;
         ClipPoint::new(row(m[0]), row(m[1]), row(m[2]), row(m[3]))
+    }
+
+    /// Whether a face that needs clipping lies wholly outside one frustum
+    /// plane beyond doubt, whatever its size: each corner farther outside
+    /// it than the arithmetic's error (a few units of 2^-53 of the corner's
+    /// size on each coordinate; a frustum plane adds two of them).
+    /// Otherwise it is clipped, if it is within the clipper's range
+    /// ([`CLIP_RANGE`]), and refused with [`Error::ClipRange`] if not (or
+    /// if its size is not finite). Out of line: the rare path's, kept out
+    /// of the common path's code.
+    #[inline(never)]
+    fn wholly_outside<M: Mesh + ?Sized>(&self, mesh: &M, corners: &[u16]) -> Result<bool, Error> {
+        let (mut outside, mut size) = (u32::MAX, 0.0f64);
+        for &index in corners {
+            let p = self.clip_position64(mesh, usize::from(index));
+            let corner_size = self.clip_size64(mesh, usize::from(index));
+            outside &= clip::outside_mask_beyond(p, &clip::FRUSTUM, CLIP_ERROR * corner_size);
+            size = size.max(corner_size);
+        }
+        if outside != 0 {
+            return Ok(true);
+        }
+        let within = size <= CLIP_RANGE * self.clip64().w_near;
+        if within {
+            Ok(false)
+        } else {
+            Err(Error::ClipRange)
+        }
+    }
+
+    /// The clip-space size of mesh vertex `index`: the largest sum of the
+    /// absolute terms of its transform, over the four coordinates (see
+    /// [`CLIP_RANGE`]).
+    fn clip_size64<M: Mesh + ?Sized>(&self, mesh: &M, index: usize) -> f64 {
+        let p = mesh.position(index).map(|c| f64::from(c).abs());
+        let row = |r: [f64; 4]| r[0] * p[0] + r[1] * p[1] + r[2] * p[2] + r[3];
+        let m = &self.clip64().mvp_abs;
+        row(m[0]).max(row(m[1])).max(row(m[2])).max(row(m[3]))
     }
 
     /// Screen vertex of a clip-space point inside the near, far and guard
@@ -646,7 +834,8 @@ impl Frame {
 ///
 /// `cache` must hold at least `mesh.vertex_count()` entries; it is reset
 /// here, so one cache serves every mesh of a frame. On `Err` (a table is
-/// full, or the mesh is malformed) the faces before the failing one stay in
+/// full, the mesh is malformed, or a face that needs clipping is beyond
+/// the clipper's range, [`CLIP_RANGE`]) the faces before the failing one stay in
 /// the tables, and the error names the face; of a failing face queued as
 /// triangles (a fan, or a convex quad's two), those queued before the one
 /// that did not fit stay too.
@@ -1288,11 +1477,7 @@ where
     /// clipping keep their shared vertex.
     fn clipped_part(&mut self, face: usize, corners: &[u16]) -> Result<(), Error> {
         let frame = self.frame;
-        let outside = corners.iter().fold(u32::MAX, |mask, &index| {
-            let p = frame.clip_position64(self.mesh, usize::from(index));
-            mask & clip::outside_mask(p, &clip::FRUSTUM)
-        });
-        if outside != 0 {
+        if frame.wholly_outside(self.mesh, corners)? {
             self.stats.outside += 1;
             return Ok(());
         }
@@ -1321,10 +1506,15 @@ where
             },
         )?;
         if unprojectable {
-            // Cannot happen for finite input (the clipped corners lie well
-            // inside the core's range), but it is counted, never silent.
-            self.stats.non_finite += 1;
-            return Ok(());
+            // A concave face can come out with more corners than it went
+            // in with. (Within the clipper's range a cut corner lies
+            // inside the clip band, far inside the core's guard band, so
+            // it always projects.)
+            return Err(if outline.corners() == MAX_POLYGON_CORNERS {
+                Error::TooManyCorners
+            } else {
+                Error::OutsideGuardBand
+            });
         }
         let outline = outline.finish();
         if outline.corners < 3 {

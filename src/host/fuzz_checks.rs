@@ -552,7 +552,10 @@ fn pipeline_check<D: DepthFormat, M: Mesh + Sync>(
             assert!(
                 matches!(
                     error,
-                    Error::VertexTableFull | Error::PolygonTableFull | Error::EdgeTableFull
+                    Error::VertexTableFull
+                        | Error::PolygonTableFull
+                        | Error::EdgeTableFull
+                        | Error::ClipRange
                 ),
                 "face {face:?}: {error}"
             );

@@ -9,6 +9,7 @@
 
 mod accuracy;
 pub mod catalogue;
+pub mod clip_reference;
 pub mod exact;
 pub mod interval;
 pub mod painter;
