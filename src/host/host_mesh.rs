@@ -2,11 +2,11 @@
 
 use std::vec::Vec;
 
-use crate::front::mesh::{MeshArrays, SharedPlane, planar_face_bits};
+use crate::front::mesh::{Mesh, MeshArrays, SharedPlane, planar_face_bits};
 use crate::front::obj::{ObjError, ObjReader, Statement};
 use crate::front::scene::MAX_FACE_CORNERS;
 use crate::raster::Capacities;
-use crate::raster::fixed::MAX_POLYGONS;
+use crate::raster::fixed::{MAX_POLYGON_CORNERS, MAX_POLYGONS};
 
 /// Positions and faces in growable storage, in the layout of
 /// [`StaticMesh`](crate::front::mesh::StaticMesh).
@@ -31,17 +31,69 @@ pub struct HostMesh {
 
 impl HostMesh {
     /// Capacities for drawing this mesh whole into frames `width` pixels
-    /// wide: room for every face's fan and for the corners clipping adds
-    /// (what the host tools and the peers bench use).
+    /// wide, from any view, culled or not: every face counted at its
+    /// worst, clipped by all six of the front end's planes (what the host
+    /// tools and the peers bench use). Per face of `n` corners:
+    ///
+    /// * a triangle, or a planar face, is one polygon (a planar quad two
+    ///   triangles when it needs no clipping), of at most
+    ///   `clipped_corners(n)` corners (see below), each of which may be a new
+    ///   vertex a cut made; beyond two, its corners may be pooled edges;
+    /// * a face that is not planar is its fan of `n - 2` triangles, each
+    ///   of at most 9 corners;
+    /// * a face with a shared plane adds its plane's three corners to each
+    ///   polygon.
+    ///
+    /// `clipped_corners(n)` is 9 for a triangle (convex: a plane adds at
+    /// most one corner); for a larger face, whose corners need not lie
+    /// exactly in one plane, Sutherland and Hodgman's worst case: a plane
+    /// keeps the corners inside it and adds two for each run of corners
+    /// outside it, at most half as many again, six times over, and at most
+    /// [`MAX_POLYGON_CORNERS`] (beyond, the front end refuses the face).
+    ///
+    /// The mesh's positions each enter the vertex table once. Every count
+    /// is capped where the core stops: vertex indices are `u16` (a mesh
+    /// whose worst case passes 65,536 vertices can still fill the table
+    /// when enough faces are clipped at once), at most
+    /// [`MAX_POLYGONS`] polygons, and at most 65,536 active polygons (the
+    /// active polygon table's slots).
     pub fn capacities(&self, width: u16) -> Capacities {
-        let corners = self.corners.len();
+        let (mut vertices, mut polygons, mut corners, mut pooled) =
+            (0usize, 0usize, 0usize, 0usize);
+        let mut shared = self
+            .shared_planes
+            .iter()
+            .map(|p| p.face as usize)
+            .peekable();
+        for face in 0..self.face_count() {
+            let n = self.face(face).len();
+            let (face_polygons, face_corners, face_pooled) = if n > 3 && !self.face_is_planar(face)
+            {
+                (n - 2, 9 * (n - 2), 0)
+            } else {
+                let clipped = clipped_corners(n);
+                // A planar quad that needs no clipping is two triangles.
+                let polygons = if n == 4 { 2 } else { 1 };
+                (
+                    polygons,
+                    clipped.max(3 * polygons),
+                    clipped.saturating_sub(2),
+                )
+            };
+            let shares = shared.next_if(|&f| f <= face).is_some_and(|f| f == face);
+            vertices += face_corners;
+            polygons += face_polygons;
+            corners += face_corners + if shares { 3 * face_polygons } else { 0 };
+            pooled += if n > 3 { face_pooled } else { 0 };
+        }
+        let polygons = polygons.min(MAX_POLYGONS);
         Capacities {
             width: usize::from(width),
-            vertices: (self.positions.len() * 2 + 1024).min(1 << 16),
-            polygons: (corners + 64).min(MAX_POLYGONS),
-            corners: 3 * corners + 256,
-            active_polygons: corners + 64,
-            pooled_edges: 4096,
+            vertices: (self.positions.len() + vertices).min(1 << 16),
+            polygons,
+            corners,
+            active_polygons: polygons.min(1 << 16),
+            pooled_edges: pooled,
         }
     }
 
@@ -77,6 +129,18 @@ impl HostMesh {
     }
 }
 
+/// `clipped_corners(n)` of [`HostMesh::capacities`].
+fn clipped_corners(n: usize) -> usize {
+    if n <= 3 {
+        return n + 6;
+    }
+    let mut c = n;
+    for _ in 0..6 {
+        c += c / 2;
+    }
+    c.min(MAX_POLYGON_CORNERS)
+}
+
 impl MeshArrays for HostMesh {
     fn positions(&self) -> &[[f32; 3]] {
         &self.positions
@@ -102,7 +166,7 @@ impl MeshArrays for HostMesh {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::front::mesh::{Mesh, is_planar};
+    use crate::front::mesh::is_planar;
     use std::fmt::Write;
     use std::string::String;
 
