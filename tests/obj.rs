@@ -261,11 +261,64 @@ fn bad_numbers() {
         ("f 1/a 2 3\n", 4),
         ("f 1 2//b 3\n", 4),
         ("f 1 2 3/1/1.5\n", 4),
-        ("f 1 2 3 \\\n", 4),
+        // Issue 28, item 4: what follows z must be numbers too.
+        ("v 0 1 0 not-a-number\n", 4),
+        ("v 0 1 0 1 x\n", 4),
+        ("v 0 1 0 nan\n", 4),
+        ("v 0 1 0 1 inf 0 0\n", 4),
     ] {
         assert_eq!(error(&with_triangle(tail)), at(line, BadNumber), "{tail:?}");
     }
     assert_eq!(error(b"v 0 \xff 0\n"), at(1, BadNumber));
+}
+
+/// Issue 28, item 4: a line continued with `\` is an error whatever its
+/// statement, never a line dropped or a continuation read as a statement
+/// of its own (a `\` after a vertex's z was dropped, and the continued
+/// line skipped as an unknown keyword).
+#[test]
+fn line_continuations_are_errors() {
+    use ObjErrorKind::LineContinuation;
+    for (tail, line) in [
+        ("v 0 1 0 \\\n1 1 1\n", 4),
+        ("v 0 1 \\\n0\n", 4),
+        ("f 1 2 3 \\\n", 4),
+        ("f 1 2 \\\n3\n", 4),
+        ("vt 0 0 \\\n0\n", 4),
+        ("usemtl red\\\n", 4),
+        ("\n\ng 1 2 \\ # comment\n", 6),
+        ("v 0 1 0\\\r\n", 4),
+    ] {
+        assert_eq!(
+            error(&with_triangle(tail)),
+            at(line, LineContinuation),
+            "{tail:?}"
+        );
+    }
+    // A backslash inside a line is no continuation.
+    parse(&with_triangle("g a\\b c\nf 1 2 3\n"));
+}
+
+/// Issue 28, item 4: after z come at most four numbers (w, or a colour
+/// r g b, or both).
+#[test]
+fn a_vertex_has_at_most_seven_numbers() {
+    let mesh = parse(b"v 1 2 3 1 0.5 0.5 0.5\nv 1 2 3\nv 1 2 3 1\nf 1 2 3\n");
+    assert_eq!(mesh.vertex_count(), 3);
+    assert_eq!(
+        error(&with_triangle("v 1 2 3 1 0.5 0.5 0.5 1\n")),
+        at(4, ObjErrorKind::TooManyNumbers)
+    );
+}
+
+/// A form feed separates tokens like a space (as every ASCII whitespace
+/// byte but the vertical tab does): a keyword glued to one is still read,
+/// never skipped as an unknown statement with its face.
+#[test]
+fn form_feeds_separate_tokens() {
+    let mesh = parse(b"v\x0c0 0 0\nv 1\x0c0 0\nv 0 1 0\x0c\n\x0cf 1 2\x0c3\n");
+    assert_eq!(faces(&mesh), [[0, 1, 2]]);
+    assert_eq!(mesh.positions()[1], [1.0, 0.0, 0.0]);
 }
 
 #[test]
@@ -304,6 +357,12 @@ fn indices_out_of_range() {
         ("f 1 2 -99999999999\n", -99_999_999_999, 3),
         // Issue 7, item 9: 2^64 is an index out of range, not a bad number.
         ("f 1 2 18446744073709551616\n", i64::MAX, 3),
+        // Issue 28, item 5: the most negative i64 is reported as written
+        // (it was -i64::MAX), and one beyond it saturates to it.
+        ("f -9223372036854775808 1 2\n", i64::MIN, 3),
+        ("f 1 2 -9223372036854775807\n", -i64::MAX, 3),
+        ("f 1 2 -9223372036854775809\n", i64::MIN, 3),
+        ("f 1 2 -99999999999999999999999\n", i64::MIN, 3),
     ] {
         assert_eq!(
             error(&with_triangle(tail)),

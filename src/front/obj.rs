@@ -23,8 +23,10 @@
 //!
 //! # Syntax
 //!
-//! - `v x y z` is a vertex; numbers after `z` (`w`, vertex colours) are
-//!   ignored. Coordinates must be finite: `nan` and `inf` are errors.
+//! - `v x y z` is a vertex. It may go on with `w`, a vertex colour
+//!   `r g b`, or both (at most seven numbers in all): they are checked
+//!   and ignored. Every number must be finite: `nan`, `inf` and any other
+//!   token are errors.
 //! - `f` lists 3 or more corners (at most `N`, and at most
 //!   [`crate::front::scene::MAX_FACE_CORNERS`]), each `v`,
 //!   `v/vt`, `v//vn` or `v/vt/vn`. Only `v` is used, but `vt` and `vn` are
@@ -41,9 +43,13 @@
 //!   never decoded, so they need not be UTF-8.
 //! - Lines end with LF, CRLF or a lone CR (old Mac files); the last one may
 //!   have no line end. A UTF-8 byte-order mark at the start is skipped.
-//!   Spaces and tabs separate tokens; blank lines are skipped.
-//! - Line continuation with `\` is not supported: the `\` token is then an
-//!   error, never silently dropped.
+//!   Spaces, tabs and form feeds separate tokens (a form feed as a space,
+//!   so a keyword glued to one is read, not skipped with its face); blank
+//!   lines are skipped.
+//! - Line continuation with `\` is not supported: a line that ends with
+//!   `\` (before any comment), whatever its statement, is
+//!   [`ObjErrorKind::LineContinuation`], never read short with the next
+//!   line taken as a statement of its own.
 //!
 //! The first error ends the input; it carries its 1-based line number.
 
@@ -95,6 +101,13 @@ pub enum ObjErrorKind {
     BadNumber,
     /// A `v` line has fewer than three coordinates.
     MissingCoordinate,
+    /// A `v` line has more than seven numbers (`x y z`, then `w`, a colour
+    /// `r g b`, or both).
+    TooManyNumbers,
+    /// The line ends with `\`: line continuation is not supported, so the
+    /// line would be read short and the next one as a statement of its
+    /// own.
+    LineContinuation,
     /// A face corner is not `v`, `v/vt`, `v//vn` or `v/vt/vn`.
     BadCorner,
     /// A corner's index is 0, beyond the file's elements of its kind, or
@@ -102,7 +115,8 @@ pub enum ObjErrorKind {
     IndexOutOfRange {
         /// What the index names.
         element: Element,
-        /// The index as written, saturated to the `i64` range.
+        /// The index as written; one beyond the `i64` range is saturated
+        /// to it.
         index: i64,
         /// How many elements of that kind the index may name: all in the
         /// file for a positive index, those defined before the face for a
@@ -146,6 +160,12 @@ impl fmt::Display for ObjErrorKind {
         match self {
             ObjErrorKind::BadNumber => f.write_str("bad or non-finite number"),
             ObjErrorKind::MissingCoordinate => f.write_str("vertex has fewer than 3 coordinates"),
+            ObjErrorKind::TooManyNumbers => {
+                f.write_str("vertex has more than 7 numbers (x y z, then w and/or r g b)")
+            }
+            ObjErrorKind::LineContinuation => {
+                f.write_str("line continued with \\ (line continuation is not supported)")
+            }
             ObjErrorKind::BadCorner => f.write_str("face corner is not v, v/vt, v//vn or v/vt/vn"),
             ObjErrorKind::IndexOutOfRange {
                 element,
@@ -244,7 +264,19 @@ fn strip_comment(line: &[u8]) -> &[u8] {
     line.split(|&b| b == b'#').next().unwrap_or(&[])
 }
 
-/// Whitespace-separated tokens (spaces, tabs, a CR before the LF).
+/// Whether a line (its comment cut off) ends with `\`, the line
+/// continuation this reader refuses.
+fn continues(line: &[u8]) -> bool {
+    line.iter().rev().find(|b| !b.is_ascii_whitespace()) == Some(&b'\\')
+}
+
+/// Most numbers on a `v` line: `x y z`, then `w` and a colour `r g b`.
+const MAX_VERTEX_NUMBERS: usize = 7;
+
+/// Whitespace-separated tokens: spaces, tabs and form feeds (the ASCII
+/// whitespace bytes, the vertical tab excepted; line ends were cut
+/// already). A form feed separates like a space so that a keyword glued
+/// to one is still read, never skipped with its statement.
 fn tokens(line: &[u8]) -> impl Iterator<Item = &[u8]> {
     line.split(u8::is_ascii_whitespace)
         .filter(|token| !token.is_empty())
@@ -261,7 +293,8 @@ fn parse_coordinate(token: &[u8]) -> Result<f32, ObjErrorKind> {
 }
 
 /// A decimal integer with optional sign, saturated to the `i64` range
-/// (an index that large is out of range anyway, and reported so).
+/// (an index that large is out of range anyway, and reported so): every
+/// value of `i64`, `i64::MIN` included, comes back as written.
 fn parse_integer(token: &[u8]) -> Result<i64, ObjErrorKind> {
     let (negative, digits) = match token {
         [b'-', rest @ ..] => (true, rest),
@@ -271,10 +304,13 @@ fn parse_integer(token: &[u8]) -> Result<i64, ObjErrorKind> {
     if digits.is_empty() || !digits.iter().all(u8::is_ascii_digit) {
         return Err(ObjErrorKind::BadNumber);
     }
-    let magnitude = digits.iter().fold(0i64, |n, &d| {
-        n.saturating_mul(10).saturating_add(i64::from(d - b'0'))
-    });
-    Ok(if negative { -magnitude } else { magnitude })
+    // Accumulated with its sign, so that i64::MIN (one more in magnitude
+    // than i64::MAX) is reached exactly.
+    let sign = if negative { -1 } else { 1 };
+    Ok(digits.iter().fold(0i64, |n, &d| {
+        n.saturating_mul(10)
+            .saturating_add(sign * i64::from(d - b'0'))
+    }))
 }
 
 fn ascii(token: &[u8]) -> Result<&str, ObjErrorKind> {
@@ -393,11 +429,18 @@ impl<'a> Parser<'a> {
         if self.failed {
             return None;
         }
-        let (line, keyword, mut args) = self.lines.by_ref().find_map(|(number, text)| {
+        let (line, text, keyword, mut args) = self.lines.by_ref().find_map(|(number, text)| {
             let mut words = tokens(text);
-            words.next().map(|keyword| (number, keyword, words))
+            words.next().map(|keyword| (number, text, keyword, words))
         })?;
         self.line = line;
+        if continues(text) {
+            self.failed = true;
+            return Some(Err(ObjError {
+                line,
+                kind: ObjErrorKind::LineContinuation,
+            }));
+        }
         if keyword != b"v" {
             self.seen.add(keyword);
         }
@@ -423,6 +466,13 @@ impl<'a> Parser<'a> {
         for coordinate in &mut position {
             let token = args.next().ok_or(ObjErrorKind::MissingCoordinate)?;
             *coordinate = parse_coordinate(token)?;
+        }
+        // w, a colour r g b, or both: numbers, checked and ignored.
+        for (k, token) in args.enumerate() {
+            if k >= MAX_VERTEX_NUMBERS - 3 {
+                return Err(ObjErrorKind::TooManyNumbers);
+            }
+            parse_coordinate(token)?;
         }
         self.seen.vertices += 1;
         Ok(position)
@@ -833,7 +883,9 @@ mod tests {
     fn integers_saturate() {
         assert_eq!(parse_integer(b"+12"), Ok(12));
         assert_eq!(parse_integer(b"18446744073709551616"), Ok(i64::MAX));
-        assert_eq!(parse_integer(b"-99999999999999999999999"), Ok(-i64::MAX));
+        assert_eq!(parse_integer(b"-99999999999999999999999"), Ok(i64::MIN));
+        assert_eq!(parse_integer(b"-9223372036854775808"), Ok(i64::MIN));
+        assert_eq!(parse_integer(b"9223372036854775807"), Ok(i64::MAX));
         for bad in [&b""[..], b"-", b"+", b"1-", b"--1", b"1e3", b" 1"] {
             assert_eq!(parse_integer(bad), Err(ObjErrorKind::BadNumber), "{bad:?}");
         }
