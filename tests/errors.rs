@@ -435,3 +435,54 @@ fn polygons_past_the_tables_limit_are_an_error() {
     // Equal depths: the polygon added first keeps the pixel.
     assert_eq!(drawn, [(4, 4, 1)]);
 }
+
+/// Issue 28, item 6: one admission rule for both ways in. A polygon is
+/// judged before it takes room: one that can cover no sample (off-screen,
+/// zero area) is counted and left out whatever room is left; only one
+/// that will be queued needs room, and one that does not fit is an error
+/// with nothing added. (`push_polygon_vertices` stored a polygon's
+/// corners before judging it: an off-screen pentagon with room for 4
+/// corners was `EdgeTableFull`, where `push_polygon` said `OffScreen`.)
+#[test]
+fn both_push_functions_judge_before_they_take_room() {
+    type R = Renderer<TableArrays<u32, 16, 4, 4>, ScanArrays<u32, Depth16, 16, 4, 16>>;
+    let pentagon = |x: f32, y: f32| {
+        [(0.0, 0.0), (4.0, 0.0), (5.0, 3.0), (2.0, 5.0), (-1.0, 3.0)]
+            .map(|(dx, dy)| vtx(x + dx, y + dy, 0.5))
+    };
+    let line: [ScreenVertex; 5] = core::array::from_fn(|k| vtx(1.0 + k as f32, 2.0, 0.5));
+    for (corners, verdict) in [
+        (pentagon(30.0, 4.0), Ok(Admission::OffScreen)),
+        (line, Ok(Admission::Degenerate)),
+        (pentagon(4.0, 4.0), Err(Error::EdgeTableFull)),
+    ] {
+        let mut by_vertices = R::new(16, 0).unwrap();
+        assert_eq!(by_vertices.push_polygon_vertices(&corners, 1), verdict);
+        assert_eq!(
+            (by_vertices.vertex_count(), by_vertices.polygon_count()),
+            (0, 0)
+        );
+        let mut by_indices = R::new(16, 0).unwrap();
+        let ids: Vec<u16> = corners
+            .iter()
+            .map(|&v| by_indices.push_vertex(v).unwrap())
+            .collect();
+        assert_eq!(by_indices.push_polygon(&ids, 1), verdict);
+        assert_eq!(by_indices.polygon_count(), 0);
+    }
+    // A full vertex table: a triangle that covers no sample is still
+    // judged (off-screen), one that would be queued does not fit.
+    let mut full: Renderer<TableArrays<u32, 2, 4, 16>, ScanArrays<u32, Depth16, 16, 4, 16>> =
+        Renderer::new(16, 0).unwrap();
+    assert_eq!(
+        full.push_polygon_vertices(&tri(30.0, 4.0), 1),
+        Ok(Admission::OffScreen)
+    );
+    assert_eq!(
+        full.push_polygon_vertices(&tri(4.0, 4.0), 1),
+        Err(Error::VertexTableFull)
+    );
+    assert_eq!((full.vertex_count(), full.polygon_count()), (0, 0));
+    let (_, stats) = capture(&mut full);
+    assert_eq!(stats.off_screen, 1);
+}

@@ -240,6 +240,28 @@ pub struct TablePartsRef<'a, C> {
     pub edges: &'a [TableEdge],
 }
 
+/// The outline of the triangle `a b c`.
+fn triangle_outline(a: ScreenVertex, b: ScreenVertex, c: ScreenVertex) -> Outline {
+    let (px, py) = (
+        i64::from(b.x) - i64::from(a.x),
+        i64::from(b.y) - i64::from(a.y),
+    );
+    let (qx, qy) = (
+        i64::from(c.x) - i64::from(a.x),
+        i64::from(c.y) - i64::from(a.y),
+    );
+    Outline {
+        corners: 3,
+        twice_area: px * qy - py * qx,
+        rect: Some(ScreenRect {
+            x0: a.x.min(b.x).min(c.x),
+            x1: a.x.max(b.x).max(c.x),
+            y0: a.y.min(b.y).min(c.y),
+            y1: a.y.max(b.y).max(c.y),
+        }),
+    }
+}
+
 /// Fixed-capacity storage for the tables: up to `V` vertices, `P`
 /// polygons and `E` corners in all (so `E >= 3·P` for triangles; the edge
 /// table has the same capacity). Its size is
@@ -495,6 +517,12 @@ impl<S: TableStorage> Tables<S> {
     /// self-intersecting, filled even-odd). Polygons that can cover no
     /// pixel are counted and left out (see [`Admission`]); on `Err` nothing
     /// was added.
+    ///
+    /// The admission rule, the same for [`Self::push_polygon_vertices`]:
+    /// a polygon is judged before it takes room, so one that can cover no
+    /// sample is left out whatever room is left; only one that will be
+    /// queued needs room in the tables, and it is an error when it does
+    /// not fit.
     pub fn push_polygon(&mut self, corners: &[u16], color: S::Color) -> Result<Admission, Error> {
         if corners.len() < 3 {
             return Err(Error::TooFewCorners);
@@ -512,6 +540,14 @@ impl<S: TableStorage> Tables<S> {
 
     /// Adds the polygon's corners to the vertex table and the polygon to
     /// the polygon table in one step; on `Err` neither table changed.
+    ///
+    /// The admission rule is [`Self::push_polygon`]'s: bad corners are an
+    /// error; then the polygon is judged before it takes any room, so one
+    /// that can cover no sample is counted and left out
+    /// ([`Admission::OffScreen`], [`Admission::Degenerate`]) however full
+    /// the tables are; only a polygon that will be queued needs room for
+    /// its corners, in the vertex table and the corner list, and a slot in
+    /// the polygon table.
     pub fn push_polygon_vertices(
         &mut self,
         corners: &[ScreenVertex],
@@ -523,27 +559,52 @@ impl<S: TableStorage> Tables<S> {
         if corners.len() > MAX_POLYGON_CORNERS {
             return Err(Error::TooManyCorners);
         }
+        for vertex in corners {
+            vertex.check()?;
+        }
         let mut t = self.view();
-        if let &[a, b, c] = corners {
-            let mark = t.vertices.len();
-            let ids = (t.push_vertex(a), t.push_vertex(b), t.push_vertex(c));
-            let result = match ids {
-                (Ok(a), Ok(b), Ok(c)) => t.offer_triangle([a, b, c], |_| Some(color)),
-                (Err(e), _, _) | (_, Err(e), _) | (_, _, Err(e)) => Err(e),
-            };
-            if !matches!(result, Ok(Admission::Queued(_))) {
-                t.vertices.truncate(mark);
+        // Judged as the offer below judges it (and counted when left out).
+        let verdict = match *corners {
+            [a, b, c] => t.judge_triangle(a, b, c)?,
+            _ => {
+                let mut outline = OutlineBuilder::default();
+                corners.iter().for_each(|&v| outline.add(v));
+                t.judge(&outline.finish())?.map(|_| ())
             }
-            return result;
+        };
+        if let Err(admission) = verdict {
+            return Ok(admission);
         }
-        t.begin_polygon();
-        for &v in corners {
-            if let Err(e) = t.push_vertex(v).and_then(|index| t.add_corner(index)) {
-                t.discard_polygon();
-                return Err(e);
-            }
+        // Room for all of it, or nothing is added.
+        let n = corners.len();
+        let index_room = (1usize << 16).saturating_sub(t.vertices.len());
+        if t.vertices.room().min(index_room) < n {
+            return Err(Error::VertexTableFull);
         }
-        t.finish_polygon(|_| Some(color))
+        if t.polygons.is_full() {
+            return Err(Error::PolygonTableFull);
+        }
+        if t.corners.room() < n {
+            return Err(Error::EdgeTableFull);
+        }
+        let mark = t.vertices.len();
+        let result = if let &[a, b, c] = corners {
+            let ids = [t.push_vertex(a)?, t.push_vertex(b)?, t.push_vertex(c)?];
+            t.offer_triangle(ids, |_| Some(color))
+        } else {
+            t.begin_polygon();
+            corners
+                .iter()
+                .try_for_each(|&v| t.push_vertex(v).and_then(|index| t.add_corner(index)))
+                .and_then(|()| t.finish_polygon(|_| Some(color)))
+        };
+        if !matches!(result, Ok(Admission::Queued(_))) {
+            // Cannot happen (judged and given room above), but nothing is
+            // left half-added.
+            t.discard_polygon();
+            t.vertices.truncate(mark);
+        }
+        result
     }
 
     /// Gives the polygon queued last (by the call just before: nothing
@@ -848,24 +909,7 @@ impl<C: Copy> TablesMut<'_, C> {
         let (Some(a), Some(b), Some(c)) = (vertex(0), vertex(1), vertex(2)) else {
             return Err(Error::VertexOutOfRange);
         };
-        let (px, py) = (
-            i64::from(b.x) - i64::from(a.x),
-            i64::from(b.y) - i64::from(a.y),
-        );
-        let (qx, qy) = (
-            i64::from(c.x) - i64::from(a.x),
-            i64::from(c.y) - i64::from(a.y),
-        );
-        let outline = Outline {
-            corners: 3,
-            twice_area: px * qy - py * qx,
-            rect: Some(ScreenRect {
-                x0: a.x.min(b.x).min(c.x),
-                x1: a.x.max(b.x).max(c.x),
-                y0: a.y.min(b.y).min(c.y),
-                y1: a.y.max(b.y).max(c.y),
-            }),
-        };
+        let outline = triangle_outline(a, b, c);
         if let Err(admission) = self.judge(&outline)? {
             return Ok(admission);
         }
@@ -892,6 +936,29 @@ impl<C: Copy> TablesMut<'_, C> {
             self.corners.push(id).map_err(|_| Error::EdgeTableFull)?;
         }
         Ok(self.queue(start, 3, rows, color))
+    }
+
+    /// The verdict [`Self::offer_triangle`] gives the triangle `a b c`
+    /// (counted when it is left out), with no table touched.
+    fn judge_triangle(
+        &mut self,
+        a: ScreenVertex,
+        b: ScreenVertex,
+        c: ScreenVertex,
+    ) -> Result<Result<(), Admission>, Error> {
+        let outline = triangle_outline(a, b, c);
+        if let Err(admission) = self.judge(&outline)? {
+            return Ok(Err(admission));
+        }
+        let covered = outline
+            .rect
+            .and_then(|r| r.samples(self.counts.width, self.counts.height))
+            .and_then(|(columns, rows)| covered_rows(a, b, c, columns, rows));
+        if covered.is_none() {
+            self.counts.off_screen += 1;
+            return Ok(Err(Admission::OffScreen));
+        }
+        Ok(Ok(()))
     }
 
     /// The core's verdict on an outline: `Ok(Ok(rows))` when it can cover
