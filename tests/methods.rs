@@ -119,3 +119,48 @@ fn methods_parse_and_print() {
     assert!(Method::parse("bands:x").is_err());
     assert!(Method::parse("zbuf").is_err());
 }
+
+/// A surface at the far plane's depth (depth 1, the value a cleared depth
+/// row holds): the scanline and the z-buffer never draw it (a pixel is
+/// written only where strictly nearer than what the row holds, or equal
+/// to a written value), the interval method, comparing plane values with
+/// no stored depth, does. In z16, where the far plane's value is the last
+/// step, that holds for any depth rounding to it.
+#[test]
+fn a_surface_at_the_far_plane_shows_only_in_the_interval_method() {
+    use zline::methods::interval::render_intervals;
+    use zline::raster::fixed::DEPTH_MAX;
+    use zline::{FnSink, ScreenVertex};
+    let s = zline::raster::fixed::SUBPIXEL_STEPS;
+    let far = [(1, 1), (14, 1), (1, 10)]
+        .map(|(x, y)| ScreenVertex::new(x * s, y * s, DEPTH_MAX).unwrap());
+    let caps = zline::Capacities {
+        width: 16,
+        vertices: 8,
+        polygons: 2,
+        corners: 8,
+        active_polygons: 2,
+        pooled_edges: 0,
+    };
+    let mut renderer = zline::host::host_renderer::<u32, Depth24>(&caps, 16, 12, 0).unwrap();
+    renderer.push_polygon_vertices(&far, 1).unwrap();
+    let (mut scanline, mut interval) = (0, 0);
+    renderer
+        .render(&mut FnSink(|_: u16, c: &[u32], _: &[u32]| {
+            scanline += c.iter().filter(|&&c| c == 1).count();
+            Ok::<(), ()>(())
+        }))
+        .unwrap();
+    let prepared = renderer.tables.prepare();
+    render_intervals::<u32, Depth24, _>(
+        &prepared,
+        0,
+        &mut FnSink(|_: u16, c: &[u32], _: &[u32]| {
+            interval += c.iter().filter(|&&c| c == 1).count();
+            Ok::<(), ()>(())
+        }),
+    )
+    .unwrap();
+    assert_eq!(scanline, 0);
+    assert!(interval > 40, "{interval}");
+}

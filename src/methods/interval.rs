@@ -12,7 +12,9 @@
 //!
 //! It keeps one row of colour and, per row, the list of spans: no depth is
 //! stored. (The depth row it sends with each row is the winning plane
-//! value, quantised, for comparison only.)
+//! value, quantised, for comparison only.) So, unlike the core, it draws a
+//! surface lying on the far plane (depth 1, a cleared depth row's value),
+//! which the core's strict test hides.
 
 use std::vec::Vec;
 
