@@ -5,13 +5,20 @@
 //! runs zline on it and panics when a property does not hold.
 //!
 //! * [`obj_reader`]: the OBJ reader on any bytes: its three ways in agree,
-//!   errors carry a real line, and what it accepts is a valid mesh.
+//!   errors carry a real line, what it accepts is a valid mesh, and a
+//!   model of each line (continuations, what follows a vertex's z, an
+//!   index as written) agrees with it.
 //! * [`core_scene`]: the scanline core on arbitrary screen-space polygons
 //!   (coordinates anywhere in the guard band, depths anywhere in range)
 //!   against the exact oracle ([`crate::methods::exact::check_frame`]): coverage
-//!   exact, depth within 1 LSB, or a documented `Err`.
-//! * [`pipeline`]: OBJ bytes and a camera through [`draw_mesh`] to rows:
-//!   every face accounted for exactly once, only capacity errors, every
+//!   exact, depth within 1 LSB, or a documented `Err`; the same tables in
+//!   bands, each scanner sized exactly by the frame's counts; one
+//!   admission rule for both ways of pushing a polygon.
+//! * [`pipeline`]: OBJ bytes and a camera (near and far anywhere in the
+//!   `f32` range) through [`draw_mesh`] to rows, in storage the mesh's
+//!   own capacities size: every face accounted for exactly once, no
+//!   capacity error, no face refused but beyond the clipper's range,
+//!   triangle faces as the double-double clip reference draws them, every
 //!   row delivered once, in order; then every other method on the same
 //!   scene ([`crate::methods::MethodRenderer`]): the z-buffer and the bands
 //!   draw the scanline's frame exactly, the interval and the painter's
@@ -36,13 +43,14 @@ use crate::front::scene::{
     project_vertices, reference_model,
 };
 use crate::front::shade::Shading;
-use crate::host::{BandedRenderer, host_renderer};
+use crate::host::{BandedRenderer, ScanVecs, host_renderer};
 use crate::host::{HostMesh, QuantizedHostMesh};
 use crate::methods::exact::{Offered, check_frame_shared};
 use crate::raster::depth::{Depth16, Depth24, DepthFormat};
-use crate::raster::fixed::{DEPTH_MAX, GUARD_BAND, SUBPIXEL_STEPS};
+use crate::raster::fixed::{DEPTH_MAX, GUARD_BAND, MAX_POLYGONS, SUBPIXEL_STEPS};
+use crate::raster::vertex::Outline;
 use crate::raster::vertex::ScreenVertex;
-use crate::raster::{Admission, Capacities};
+use crate::raster::{Admission, Capacities, PolygonTables, Scanner, scan};
 use crate::sink::FnSink;
 
 /// Reads fixed-size values from the front of the input; zeros once it
@@ -136,6 +144,104 @@ pub fn obj_reader(data: &[u8]) {
     if let Ok(c) = counted {
         assert_eq!(vertices.min(c.vertices), vertices);
     }
+    line_model_check(data, counted.err());
+}
+
+/// What the reader's documentation says of each line, written apart from
+/// the reader: a line that ends with `\\` (before any comment) is refused
+/// whatever its statement, and after a vertex's `x y z` come at most four
+/// more tokens, each a finite number. Every line before the reader's first
+/// error (all of them when it accepts the file) keeps both rules, and the
+/// line it stops at is refused with the kind the rules give, when they
+/// give one.
+fn line_model_check(data: &[u8], error: Option<crate::front::obj::ObjError>) {
+    use crate::front::obj::ObjErrorKind;
+    let data = data.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(data);
+    // Lines end with LF, CRLF or a lone CR.
+    let mut lines = Vec::new();
+    let mut rest = data;
+    while !rest.is_empty() {
+        match rest.iter().position(|&b| b == b'\n' || b == b'\r') {
+            Some(end) => {
+                lines.push(&rest[..end]);
+                let skip = if rest[end..].starts_with(b"\r\n") {
+                    2
+                } else {
+                    1
+                };
+                rest = &rest[end + skip..];
+            }
+            None => {
+                lines.push(rest);
+                rest = &[];
+            }
+        }
+    }
+    let number = |token: &[u8]| {
+        core::str::from_utf8(token)
+            .ok()
+            .and_then(|t| t.parse::<f32>().ok())
+            .is_some_and(f32::is_finite)
+    };
+    let stop = error.map_or(u32::MAX, |e| e.line);
+    for (k, line) in lines.iter().enumerate() {
+        let line_number = k as u32 + 1;
+        if line_number > stop {
+            break;
+        }
+        let text = line.split(|&b| b == b'#').next().unwrap_or(&[]);
+        let continues = text.iter().rev().find(|b| !b.is_ascii_whitespace()) == Some(&b'\\');
+        let tokens: Vec<&[u8]> = text
+            .split(u8::is_ascii_whitespace)
+            .filter(|t| !t.is_empty())
+            .collect();
+        let vertex = tokens.first() == Some(&&b"v"[..])
+            && tokens.len() >= 4
+            && tokens[1..4].iter().all(|t| number(t));
+        let extra = tokens.get(4..).unwrap_or(&[]);
+        let too_many = vertex && extra.len() > 4;
+        let bad_extra = vertex && extra.iter().take(4).any(|t| !number(t));
+        if line_number < stop {
+            assert!(
+                !continues,
+                "line {line_number} ends with a backslash and was accepted"
+            );
+            assert!(
+                !too_many && !bad_extra,
+                "line {line_number}: a vertex with {extra:?} after z was accepted"
+            );
+        } else if let Some(e) = error {
+            if let ObjErrorKind::IndexOutOfRange { index, .. } = e.kind {
+                // The index as written (in i128, saturated to i64): one of
+                // the line's.
+                let written = tokens.iter().skip(1).flat_map(|t| t.split(|&b| b == b'/'));
+                let as_written = written.filter_map(|t| {
+                    let (negative, digits) = match t {
+                        [b'-', rest @ ..] => (true, rest),
+                        [b'+', rest @ ..] => (false, rest),
+                        _ => (false, t),
+                    };
+                    let magnitude = core::str::from_utf8(digits).ok()?.parse::<u128>().ok();
+                    let magnitude =
+                        magnitude.map_or(i128::MAX, |m| m.min(i128::MAX as u128) as i128);
+                    let value = if negative { -magnitude } else { magnitude };
+                    Some(value.clamp(i128::from(i64::MIN), i128::from(i64::MAX)) as i64)
+                });
+                assert!(
+                    as_written.clone().any(|v| v == index),
+                    "line {line_number}: index {index} is none of {:?}",
+                    as_written.collect::<Vec<_>>()
+                );
+            }
+            if continues {
+                assert_eq!(e.kind, ObjErrorKind::LineContinuation, "line {line_number}");
+            } else if bad_extra {
+                assert_eq!(e.kind, ObjErrorKind::BadNumber, "line {line_number}");
+            } else if too_many {
+                assert_eq!(e.kind, ObjErrorKind::TooManyNumbers, "line {line_number}");
+            }
+        }
+    }
 }
 
 /// A sub-pixel coordinate for a frame `size` pixels wide: near the frame,
@@ -199,11 +305,88 @@ pub fn core_scene(data: &[u8]) {
         polygons.push(poly);
     }
     let shares = |k: usize| (1..8).contains(&k) && flags & (1 << k) != 0;
+    // The bands' cuts: from a hash of the whole input, so that inputs
+    // saved before the bands were checked decode to the same scene.
+    let cuts = band_cuts(data, height);
     if z24 {
-        core_check::<Depth24>(&polygons, shares, width, height);
+        core_check::<Depth24>(&polygons, shares, width, height, &cuts);
     } else {
-        core_check::<Depth16>(&polygons, shares, width, height);
+        core_check::<Depth16>(&polygons, shares, width, height, &cuts);
     }
+}
+
+/// One admission rule for both ways in: each polygon, offered to tables
+/// with one corner, one vertex or no polygon slot too few for it, gets
+/// the same verdict from `push_polygon_vertices` as from `push_polygon`
+/// over the same vertices, and a refused one leaves nothing behind.
+fn admission_check<D: DepthFormat>(polygons: &[Vec<ScreenVertex>], width: u16, height: u16) {
+    for poly in polygons {
+        let n = poly.len();
+        let room = Capacities {
+            width: CORE_WIDTH,
+            vertices: 2 * n,
+            polygons: 1,
+            corners: n,
+            active_polygons: 1,
+            pooled_edges: 0,
+        };
+        for tight in [
+            Capacities {
+                corners: n - 1,
+                ..room
+            },
+            Capacities {
+                polygons: 0,
+                ..room
+            },
+            Capacities {
+                vertices: n - 1,
+                ..room
+            },
+            room,
+        ] {
+            let mut by_vertices =
+                host_renderer::<u32, D>(&tight, width, height, 0).expect("frame size");
+            let verdict = by_vertices.push_polygon_vertices(poly, 1);
+            if verdict.is_err() {
+                assert_eq!(
+                    (by_vertices.vertex_count(), by_vertices.polygon_count()),
+                    (0, 0)
+                );
+            }
+            // The same polygon by indices, its vertices given room first.
+            let indexed = Capacities {
+                vertices: 2 * n,
+                ..tight
+            };
+            let mut by_indices =
+                host_renderer::<u32, D>(&indexed, width, height, 0).expect("frame size");
+            let ids: Vec<u16> = poly
+                .iter()
+                .map(|&v| by_indices.push_vertex(v).expect("room"))
+                .collect();
+            let by_index = by_indices.push_polygon(&ids, 1);
+            let expected = if tight.vertices < n
+                && by_index.is_ok_and(|a| matches!(a, Admission::Queued(_)))
+            {
+                Err(Error::VertexTableFull)
+            } else {
+                by_index
+            };
+            assert_eq!(verdict, expected, "{poly:?} at {tight:?}");
+        }
+    }
+}
+
+/// Up to three cuts of `height` rows, from an FNV-1a hash of `data`.
+fn band_cuts(data: &[u8], height: u16) -> Vec<u16> {
+    let hash = data.iter().fold(0xcbf2_9ce4_8422_2325u64, |h, &b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
+    });
+    let count = (hash % 4) as usize;
+    (0..count)
+        .map(|k| ((hash >> (16 * k + 2)) % u64::from(height + 1)) as u16)
+        .collect()
 }
 
 fn core_check<D: DepthFormat>(
@@ -211,6 +394,7 @@ fn core_check<D: DepthFormat>(
     shares: impl Fn(usize) -> bool,
     width: u16,
     height: u16,
+    cuts: &[u16],
 ) where
     D::Value: Into<u64>,
 {
@@ -224,6 +408,7 @@ fn core_check<D: DepthFormat>(
         active_polygons: 12,
         pooled_edges: 96,
     };
+    admission_check::<D>(polygons, width, height);
     let mut renderer = host_renderer::<u32, D>(&caps, width, height, 0).expect("frame size");
     let offered: Vec<Offered> = polygons
         .iter()
@@ -251,7 +436,7 @@ fn core_check<D: DepthFormat>(
     let (w, h) = (usize::from(width), usize::from(height));
     let (mut colors, mut depths) = (vec![0u32; w * h], vec![0u64; w * h]);
     let mut next_row = 0u16;
-    renderer
+    let stats = renderer
         .render(&mut FnSink(|y: u16, c: &[u32], z: &[D::Value]| {
             assert_eq!(y, next_row, "rows in order, once each");
             next_row += 1;
@@ -266,6 +451,40 @@ fn core_check<D: DepthFormat>(
     assert_eq!(next_row, height);
     if let Err(e) = check_frame_shared::<D>(&offered, w, h, &colors, &depths) {
         panic!("{}: {e}\npolygons: {offered:?}", D::NAME);
+    }
+    // The same tables in bands at `cuts`, each scanner sized exactly by
+    // the whole frame's counts: every band fits, and sends the whole
+    // scan's rows.
+    let exact = Capacities::from_stats(&stats, w);
+    let prepared = renderer.tables.prepare();
+    let mut bounds: Vec<u16> = cuts.iter().map(|&c| c.min(height)).collect();
+    bounds.extend([0, height]);
+    bounds.sort_unstable();
+    for band in bounds.windows(2) {
+        let mut scanner = Scanner::new(ScanVecs::<u32, D>::new(&exact, 0), 0);
+        let mut next = band[0];
+        scan(
+            &prepared,
+            &mut scanner,
+            band[0]..band[1],
+            &mut FnSink(|y: u16, c: &[u32], z: &[D::Value]| {
+                assert_eq!(y, next, "band {band:?}: rows in order");
+                next += 1;
+                let at = usize::from(y) * w;
+                assert!(
+                    c == &colors[at..at + w],
+                    "band {band:?}: row {y}'s colours differ"
+                );
+                let same = z
+                    .iter()
+                    .zip(&depths[at..at + w])
+                    .all(|(&a, &b)| a.into() == b);
+                assert!(same, "band {band:?}: row {y}'s depths differ");
+                Ok::<(), ()>(())
+            }),
+        )
+        .unwrap_or_else(|e| panic!("band {band:?} at the frame's capacities {exact:?}: {e:?}"));
+        assert_eq!(next, band[1]);
     }
 }
 
@@ -299,6 +518,24 @@ pub fn pipeline(data: &[u8]) {
         finite(&mut bytes, 0.0),
         finite(&mut bytes, 3.0),
     );
+    // Byte 22 (zero in the inputs saved before it was read): bit 0, near
+    // and far anywhere in the f32 range (bytes 23-30); bit 1, the banded
+    // renderer cut at a row of byte 31's choosing.
+    let wide = bytes.u8();
+    let (near, far) = if wide & 1 != 0 {
+        let a = finite(&mut bytes, near).abs();
+        let b = finite(&mut bytes, far).abs();
+        let (near, far) = (a.min(b), a.max(b));
+        if near > 0.0 && far > near {
+            (near, far)
+        } else {
+            (near.max(f32::MIN_POSITIVE), (near * 2.0).max(1.0))
+        }
+    } else {
+        let _ = (bytes.u32(), bytes.u32());
+        (near, far)
+    };
+    let band_cut = (wide & 2 != 0).then(|| 1 + u16::from(bytes.u8()) % height.max(1));
     let Ok(mesh) = HostMesh::from_obj(obj) else {
         return; // The reader's own target checks its errors.
     };
@@ -342,22 +579,26 @@ pub fn pipeline(data: &[u8]) {
     let methods = OtherMethods {
         band_rows,
         reference: reference_camera.map(|c| (c, view)),
+        band_cut: band_cut.filter(|&c| c < height),
     };
     // Flag 8: the same mesh quantized, through the integer front end.
+    // The mesh's own capacities, worst case over every view: no capacity
+    // error may occur below the core's own limits.
+    let caps = mesh.capacities(width);
     if flags & 8 != 0 {
         let Ok(quantized) = QuantizedHostMesh::new(&mesh) else {
             return; // Error::MeshExtent, as for the f32 mesh.
         };
         let quantized = quantized.mesh().expect("a quantized host mesh is valid");
         if z24 {
-            pipeline_check::<Depth24, _>(&quantized, &model, &camera, cull, &methods);
+            pipeline_check::<Depth24, _>(&quantized, &model, &camera, cull, &methods, &caps);
         } else {
-            pipeline_check::<Depth16, _>(&quantized, &model, &camera, cull, &methods);
+            pipeline_check::<Depth16, _>(&quantized, &model, &camera, cull, &methods, &caps);
         }
     } else if z24 {
-        pipeline_check::<Depth24, _>(&mesh, &model, &camera, cull, &methods);
+        pipeline_check::<Depth24, _>(&mesh, &model, &camera, cull, &methods, &caps);
     } else {
-        pipeline_check::<Depth16, _>(&mesh, &model, &camera, cull, &methods);
+        pipeline_check::<Depth16, _>(&mesh, &model, &camera, cull, &methods, &caps);
     }
 }
 
@@ -365,6 +606,8 @@ pub fn pipeline(data: &[u8]) {
 struct OtherMethods {
     /// Rows of the bands method.
     band_rows: u16,
+    /// Where the banded renderer's two bands meet (else its own cut).
+    band_cut: Option<u16>,
     /// The reference's camera and view, when the view is the reference
     /// view's (the reference knows no other).
     reference: Option<(
@@ -447,12 +690,16 @@ fn row_of<V: Copy + Into<u32>>(y: u16, colors: &[u32], depths: &[V]) -> (u16, Ve
 /// The scene `rows` came from, drawn from vertices projected beforehand
 /// (in two runs) and by the banded renderer in two bands on two threads:
 /// the same rows, and no error where `draw_mesh` had none.
+#[allow(clippy::too_many_arguments)]
 fn projected_check<D: DepthFormat, M: Mesh + Sync>(
     mesh: &M,
     model: &Mat4,
     camera: &Camera,
     cull: Cull,
     rows: &Rows,
+    caps: &Capacities,
+    exact: &Capacities,
+    band_cut: Option<u16>,
 ) where
     D::Value: Into<u32> + Send,
 {
@@ -462,8 +709,7 @@ fn projected_check<D: DepthFormat, M: Mesh + Sync>(
     project_vertices(mesh, model, camera, 0, low).expect("vertices of the mesh");
     project_vertices(mesh, model, camera, count / 2, high).expect("vertices of the mesh");
     let mut renderer =
-        host_renderer::<u32, D>(&PIPELINE_CAPACITIES, camera.width, camera.height, 0)
-            .expect("frame size");
+        host_renderer::<u32, D>(caps, camera.width, camera.height, 0).expect("frame size");
     let mut cache: Box<VertexCache<4096>> = Box::default();
     draw_mesh_projected(
         &mut renderer,
@@ -490,9 +736,13 @@ fn projected_check<D: DepthFormat, M: Mesh + Sync>(
     if camera.height < 2 {
         return;
     }
+    // Each band sized exactly by one renderer's counts: a band needs no
+    // more than the whole frame.
     let mut banded =
-        BandedRenderer::<u32, D>::new(&PIPELINE_CAPACITIES, camera.width, camera.height, 0, 2)
-            .expect("bands");
+        BandedRenderer::<u32, D>::new(exact, camera.width, camera.height, 0, 2).expect("bands");
+    if let Some(cut) = band_cut {
+        banded.set_cuts(&[cut]).expect("a cut inside the frame");
+    }
     // Two threads even for the first (and only) frame: their shared steps
     // and meetings are what is checked.
     banded.set_one_thread_below(std::time::Duration::ZERO);
@@ -508,21 +758,11 @@ fn projected_check<D: DepthFormat, M: Mesh + Sync>(
         .collect();
     banded
         .render_mesh(mesh, model, camera, cull, &mut sinks, |f| f.face + 1)
-        .expect("one renderer drew it");
+        .unwrap_or_else(|e| panic!("bands at one renderer's capacities {exact:?}: {e:?}"));
     drop(sinks);
     let banded_rows: Rows = bands.into_iter().flatten().collect();
     assert!(banded_rows == *rows, "the banded renderer's rows differ");
 }
-
-/// Capacities of [`pipeline`]'s renderer.
-const PIPELINE_CAPACITIES: Capacities = Capacities {
-    width: PIPELINE_WIDTH,
-    vertices: 4096,
-    polygons: 1024,
-    corners: 4096,
-    active_polygons: 256,
-    pooled_edges: 256,
-};
 
 fn pipeline_check<D: DepthFormat, M: Mesh + Sync>(
     mesh: &M,
@@ -530,34 +770,39 @@ fn pipeline_check<D: DepthFormat, M: Mesh + Sync>(
     camera: &Camera,
     cull: Cull,
     other: &OtherMethods,
+    caps: &Capacities,
 ) where
     D::Value: Into<u32> + Send,
 {
-    let mut renderer =
-        host_renderer::<u32, D>(&PIPELINE_CAPACITIES, camera.width, camera.height, 0)
-            .expect("frame size");
-    let mut cache: Box<VertexCache<4096>> = Box::default();
     if mesh.vertex_count() > 4096 {
         return;
     }
+    let mut renderer =
+        host_renderer::<u32, D>(caps, camera.width, camera.height, 0).expect("frame size");
+    let mut cache: Box<VertexCache<4096>> = Box::default();
     let shading = Shading::lambert();
-    let stats = match draw_mesh(&mut renderer, &mut *cache, mesh, model, camera, cull, |f| {
+    // Below the core's own limits (u16 vertex indices, 2^20 polygons,
+    // 2^16 active polygons), the mesh's capacities hold every view.
+    let uncapped = caps.vertices < 1 << 16 && caps.polygons < MAX_POLYGONS;
+    let mut recorded = Recording::new(&mut renderer);
+    let drawn = draw_mesh(&mut recorded, &mut *cache, mesh, model, camera, cull, |f| {
         // Lambert too (the integer path for a quantized mesh): any panic
         // or overflow in it is a finding.
         core::hint::black_box(shading.color(f));
         f.face + 1
-    }) {
+    });
+    let queued = recorded.queued;
+    let stats = match drawn {
         Ok(stats) => stats,
         Err(DrawError { error, face }) => {
+            let capacity = matches!(
+                error,
+                Error::VertexTableFull | Error::PolygonTableFull | Error::EdgeTableFull
+            );
+            // A face too large to clip exactly is refused (documented).
             assert!(
-                matches!(
-                    error,
-                    Error::VertexTableFull
-                        | Error::PolygonTableFull
-                        | Error::EdgeTableFull
-                        | Error::ClipRange
-                ),
-                "face {face:?}: {error}"
+                error == Error::ClipRange || (capacity && !uncapped),
+                "face {face:?}: {error} at the mesh's capacities {caps:?}"
             );
             return;
         }
@@ -582,6 +827,14 @@ fn pipeline_check<D: DepthFormat, M: Mesh + Sync>(
         + stats.non_finite;
     assert_eq!(outcomes, parts + stats.convex_quads, "{stats:?}");
     assert_eq!(stats.faces as usize, mesh.face_count());
+    let finite = |m: &Mat4| m.m.iter().flatten().all(|v| v.is_finite());
+    if finite(model) && finite(&camera.view) && finite(&camera.projection) {
+        // Finite positions (the reader's) and matrices: no corner is lost.
+        assert_eq!(stats.non_finite, 0, "{stats:?}");
+    }
+    if cull == Cull::None && mesh.quantized().is_none() {
+        clip_reference_check(mesh, model, camera, &queued);
+    }
     let mut next_row = 0u16;
     let faces = mesh.face_count() as u32;
     let mut rows = Rows::new();
@@ -600,16 +853,214 @@ fn pipeline_check<D: DepthFormat, M: Mesh + Sync>(
             assert_eq!(next_row, camera.height);
             assert_eq!(frame.polygons, stats.queued);
             other_methods_check::<D, M>(mesh, model, camera, cull, other);
-            projected_check::<D, M>(mesh, model, camera, cull, &rows);
+            let exact = Capacities::from_stats(&frame, usize::from(camera.width));
+            projected_check::<D, M>(
+                mesh,
+                model,
+                camera,
+                cull,
+                &rows,
+                caps,
+                &exact,
+                other.band_cut,
+            );
         }
         Err(RenderError::Table(e)) => assert!(
-            matches!(
-                e,
-                Error::ActivePolygonsFull { .. } | Error::ActiveEdgesFull { .. }
-            ),
-            "{e}"
+            !uncapped
+                && matches!(
+                    e,
+                    Error::ActivePolygonsFull { .. } | Error::ActiveEdgesFull { .. }
+                ),
+            "{e} at the mesh's capacities {caps:?}"
         ),
         Err(RenderError::Sink(())) => unreachable!("the sink never fails"),
     }
     let _ = format!("{stats:?}");
+}
+
+/// Most triangle faces [`clip_reference_check`] judges in one input (each
+/// costs a pass over the frame's samples).
+const REFERENCE_FACES: usize = 48;
+
+/// Largest face, in near distances, [`clip_reference_check`] judges:
+/// `2^80`, where the reference's error is still below `2^-24` of `w`.
+const REFERENCE_LIMIT: f64 = (1u128 << 80) as f64;
+
+/// The triangle faces of a draw with no culling, each against the
+/// double-double reference ([`crate::methods::clip_reference`]): up to
+/// [`REFERENCE_LIMIT`] (and for corners whose transform does not cancel:
+/// the `f32` front end's precision is relative to a corner's transform
+/// terms, not its position), the corners within one sub-pixel step of the
+/// reference's boundary, the depths within `2^-20`, and every pixel
+/// sample the reference covers covered (samples within 1/128 pixel of
+/// its boundary excused).
+fn clip_reference_check<M: Mesh>(
+    mesh: &M,
+    model: &Mat4,
+    camera: &Camera,
+    queued: &[(Vec<ScreenVertex>, u32)],
+) {
+    use crate::methods::clip_reference::{clipped_face, compare_face, transform_terms};
+    let judged = (0..mesh.face_count())
+        .filter(|&f| mesh.face(f).len() == 3)
+        .take(REFERENCE_FACES);
+    for face in judged {
+        let corners: Vec<[f32; 3]> = mesh
+            .face(face)
+            .iter()
+            .map(|&i| mesh.position(usize::from(i)))
+            .collect();
+        let Some((size, cancellation)) = transform_terms(model, camera, &corners) else {
+            continue;
+        };
+        // Beyond 2^80 near distances the reference's own 106 bits do not
+        // judge a face to the sub-pixel grid. (Beyond the clipper's range
+        // a face that needs clipping is refused; one drawn there, needing
+        // none, must be right as any other.)
+        if size > REFERENCE_LIMIT * near_distance(camera) || cancellation > 16.0 {
+            continue;
+        }
+        let drawn: Vec<Vec<ScreenVertex>> = queued
+            .iter()
+            .filter(|(_, color)| *color == face as u32 + 1)
+            .map(|(corners, _)| corners.clone())
+            .collect();
+        let reference = clipped_face(model, camera, &corners);
+        let size_px = (camera.width, camera.height);
+        let e = compare_face(&drawn, &[reference], size_px, 1.0 / 128.0);
+        let step = 1.0 / f64::from(SUBPIXEL_STEPS);
+        assert!(
+            e.position_px <= step && e.depth <= 1.0 / f64::from(1u32 << 20) && e.wrong_samples == 0,
+            "face {face} {corners:?} against the reference: {e:?}"
+        );
+    }
+}
+
+/// The clip-space `w` of a perspective projection's near plane, the
+/// smallest `w` in its frustum: where `z = -w`, that is at view depth
+/// `B / (1 - A)` for `z = A·depth + B`.
+fn near_distance(camera: &Camera) -> f64 {
+    let [a, b] = [camera.projection.m[2][2], camera.projection.m[2][3]].map(f64::from);
+    -b / (1.0 - a)
+}
+
+/// Tables that forward everything to `inner` and keep a copy of each
+/// polygon queued: its corners and its colour.
+struct Recording<'a, T> {
+    inner: &'a mut T,
+    open: Vec<u16>,
+    queued: Vec<(Vec<ScreenVertex>, u32)>,
+}
+
+impl<'a, T: PolygonTables<u32>> Recording<'a, T> {
+    fn new(inner: &'a mut T) -> Self {
+        Self {
+            inner,
+            open: Vec::new(),
+            queued: Vec::new(),
+        }
+    }
+
+    /// Records `ids` in `color` when `admission` queued them.
+    fn record(&mut self, admission: Admission, ids: &[u16], color: Option<u32>) {
+        if let (Admission::Queued(_), Some(color)) = (admission, color) {
+            let corners = ids
+                .iter()
+                .map(|&i| self.inner.get_vertex(i).expect("a queued corner exists"))
+                .collect();
+            self.queued.push((corners, color));
+        }
+    }
+}
+
+impl<T: PolygonTables<u32>> PolygonTables<u32> for Recording<'_, T> {
+    fn frame_width(&self) -> u16 {
+        self.inner.frame_width()
+    }
+
+    fn frame_height(&self) -> u16 {
+        self.inner.frame_height()
+    }
+
+    fn add_vertex(&mut self, vertex: ScreenVertex) -> Result<u16, Error> {
+        self.inner.add_vertex(vertex)
+    }
+
+    fn get_vertex(&self, index: u16) -> Option<ScreenVertex> {
+        self.inner.get_vertex(index)
+    }
+
+    fn offer_polygon<I>(
+        &mut self,
+        corners: I,
+        decide: impl FnOnce(&Outline) -> Option<u32>,
+    ) -> Result<Admission, Error>
+    where
+        I: IntoIterator<Item = u16>,
+        I::IntoIter: Clone,
+    {
+        let ids: Vec<u16> = corners.into_iter().collect();
+        let mut color = None;
+        let admission = self.inner.offer_polygon(ids.iter().copied(), |outline| {
+            color = decide(outline);
+            color
+        })?;
+        self.record(admission, &ids, color);
+        Ok(admission)
+    }
+
+    fn offer_triangle(
+        &mut self,
+        corners: [u16; 3],
+        decide: impl FnOnce(&Outline) -> Option<u32>,
+    ) -> Result<Admission, Error> {
+        let mut color = None;
+        let admission = self.inner.offer_triangle(corners, |outline| {
+            color = decide(outline);
+            color
+        })?;
+        self.record(admission, &corners, color);
+        Ok(admission)
+    }
+
+    fn share_plane(&mut self, plane: [u16; 3]) -> Result<bool, Error> {
+        self.inner.share_plane(plane)
+    }
+
+    fn begin_polygon(&mut self) {
+        self.open.clear();
+        self.inner.begin_polygon();
+    }
+
+    fn discard_polygon(&mut self) {
+        self.open.clear();
+        self.inner.discard_polygon();
+    }
+
+    fn add_corner(&mut self, vertex: u16) -> Result<(), Error> {
+        self.inner.add_corner(vertex)?;
+        self.open.push(vertex);
+        Ok(())
+    }
+
+    fn finish_polygon(
+        &mut self,
+        decide: impl FnOnce(&Outline) -> Option<u32>,
+    ) -> Result<Admission, Error> {
+        let ids = core::mem::take(&mut self.open);
+        // The corners' vertices, before a polygon left out removes them.
+        let corners: Vec<ScreenVertex> = ids
+            .iter()
+            .filter_map(|&i| self.inner.get_vertex(i))
+            .collect();
+        let mut color = None;
+        let admission = self.inner.finish_polygon(|outline| {
+            color = decide(outline);
+            color
+        })?;
+        if let (Admission::Queued(_), Some(color)) = (admission, color) {
+            self.queued.push((corners, color));
+        }
+        Ok(admission)
+    }
 }
