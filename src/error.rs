@@ -68,7 +68,8 @@ pub enum Error {
     /// clip-space size is more than
     /// [`CLIP_RANGE`](crate::front::scene::CLIP_RANGE) times the view
     /// frustum's smallest `w` (for a perspective camera, the near
-    /// distance).
+    /// distance), or the projection is singular and has no frustum (for
+    /// example a near and far plane whose product underflows `f32`).
     ClipRange,
 }
 
@@ -109,7 +110,7 @@ impl fmt::Display for Error {
             }
             Error::ClipRange => f.write_str(
                 "face too large for its distance from the eye to be clipped exactly \
-                 (clip-space size over 2^28 times the near plane's w)",
+                 (clip-space size over 2^28 times the near plane's w), or a singular projection",
             ),
         }
     }

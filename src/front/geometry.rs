@@ -199,10 +199,25 @@ impl Mat4 {
     }
 
     /// View matrix of a camera at `eye` looking at `target` with `up`
-    /// roughly up: maps the eye to the origin looking down -Z.
+    /// roughly up: maps the eye to the origin looking down -Z. When `up`
+    /// is parallel to the view direction (a camera looking straight down
+    /// with `up` +Y) or zero, the world axis least aligned with the view
+    /// direction stands in for it. The view direction is normalised
+    /// without overflow or underflow for any finite `eye` and `target`;
+    /// only `eye == target` (no direction) gives no view.
     pub fn look_at(eye: Vec3, target: Vec3, up: Vec3) -> Self {
-        let f = (target - eye).normalized();
-        let s = f.cross(up).normalized();
+        let f = unit(target - eye);
+        let mut s = f.cross(up).normalized();
+        if s.length() < 0.5 {
+            let axis = if f.x.abs() <= f.y.abs() && f.x.abs() <= f.z.abs() {
+                Vec3::new(1.0, 0.0, 0.0)
+            } else if f.y.abs() <= f.z.abs() {
+                Vec3::new(0.0, 1.0, 0.0)
+            } else {
+                Vec3::new(0.0, 0.0, 1.0)
+            };
+            s = f.cross(axis).normalized();
+        }
         let u = s.cross(f);
         Self {
             m: [
@@ -264,6 +279,29 @@ impl Mat4 {
     }
 }
 
+/// `v` as a unit vector: normalised in `f32` as [`Vec3::normalized`] does
+/// when its squared length is a normal `f32` (components between about
+/// 10^-18 and 10^18), and in `f64` otherwise, where the square of any
+/// finite `f32` is representable (a direction between points 10^20
+/// apart, or 10^-20); zero stays zero.
+fn unit(v: Vec3) -> Vec3 {
+    let squared = v.dot(v);
+    if squared.is_normal() {
+        return v.normalized();
+    }
+    let [x, y, z] = [v.x, v.y, v.z].map(f64::from);
+    let length = libm::sqrt(x * x + y * y + z * z);
+    if length > 0.0 && length.is_finite() {
+        Vec3::new(
+            (x / length) as f32,
+            (y / length) as f32,
+            (z / length) as f32,
+        )
+    } else {
+        v
+    }
+}
+
 /// Newell's normal of a polygon (not normalised): the sum of the cross
 /// products of the fan from its first corner, relative to that corner so
 /// no large coordinates multiply. Its length is twice the polygon's area;
@@ -293,6 +331,37 @@ pub fn radians(degrees: f32) -> f32 {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn look_at_gives_a_view_for_any_eye_but_the_target() {
+        let orthonormal = |m: &Mat4| {
+            let row = |r: usize| Vec3::new(m.m[r][0], m.m[r][1], m.m[r][2]);
+            let (a, b, c) = (row(0), row(1), row(2));
+            let unit = |v: Vec3| (v.length() - 1.0).abs() < 1e-5;
+            unit(a) && unit(b) && unit(c) && a.dot(b).abs() < 1e-5 && b.dot(c).abs() < 1e-5
+        };
+        let up = Vec3::new(0.0, 1.0, 0.0);
+        for eye in [
+            Vec3::new(0.0, 5.0, 0.0),         // straight above, up parallel
+            Vec3::new(0.0, -5.0, 0.0),        // straight below
+            Vec3::new(1e-11, -3.6e34, 3e-30), // squared length overflows
+            Vec3::new(3e-30, 2e-30, 1e-30),   // squared length underflows
+            Vec3::new(2.0, 1.0, 3.0),
+        ] {
+            let view = Mat4::look_at(eye, Vec3::default(), up);
+            assert!(orthonormal(&view), "{eye:?}: {view:?}");
+            // The target lies straight ahead.
+            let t = view.transform_point(Vec3::default());
+            assert!(
+                t.x.abs() <= 1e-5 * t.z.abs() && t.y.abs() <= 1e-5 * t.z.abs() && t.z < 0.0,
+                "{t:?}"
+            );
+        }
+        // An ordinary view is what it always was.
+        let (eye, target) = (Vec3::new(2.0, 1.0, 3.0), Vec3::new(0.5, 0.0, 0.0));
+        let f = (target - eye).normalized();
+        assert_eq!(Mat4::look_at(eye, target, up).m[2][..3], [-f.x, -f.y, -f.z]);
+    }
+
     use super::*;
 
     fn close(a: f32, b: f32) -> bool {

@@ -738,24 +738,31 @@ impl Frame {
     /// Whether a face that needs clipping lies wholly outside one frustum
     /// plane beyond doubt, whatever its size: each corner farther outside
     /// it than the arithmetic's error (a few units of 2^-53 of the corner's
-    /// size on each coordinate; a frustum plane adds two of them).
-    /// Otherwise it is clipped, if it is within the clipper's range
-    /// ([`CLIP_RANGE`]), and refused with [`Error::ClipRange`] if not (or
-    /// if its size is not finite). Out of line: the rare path's, kept out
-    /// of the common path's code.
+    /// size on each coordinate; a frustum plane adds two of them), or each
+    /// corner at or behind the eye (`w <= 0`) beyond doubt. Otherwise it
+    /// is clipped, if it is within the clipper's range ([`CLIP_RANGE`]),
+    /// and refused with [`Error::ClipRange`] if not (or if its size is not
+    /// finite, or the projection is singular). Out of line: the rare
+    /// path's, kept out of the common path's code.
     #[inline(never)]
     fn wholly_outside<M: Mesh + ?Sized>(&self, mesh: &M, corners: &[u16]) -> Result<bool, Error> {
         let (mut outside, mut size) = (u32::MAX, 0.0f64);
         for &index in corners {
             let p = self.clip_position64(mesh, usize::from(index));
             let corner_size = self.clip_size64(mesh, usize::from(index));
-            outside &= clip::outside_mask_beyond(p, &clip::FRUSTUM, CLIP_ERROR * corner_size);
+            let margin = CLIP_ERROR * corner_size;
+            // Bit 6: not in front of the eye (w <= 0) for certain.
+            let behind = if p.w <= -margin { 1 << 6 } else { 0 };
+            outside &= clip::outside_mask_beyond(p, &clip::FRUSTUM, margin) | behind;
             size = size.max(corner_size);
         }
         if outside != 0 {
             return Ok(true);
         }
-        let within = size <= CLIP_RANGE * self.clip64().w_near;
+        // A singular projection has no frustum (its smallest w is 0): no
+        // face can be clipped.
+        let w_near = self.clip64().w_near;
+        let within = w_near > 0.0 && size <= CLIP_RANGE * w_near;
         if within {
             Ok(false)
         } else {
