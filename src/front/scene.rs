@@ -46,6 +46,14 @@
 //!
 //! Depth handed to the core is `z_ndc` mapped to `[0, 1]`. It is affine in
 //! screen space, so the core's plane stepping is exact.
+//!
+//! **Precision of the `f32` transform.** A vertex that needs no clipping
+//! is transformed and projected in `f32`: its error is a few units of
+//! `2^-24` of the sum of its transform's absolute terms, divided by its
+//! `w`. That is a fraction of a sub-pixel step when the model and camera
+//! sit near the world's origin, but a camera far from the origin looking
+//! at a mesh near it (translations that cancel) loses that precision, as
+//! any `f32` pipeline does: keep the world's origin near what is drawn.
 
 use core::cell::OnceCell;
 use core::fmt;
