@@ -26,9 +26,14 @@ use zline::front::geometry::Mat4;
 use zline::front::mesh::Mesh;
 use zline::front::scene::{Camera, Cull, reference_model};
 use zline::front::shade::Shading;
-use zline::host::{HostMesh, QuantizedHostMesh, obj_files, parse_size, run_tool};
-use zline::methods::{Comparison, Method, MethodRenderer, ReferenceFrame, ReferenceView, compare};
+use zline::host::{HostMesh, QuantizedHostMesh};
 use zline::{Depth16, Depth24, DepthFormat};
+use zline_lab::cli::obj_files;
+use zline_lab::cli::parse_size;
+use zline_lab::cli::run_tool;
+use zline_lab::methods::{
+    Comparison, Method, MethodRenderer, ReferenceFrame, ReferenceView, compare,
+};
 
 /// (yaw, pitch) of the three views, degrees.
 const VIEWS: [(f32, f32); 3] = [(30.0, 20.0), (135.0, -30.0), (250.0, 65.0)];

@@ -21,10 +21,11 @@ use zline::front::geometry::Mat4;
 use zline::front::mesh::Mesh;
 use zline::front::scene::{Camera, Cull, FaceInfo, VertexCache, draw_mesh, reference_model};
 use zline::front::shade::Shading;
-use zline::host::{
-    BandedRenderer, HostMesh, SharedSteps, host_renderer, load_model, parse_size, run_tool,
-};
+use zline::host::{BandedRenderer, HostMesh, SharedSteps, host_renderer};
 use zline::{Depth16, FnSink};
+use zline_lab::cli::load_model;
+use zline_lab::cli::parse_size;
+use zline_lab::cli::run_tool;
 
 /// Untimed frames before the timed ones.
 const WARM_UP: usize = 5;

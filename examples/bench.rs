@@ -23,9 +23,11 @@ use std::time::Instant;
 
 use zline::front::scene::{Camera, Cull, reference_model};
 use zline::front::shade::Shading;
-use zline::host::{load_model, parse_size, run_tool};
-use zline::methods::{Method, MethodRenderer, ReferenceView};
 use zline::{Depth16, Depth24};
+use zline_lab::cli::load_model;
+use zline_lab::cli::parse_size;
+use zline_lab::cli::run_tool;
+use zline_lab::methods::{Method, MethodRenderer, ReferenceView};
 
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);

@@ -1,4 +1,4 @@
-//! The adversarial catalogue (`zline::methods::catalogue`): every case by
+//! The adversarial catalogue (`zline_lab::methods::catalogue`): every case by
 //! every method against the float64 reference, as a Markdown table (the
 //! README's), and the gallery: each case's frame by the scanline core (and
 //! by the painter where it breaks) as PNG.
@@ -18,9 +18,9 @@ use std::process::ExitCode;
 use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::prelude::*;
 use embedded_graphics_simulator::{OutputSettings, SimulatorDisplay};
-use zline::host::run_tool;
-use zline::methods::catalogue::{self, Expect, METHODS, label};
-use zline::methods::{Method, MethodFrame};
+use zline_lab::cli::run_tool;
+use zline_lab::methods::catalogue::{self, Expect, METHODS, label};
+use zline_lab::methods::{Method, MethodFrame};
 
 fn save(frame: &MethodFrame, path: &PathBuf) -> Result<(), String> {
     let (w, h) = catalogue::SIZE;

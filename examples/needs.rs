@@ -16,9 +16,11 @@ use std::process::ExitCode;
 use embedded_graphics::pixelcolor::Rgb565;
 use zline::front::scene::{Camera, Cull, reference_model};
 use zline::front::shade::Shading;
-use zline::host::{load_model, parse_size, run_tool};
-use zline::methods::HostScanline;
 use zline::{Capacities, Depth16, Depth24, FrameStats};
+use zline_lab::cli::load_model;
+use zline_lab::cli::parse_size;
+use zline_lab::cli::run_tool;
+use zline_lab::methods::HostScanline;
 
 fn run(args: &[String]) -> Result<(), String> {
     let (mut path, mut size, mut cull, mut pitch, mut views) =

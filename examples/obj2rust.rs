@@ -28,7 +28,9 @@
 use std::io::Write as _;
 use std::process::ExitCode;
 
-use zline::host::{HostMesh, quantized_mesh_source, static_mesh_source};
+use zline::host::HostMesh;
+use zline_lab::rust_source::quantized_mesh_source;
+use zline_lab::rust_source::static_mesh_source;
 
 fn run(args: &[String]) -> Result<(), String> {
     let (quantized, rest) = match args.first().map(String::as_str) {

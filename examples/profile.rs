@@ -47,8 +47,11 @@ use embedded_graphics::prelude::IntoStorage;
 use zline::front::mesh::Mesh;
 use zline::front::scene::{Camera, Cull, VertexCache, draw_mesh, reference_model};
 use zline::front::shade::Shading;
-use zline::host::{HostMesh, host_renderer, load_model, parse_size, run_tool};
+use zline::host::{HostMesh, host_renderer};
 use zline::{Depth16, FnSink};
+use zline_lab::cli::load_model;
+use zline_lab::cli::parse_size;
+use zline_lab::cli::run_tool;
 
 /// Copies one finished row into the frame buffer (the sink stage).
 #[inline(never)]

@@ -29,7 +29,7 @@
 //! The view: positions normalised to the unit sphere about their bounding
 //! box centre, rotated `Rx(pitch) · Ry(yaw)`, eye at (0, 0, 3) looking down
 //! -Z, 45° vertical field of view, near 0.1, far 10 (see
-//! `zline::front::scene::reference_model` and `zline::methods::ReferenceView`).
+//! `zline::front::scene::reference_model` and `zline_lab::methods::ReferenceView`).
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -41,9 +41,12 @@ use embedded_graphics::primitives::Rectangle;
 use embedded_graphics_simulator::{OutputSettings, SimulatorDisplay};
 use zline::front::scene::{Camera, Cull, reference_model};
 use zline::front::shade::Shading;
-use zline::host::{HostMesh, load_model, parse_size, run_tool};
-use zline::methods::{BACKGROUND, Method, MethodRenderer, ReferenceView};
+use zline::host::HostMesh;
 use zline::{Depth16, Depth24, DepthFormat};
+use zline_lab::cli::load_model;
+use zline_lab::cli::parse_size;
+use zline_lab::cli::run_tool;
+use zline_lab::methods::{BACKGROUND, Method, MethodRenderer, ReferenceView};
 
 /// Parsed command line.
 #[derive(Debug)]

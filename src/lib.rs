@@ -32,20 +32,11 @@
 //! | | `raster::plane`, `raster::edge`, `raster::active`, `raster::slots`, `raster::lanes`, `raster::wide` (internal) | the plane set-up, the exact edge DDA, the active tables, the capacity-erased lists they live in (the active polygon table's with an order array of slots), the branch-free span blocks for hosts, exact 32x32→64 products for cores without a long multiply |
 //! | blitter | [`sink`] | finished rows to a `DrawTarget` ([`DrawTargetSink`]), a closure ([`FnSink`]) or a checksum ([`Crc32Sink`]); or drawn straight into a sink's own buffers ([`LentRow`]), a frame buffer's rows for one ([`FrameBufferSink`]) |
 //! | | [`error`] | what can go wrong, by name |
-//! | comparison (feature `std`) | [`methods`] | the renderers and checks zline is measured against: every method behind one input and output ([`methods::Method`], [`methods::MethodRenderer`]), the interval scanline, the painter's algorithm, the float64 reference, the exact oracle |
-//! | | `methods::reference` | the float64 ray-cast reference ([`methods::ReferenceFrame`]) |
-//! | | [`methods::exact`] | the exact rational oracle for the core |
-//! | | `methods::accuracy` | face-id comparison with the reference, mismatches excused or hard |
-//! | | `methods::scanline_host` | the scanline core on `Vec` storage, whole-frame output ([`methods::HostScanline`]) |
-//! | tools' support (feature `std`) | [`host`] | what the examples, tools and fuzzers share |
+//! | desktop (feature `std`) | [`host`] | what a desktop program needs: storage sized from the mesh, a frame in bands on threads |
 //! | | `host::host_mesh`, `host::storage` | meshes and core storage in `Vec`s ([`host::HostMesh`], [`host::TableVecs`], [`host::ScanVecs`]) |
 //! | | `host::bands` | one frame in bands of rows on several threads, each band's tables built from the whole scene ([`host::BandedRenderer`], [`host::BandTables`]) |
 //! | | [`host::coplanar`] | the faces of a mesh that overlap in one plane, to share it ([`front::mesh::SharedPlane`]) |
 //! | | `host::quantize` | a mesh quantized for the integer front end, in `Vec`s ([`host::QuantizedHostMesh`]) |
-//! | | [`host::shapes`] | procedural meshes (torus knot, icosphere, boxes, terrain) |
-//! | | `host::rust_source` | a mesh as Rust statics for flash |
-//! | | `host::cli` | the command-line helpers the tools share |
-//! | | [`host::fuzz_checks`] | the properties the fuzzers check, replayed by `cargo test` |
 //!
 //! ```
 //! use embedded_graphics::mock_display::MockDisplay;
@@ -78,8 +69,6 @@ pub mod error;
 pub mod front;
 #[cfg(feature = "std")]
 pub mod host;
-#[cfg(feature = "std")]
-pub mod methods;
 pub mod raster;
 pub mod sink;
 

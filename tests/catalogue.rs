@@ -1,12 +1,12 @@
-//! The adversarial catalogue (`zline::methods::catalogue`): every method
+//! The adversarial catalogue (`zline_lab::methods::catalogue`): every method
 //! does what each case says it should (correct, wrong, or a clear error),
 //! coplanar faces keep one winner over a moving camera, a T-junction shows
 //! no crack, and every capacity exceeded is an error.
 
 use zline::host::HostMesh;
-use zline::methods::catalogue::{self, Expect, METHODS, capacity_errors, label, only_faces};
-use zline::methods::{BACKGROUND, Method};
 use zline::{Depth16, Depth24, DepthFormat};
+use zline_lab::methods::catalogue::{self, Expect, METHODS, capacity_errors, label, only_faces};
+use zline_lab::methods::{BACKGROUND, Method};
 
 #[test]
 fn every_method_meets_every_case_as_expected() {

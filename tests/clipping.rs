@@ -15,10 +15,10 @@ use zline::front::mesh::{Mesh, StaticMesh};
 use zline::front::scene::{
     CLIP_BAND_PX, CLIP_RANGE, Camera, Cull, DrawError, VertexCache, draw_mesh,
 };
-use zline::methods::clip_reference::{FaceError, clipped_face, compare_face};
 use zline::raster::fixed::SUBPIXEL_STEPS;
 use zline::raster::{ScanArrays, TableArrays};
 use zline::{Depth24, Error, Renderer};
+use zline_lab::methods::clip_reference::{FaceError, clipped_face, compare_face};
 
 type R = Renderer<TableArrays<u32, 64, 16, 64>, ScanArrays<u32, Depth24, 160, 16, 16>>;
 

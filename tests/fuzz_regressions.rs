@@ -1,5 +1,5 @@
 //! Every saved fuzzer input, replayed through the fuzzers' own checks
-//! (`zline::host::fuzz_checks`): the seed corpora in `fuzz/seeds/` and
+//! (`zline_lab::fuzz_checks`): the seed corpora in `fuzz/seeds/` and
 //! each finding in `fuzz/regressions/`, named after what it found. A
 //! finding is added here before its fix, so it fails until then.
 
@@ -27,15 +27,15 @@ fn replay(target: &str, check: fn(&[u8])) {
 
 #[test]
 fn obj_reader_inputs() {
-    replay("obj_reader", zline::host::fuzz_checks::obj_reader);
+    replay("obj_reader", zline_lab::fuzz_checks::obj_reader);
 }
 
 #[test]
 fn core_scene_inputs() {
-    replay("core_scene", zline::host::fuzz_checks::core_scene);
+    replay("core_scene", zline_lab::fuzz_checks::core_scene);
 }
 
 #[test]
 fn pipeline_inputs() {
-    replay("pipeline", zline::host::fuzz_checks::pipeline);
+    replay("pipeline", zline_lab::fuzz_checks::pipeline);
 }

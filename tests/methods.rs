@@ -5,9 +5,9 @@
 
 use zline::front::scene::{Camera, Cull, reference_model};
 use zline::front::shade::Shading;
-use zline::host::shapes;
-use zline::methods::{Method, MethodRenderer, ReferenceView, compare};
 use zline::{Depth16, Depth24, DepthFormat};
+use zline_lab::methods::{Method, MethodRenderer, ReferenceView, compare};
+use zline_lab::shapes;
 
 const W: u16 = 160;
 const H: u16 = 120;
@@ -17,7 +17,7 @@ fn frames<D: DepthFormat>(
     yaw: f32,
     pitch: f32,
     cull: Cull,
-) -> Vec<(Method, zline::methods::MethodFrame)>
+) -> Vec<(Method, zline_lab::methods::MethodFrame)>
 where
     D::Value: Into<u32>,
 {
@@ -72,7 +72,7 @@ fn methods_agree_where_they_should() {
                 assert_eq!(f.depths, scanline.depths, "{name} {cull:?} {}", m.name());
                 assert_eq!(f.colors, scanline.colors);
             }
-            let reference = zline::methods::ReferenceFrame::render(
+            let reference = zline_lab::methods::ReferenceFrame::render(
                 &shapes::by_name(name).unwrap(),
                 &ReferenceView {
                     width: usize::from(W),
@@ -128,9 +128,9 @@ fn methods_parse_and_print() {
 /// step, that holds for any depth rounding to it.
 #[test]
 fn a_surface_at_the_far_plane_shows_only_in_the_interval_method() {
-    use zline::methods::interval::render_intervals;
     use zline::raster::fixed::DEPTH_MAX;
     use zline::{FnSink, ScreenVertex};
+    use zline_lab::methods::interval::render_intervals;
     let s = zline::raster::fixed::SUBPIXEL_STEPS;
     let far = [(1, 1), (14, 1), (1, 10)]
         .map(|(x, y)| ScreenVertex::new(x * s, y * s, DEPTH_MAX).unwrap());

@@ -11,9 +11,10 @@ use zline::front::scene::{
     Camera, Cull, DrawError, MAX_FACE_CORNERS, VertexCache, bounding_sphere, draw_mesh,
     reference_model,
 };
-use zline::host::{HostMesh, shapes};
+use zline::host::HostMesh;
 use zline::raster::{ScanArrays, TableArrays};
 use zline::{Depth24, Error, Renderer};
+use zline_lab::shapes;
 
 type Big = Renderer<TableArrays<u32, 2048, 2048, 6144>, ScanArrays<u32, Depth24, 96, 512, 512>>;
 const W: u16 = 96;

@@ -10,10 +10,9 @@ use zline::front::scene::{
     Camera, Cull, DrawError, FaceInfo, ProjectedVertex, VertexCache, bounding_sphere, draw_mesh,
     draw_mesh_projected, project_vertices, reference_model, reference_model_around,
 };
-use zline::host::{
-    BandedRenderer, HostMesh, MESH_VERTICES, QuantizedHostMesh, host_renderer, shapes,
-};
+use zline::host::{BandedRenderer, HostMesh, MESH_VERTICES, QuantizedHostMesh, host_renderer};
 use zline::{Capacities, Depth16, Error, FnSink};
+use zline_lab::shapes;
 
 const WIDTH: u16 = 96;
 const HEIGHT: u16 = 72;

@@ -11,9 +11,10 @@ use zline::front::mesh::{Mesh, StaticMesh};
 use zline::front::quantized::QuantizedMesh;
 use zline::front::scene::{Camera, Cull, reference_model};
 use zline::front::shade::Shading;
-use zline::host::{HostMesh, QuantizedHostMesh, shapes};
-use zline::methods::{HostScanline, ReferenceFrame, ReferenceView, compare};
+use zline::host::{HostMesh, QuantizedHostMesh};
 use zline::{Depth16, Depth24, DepthFormat};
+use zline_lab::methods::{HostScanline, ReferenceFrame, ReferenceView, compare};
+use zline_lab::shapes;
 
 const W: u16 = 160;
 const H: u16 = 120;

@@ -11,10 +11,10 @@ mod common;
 
 use common::capture;
 use proptest::prelude::*;
-use zline::methods::exact::check_frame;
 use zline::raster::fixed::{DEPTH_MAX, SUBPIXEL_STEPS};
 use zline::raster::{ScanArrays, TableArrays};
 use zline::{Admission, Depth16, Depth24, DepthFormat, Renderer, ScreenVertex};
+use zline_lab::methods::exact::check_frame;
 
 const W: usize = 40;
 const H: u16 = 32;

@@ -8,8 +8,9 @@ use zline::Depth24;
 use zline::front::mesh::Mesh;
 use zline::front::scene::{Camera, Cull, reference_model};
 use zline::front::shade::Shading;
-use zline::host::{HostMesh, shapes};
-use zline::methods::HostScanline;
+use zline::host::HostMesh;
+use zline_lab::methods::HostScanline;
+use zline_lab::shapes;
 
 fn directed_edges(mesh: &HostMesh) -> HashMap<(u16, u16), u32> {
     let mut edges = HashMap::new();

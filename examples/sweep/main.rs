@@ -15,7 +15,7 @@
 //! 30, pitch 20, no culling). Times are medians of interleaved rounds
 //! (every configuration of a scene once per round, after one warm-up
 //! round), wall-clock on one thread. Memory is what each method keeps for
-//! the frame with Rgb565 colour ([`zline::methods::Memory`]).
+//! the frame with Rgb565 colour ([`zline_lab::methods::Memory`]).
 //!
 //! It writes, to the output folder, one SVG and one CSV per chart:
 //! `accuracy` (time against wrong-face pixels, every method and depth
@@ -34,8 +34,9 @@ use std::process::ExitCode;
 use chart::{Panel, Point, Series};
 use measure::{Config, Sample, Scene};
 use plotters::chart::SeriesLabelPosition;
-use zline::host::{load_model, run_tool};
-use zline::methods::Method;
+use zline_lab::cli::load_model;
+use zline_lab::cli::run_tool;
+use zline_lab::methods::Method;
 
 struct Options {
     quick: bool,
@@ -91,12 +92,12 @@ fn parse(args: &[String]) -> Result<Options, String> {
 
 /// The machine and the date, for `machine.txt` and the charts' captions.
 fn machine() -> String {
-    let (cpu, threads) = zline::host::cpu();
+    let (cpu, threads) = zline_lab::machine::cpu();
     format!(
         "{cpu}, {threads} threads, {}-{}; {}",
         std::env::consts::OS,
         std::env::consts::ARCH,
-        zline::host::now_utc()
+        zline_lab::machine::now_utc()
     )
 }
 
@@ -136,7 +137,7 @@ fn accuracy_chart(o: &Options, caption: &str, progress: &mut Progress) -> Result
         Config::new(Method::Reference, false, false),
     ];
     let (w, h) = (320u16, 240u16);
-    let mut files = zline::host::obj_files(&o.meshes)?;
+    let mut files = zline_lab::cli::obj_files(&o.meshes)?;
     if o.quick {
         files.retain(|f| {
             let n = f.file_stem().map(|s| s.to_string_lossy().into_owned());
@@ -449,7 +450,7 @@ fn precision_chart(o: &Options, caption: &str, progress: &mut Progress) -> Resul
         &[10.0, 100.0, 1e3, 1e4, 1e5]
     };
     let mut scenes: Vec<(String, zline::host::HostMesh)> =
-        vec![("plates".into(), zline::methods::catalogue::plates())];
+        vec![("plates".into(), zline_lab::methods::catalogue::plates())];
     let real = if o.quick {
         &["suzanne"][..]
     } else {
@@ -468,10 +469,10 @@ fn precision_chart(o: &Options, caption: &str, progress: &mut Progress) -> Resul
         .map(|_| configs.iter().map(|c| Series::new(&c.label())).collect())
         .collect();
     for &ratio in ratios {
-        let camera = zline::methods::ReferenceCamera {
+        let camera = zline_lab::methods::ReferenceCamera {
             near: 10.0 / ratio,
             far: 10.0,
-            ..zline::methods::ReferenceCamera::STANDARD
+            ..zline_lab::methods::ReferenceCamera::STANDARD
         };
         let mut real_wrong = vec![0usize; configs.len()];
         for (k, (name, mesh)) in scenes.iter().enumerate() {
@@ -563,7 +564,7 @@ fn run(args: &[String]) -> Result<(), String> {
     let accuracy_scenes = if o.quick {
         3
     } else {
-        zline::host::obj_files(&o.meshes)?.len()
+        zline_lab::cli::obj_files(&o.meshes)?.len()
     };
     let mut progress = Progress {
         done: 0,

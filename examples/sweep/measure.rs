@@ -9,11 +9,11 @@ use zline::front::mesh::Mesh;
 use zline::front::scene::{Camera, Cull, reference_model};
 use zline::front::shade::Shading;
 use zline::host::{HostMesh, QuantizedHostMesh};
-use zline::methods::{
+use zline::{Depth16, Depth24};
+use zline_lab::methods::{
     BACKGROUND, Memory, Method, MethodFrame, MethodRenderer, ReferenceCamera, ReferenceFrame,
     ReferenceView, compare,
 };
-use zline::{Depth16, Depth24};
 
 /// A method with a depth format (z16 or z24, for the methods that store
 /// depth) and a front end (`f32`, or the integer path of a quantized mesh).

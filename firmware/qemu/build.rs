@@ -23,7 +23,9 @@ use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use zline::front::mesh::Mesh;
 use zline::front::quantized::QuantizedMesh;
 use zline::front::scene::VertexCache;
-use zline::host::{HostMesh, QuantizedHostMesh, quantized_mesh_source, shapes};
+use zline::host::{HostMesh, QuantizedHostMesh};
+use zline_lab::rust_source::quantized_mesh_source;
+use zline_lab::shapes;
 use zline::host::{ScanVecs, TableVecs, host_renderer};
 use zline::{Capacities, Crc32Sink, Depth16, Depth24, DepthFormat, FrameStats, Renderer};
 
@@ -111,7 +113,7 @@ fn generate() -> String {
             let source = quantized_mesh_source(
                 &mesh,
                 &const_name(shape),
-                &format!("zline::host::shapes `{shape}`"),
+                &format!("zline_lab::shapes `{shape}`"),
             )
             .expect("mesh source");
             out.push_str(&source);

@@ -25,9 +25,9 @@ use std::process::ExitCode;
 use zline::front::mesh::{Mesh, StaticMesh};
 use zline::front::scene::{MAX_FACE_CORNERS, VertexCache, bounding_sphere};
 use zline::front::shade::Shading;
-use zline::host::{
-    HostMesh, QuantizedHostMesh, ScanVecs, TableVecs, host_renderer, quantized_mesh_source, shapes,
-};
+use zline::host::{HostMesh, QuantizedHostMesh, ScanVecs, TableVecs, host_renderer};
+use zline_lab::rust_source::quantized_mesh_source;
+use zline_lab::shapes;
 use zline::{Capacities, Crc32Sink, Depth16, FrameStats, Renderer, RowSink};
 
 /// Room for any view on the host, where the capacities are measured.
@@ -116,7 +116,7 @@ fn run() -> Result<(), String> {
         }
         None => (
             shapes::by_name(DEFAULT_SHAPE).ok_or("built-in shape missing")?,
-            format!("zline::host::shapes::by_name({DEFAULT_SHAPE:?})"),
+            format!("zline_lab::shapes::by_name({DEFAULT_SHAPE:?})"),
         ),
     };
     check_mesh(&mesh, &origin)?;

@@ -232,10 +232,13 @@ pub struct BandTiming {
 ///
 /// ```
 /// use zline::front::scene::{Camera, Cull, reference_model};
-/// use zline::host::{BandedRenderer, shapes};
+/// use zline::host::{BandedRenderer, HostMesh};
 /// use zline::{Capacities, Depth16, FnSink};
 ///
-/// let mesh = shapes::torus_knot(2, 3, 64, 8, 0.45);
+/// // A cube.
+/// let obj = b"v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n\
+///     f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
+/// let mesh = HostMesh::from_obj(obj)?;
 /// let (width, height) = (160u16, 120u16);
 /// let caps = Capacities {
 ///     width: usize::from(width),

@@ -26,6 +26,7 @@ pub mod capacities;
 pub mod depth;
 mod edge;
 pub mod fixed;
+pub mod inspect;
 pub(crate) mod lanes;
 mod plane;
 pub mod scan;

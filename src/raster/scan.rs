@@ -523,78 +523,11 @@ impl<C: Copy, D: DepthFormat> RowBuffers<'_, C, D> {
     }
 }
 
-/// The plane a polygon is drawn with on a row, set up as the scanner sets
-/// it up at activation: for the comparison methods that draw from the same
-/// tables ([`crate::methods`]).
-#[cfg(feature = "std")]
-#[derive(Debug, Clone, Copy)]
-pub(crate) enum RowPlane {
-    /// The gradient and the value at column 0 of the row, in plane units.
-    Stepped { dz_dx: i64, row_value: i64 },
-    /// A steep plane, evaluated exactly at each pixel.
-    Exact(Plane),
-}
-
-#[cfg(feature = "std")]
-impl RowPlane {
-    /// The plane value at pixel `x` of `row` (the row it was set up for).
-    pub fn value(&self, x: i32, row: u16) -> i64 {
-        match *self {
-            Self::Stepped { dz_dx, row_value } => row_value + dz_dx * i64::from(x),
-            Self::Exact(plane) => plane.value_at_pixel(x, i32::from(row)),
-        }
-    }
-}
-
-/// The plane of the polygon at `position` on `row` (see [`RowPlane`]);
-/// `None` for a polygon of no area.
-#[cfg(feature = "std")]
-pub(crate) fn row_plane<C>(
-    tables: &Prepared<'_, C>,
-    position: usize,
-    row: u16,
-) -> Option<RowPlane> {
-    let polygon = &tables.polygons[position];
-    if polygon.shared_plane().is_some() {
-        let plane = shared_plane_of(polygon, tables.corners, tables.vertices)?;
-        return Some(match shared_depth(&plane, tables.width, tables.height) {
-            SpanDepth::Shared {
-                dz_dx,
-                dz_dy,
-                row0_value,
-            } => RowPlane::Stepped {
-                dz_dx,
-                row_value: row0_value + i64::from(row) * dz_dy,
-            },
-            _ => RowPlane::Exact(plane),
-        });
-    }
-    let corners = || entry_corners(polygon, tables.corners, tables.vertices);
-    if polygon.corner_count() == 3 {
-        let mut c = corners();
-        let (a, b, cc) = (c.next()?, c.next()?, c.next()?);
-        if let Some(plane) = TrianglePlane::new(a, b, cc) {
-            return Some(RowPlane::Stepped {
-                dz_dx: plane.dz_dx,
-                row_value: plane.row_start(row),
-            });
-        }
-    }
-    let plane = Plane::new(corners())?;
-    Some(match plane.gradients() {
-        Some((dz_dx, dz_dy)) => RowPlane::Stepped {
-            dz_dx,
-            row_value: plane.row_start((dz_dx, dz_dy), tables.width, polygon.first_row, row),
-        },
-        None => RowPlane::Exact(plane),
-    })
-}
-
 /// The plane of a polygon that shares one
 /// ([`Tables::share_plane`](crate::raster::Tables::share_plane)): the
 /// triangle of the three corners after its own.
 #[inline(never)]
-fn shared_plane_of<C>(
+pub(crate) fn shared_plane_of<C>(
     polygon: &PolygonEntry<C>,
     corners: &[u16],
     vertices: &[ScreenVertex],
@@ -621,7 +554,7 @@ pub(crate) fn polygon_plane<C>(
 /// ([`SpanDepth::Shared`]: the plane's gradients and its value at column 0
 /// of row 0); [`SpanDepth::Exact`] when the plane is steep.
 #[inline(never)]
-fn shared_depth(plane: &Plane, width: u16, height: u16) -> SpanDepth {
+pub(crate) fn shared_depth(plane: &Plane, width: u16, height: u16) -> SpanDepth {
     match plane.gradients() {
         Some((dz_dx, dz_dy)) => SpanDepth::Shared {
             dz_dx,

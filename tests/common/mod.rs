@@ -1,11 +1,11 @@
 //! What the integration tests share: the exact oracle (from
-//! `zline::methods::exact`), frame capture, and recording tables.
+//! `zline_lab::methods::exact`), frame capture, and recording tables.
 #![allow(dead_code)]
 
-#[allow(unused_imports)]
-pub use zline::methods::exact::{covers, exact_depth, exactly_rounded, format_scale, sample};
 use zline::raster::{ScanArrays, TableArrays};
 use zline::{DepthFormat, FnSink, Renderer, ScreenVertex};
+#[allow(unused_imports)]
+pub use zline_lab::methods::exact::{covers, exact_depth, exactly_rounded, format_scale, sample};
 
 /// A frame captured from the renderer: colour and depth per pixel.
 pub struct Frame<Z> {

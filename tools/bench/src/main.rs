@@ -29,7 +29,7 @@ use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use zline::methods::ReferenceFrame;
+use zline_lab::methods::ReferenceFrame;
 
 use crate::cli::Options;
 use crate::peers::embedded_3dgfx::{Embedded3dgfxRenderer, MeshData};
@@ -83,7 +83,7 @@ fn run(args: &[String]) -> Result<(), String> {
          - date: {}\n\
          - view: yaw {}°, pitch {}°; {} timed rounds per configuration; thread CPU time\n",
         report::machine(),
-        zline::host::now_utc(),
+        zline_lab::machine::now_utc(),
         options.yaw,
         options.pitch,
         options.rounds

@@ -124,6 +124,6 @@ pub fn markdown(rows: &[Row]) -> String {
 
 /// `model name` from `/proc/cpuinfo` and the number of logical CPUs.
 pub fn machine() -> String {
-    let (model, cpus) = zline::host::cpu();
+    let (model, cpus) = zline_lab::machine::cpu();
     format!("{model}, {cpus} cores")
 }

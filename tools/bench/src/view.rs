@@ -1,5 +1,5 @@
 //! The view contract every renderer draws: zline's reference view
-//! (`zline::methods::ReferenceFrame`, `examples/render.rs`), restated here
+//! (`zline_lab::methods::ReferenceFrame`, `examples/render.rs`), restated here
 //! in `f32` for the peers.
 //!
 //! * The mesh is an OBJ file read by `zline::host::HostMesh::from_obj`;
@@ -26,7 +26,7 @@ use std::path::Path;
 
 use zline::front::mesh::Mesh as _;
 use zline::host::HostMesh;
-use zline::methods::ReferenceView;
+use zline_lab::methods::ReferenceView;
 
 /// Face id of pixels that no face covers.
 pub const BACKGROUND: u32 = u32::MAX;

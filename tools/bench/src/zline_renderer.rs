@@ -7,8 +7,8 @@ use zline::front::scene::{
 };
 use zline::front::shade::Shading;
 use zline::host::{BandedRenderer, ScanVecs, TableVecs, host_renderer};
-use zline::methods::HostScanline;
 use zline::{Depth16, FrameBufferSink, Renderer as ZRenderer};
+use zline_lab::methods::HostScanline;
 
 use crate::framebuffer::Frame565;
 use crate::renderer::Renderer;

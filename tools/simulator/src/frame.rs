@@ -18,8 +18,8 @@ use zline::front::scene::{Camera, Cull, VertexCache, draw_mesh, reference_model}
 use zline::front::shade::Shading;
 use zline::host::HostMesh;
 use zline::host::{ScanVecs, TableVecs, host_renderer};
-use zline::methods::{BACKGROUND, MethodRenderer, ReferenceFrame, ReferenceView};
 use zline::{Depth16, Depth24, DepthFormat, DrawTargetSink, RenderError, Renderer};
+use zline_lab::methods::{BACKGROUND, MethodRenderer, ReferenceFrame, ReferenceView};
 
 /// Most vertices a mesh may have (the vertex cache's capacity).
 pub const MAX_MESH_VERTICES: usize = 65_536;
@@ -30,7 +30,7 @@ pub const MAX_MESH_VERTICES: usize = 65_536;
 type WindowRenderer<D> = Renderer<TableVecs<Rgb888>, ScanVecs<Rgb888, D>>;
 
 /// Which method draws the frame: the core straight to the window, or any
-/// of the comparison methods ([`zline::methods::Method`]).
+/// of the comparison methods ([`zline_lab::methods::Method`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Method {
     /// The fixed-point scanline core.
@@ -77,8 +77,8 @@ impl Method {
     }
 
     /// The comparison method, for those the library's method renderer draws.
-    fn comparison(self) -> Option<zline::methods::Method> {
-        use zline::methods::Method as M;
+    fn comparison(self) -> Option<zline_lab::methods::Method> {
+        use zline_lab::methods::Method as M;
         match self {
             Method::ZBuffer => Some(M::ZBuffer),
             Method::Bands8 => Some(M::Bands(8)),
@@ -224,7 +224,7 @@ impl Renderers {
     /// a thread with a large stack.
     pub fn new(width: u16, height: u16) -> Result<Self, String> {
         let e = |e: zline::Error| format!("renderer: {e}");
-        let caps = &zline::methods::HOST_CAPACITIES;
+        let caps = &zline_lab::methods::HOST_CAPACITIES;
         let z16 = Box::new(host_renderer(caps, width, height, Rgb888::BLACK).map_err(e)?);
         let z24 = Box::new(host_renderer(caps, width, height, Rgb888::BLACK).map_err(e)?);
         Ok(Self {
@@ -333,7 +333,7 @@ impl Renderers {
 /// One frame by a comparison method, copied into the window.
 fn compared<D: DepthFormat>(
     renderer: &mut MethodRenderer<D>,
-    method: zline::methods::Method,
+    method: zline_lab::methods::Method,
     mesh: &HostMesh,
     view: &View,
     display: &mut SimulatorDisplay<Rgb888>,
@@ -416,7 +416,7 @@ mod tests {
     #[test]
     fn every_mode_draws() {
         let run = || {
-            let mesh = zline::host::shapes::by_name("torus-knot").unwrap();
+            let mesh = zline_lab::shapes::by_name("torus-knot").unwrap();
             let (w, h) = (96u16, 72u16);
             let mut r = Renderers::new(w, h).unwrap();
             let size = Size::new(u32::from(w), u32::from(h));

@@ -2,7 +2,8 @@
 
 use std::path::PathBuf;
 
-use zline::host::{HostMesh, parse_size};
+use zline::host::HostMesh;
+use zline_lab::cli::parse_size;
 
 /// The usage line, printed with `--help` and after a bad argument.
 pub const USAGE: &str = "usage: simulator [MODEL.obj | shape:NAME] [--size WxH] [--scale N] [--yaw DEG] [--pitch DEG] [--no-overlay]";
@@ -66,8 +67,8 @@ pub fn parse_args(args: &[String]) -> Result<Options, String> {
                     .filter(|n| (1..=16).contains(n))
                     .ok_or("--scale: expected a whole number 1 to 16")?
             }
-            "--yaw" => o.yaw = zline::host::parse_angle(arg, value()?)?,
-            "--pitch" => o.pitch = zline::host::parse_angle(arg, value()?)?,
+            "--yaw" => o.yaw = zline_lab::cli::parse_angle(arg, value()?)?,
+            "--pitch" => o.pitch = zline_lab::cli::parse_angle(arg, value()?)?,
             "--no-overlay" => o.overlay = false,
             "-h" | "--help" => o.help = true,
             s if s.starts_with("--") => return Err(format!("unknown option {s}")),
@@ -84,7 +85,7 @@ pub fn parse_args(args: &[String]) -> Result<Options, String> {
 /// Loads an OBJ file, or a built-in mesh for `shape:NAME`, and checks that
 /// the window's renderer can take it.
 pub fn load_model(path: &std::path::Path) -> Result<HostMesh, String> {
-    let mesh = zline::host::load_model(&path.to_string_lossy())?;
+    let mesh = zline_lab::cli::load_model(&path.to_string_lossy())?;
     if mesh.positions.len() > crate::frame::MAX_MESH_VERTICES {
         return Err(format!(
             "{}: {} vertices, the window takes at most {}",

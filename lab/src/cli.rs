@@ -6,7 +6,8 @@ use std::format;
 use std::process::ExitCode;
 use std::string::{String, ToString};
 
-use super::{HostMesh, shapes};
+use crate::shapes;
+use zline::host::HostMesh;
 
 /// An OBJ file, or `shape:NAME` for a built-in mesh (see [`shapes::NAMES`]).
 /// Errors name the file and, for a malformed OBJ, the line.

@@ -19,10 +19,10 @@ use std::vec::Vec;
 use super::accuracy::{Comparison, compare};
 use super::reference::{ReferenceCamera, ReferenceFrame, ReferenceView};
 use super::run::{Method, MethodFrame, MethodRenderer};
-use crate::front::scene::{Cull, reference_model};
-use crate::front::shade::Shading;
-use crate::host::HostMesh;
-use crate::{Depth16, Depth24, DepthFormat};
+use zline::front::scene::{Cull, reference_model};
+use zline::front::shade::Shading;
+use zline::host::HostMesh;
+use zline::{Depth16, Depth24, DepthFormat};
 
 /// What a method is expected to do with a case.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -158,7 +158,7 @@ fn pinwheel(n: usize) -> Result<HostMesh, String> {
 
 /// A closed unit sphere (an icosphere of 320 triangles) with the anchors.
 fn sphere() -> Result<HostMesh, String> {
-    let s = crate::host::shapes::icosphere(2);
+    let s = crate::shapes::icosphere(2);
     let mut b = Builder::new();
     for f in 0..s.face_starts.len() {
         let start = s.face_starts[f] as usize;
@@ -574,9 +574,9 @@ pub fn run(case: &Case, method: Method, z24: bool) -> (Outcome, Option<MethodFra
 fn draw_with<const V: usize, const P: usize, const E: usize, const AP: usize, const VM: usize>(
     mesh: &HostMesh,
 ) -> Option<String> {
-    use crate::front::scene::{VertexCache, draw_mesh};
-    use crate::raster::{ScanArrays, TableArrays};
-    use crate::{FnSink, Renderer};
+    use zline::front::scene::{VertexCache, draw_mesh};
+    use zline::raster::{ScanArrays, TableArrays};
+    use zline::{FnSink, Renderer};
     let (w, h) = SIZE;
     let mut renderer: std::boxed::Box<
         Renderer<TableArrays<u32, V, P, E>, ScanArrays<u32, Depth16, 160, AP, 8>>,
@@ -600,8 +600,8 @@ fn draw_with<const V: usize, const P: usize, const E: usize, const AP: usize, co
     }
     let mut sink = FnSink(|_: u16, _: &[u32], _: &[u16]| Ok::<(), core::convert::Infallible>(()));
     renderer.render(&mut sink).err().map(|e| match e {
-        crate::RenderError::Table(e) => e.to_string(),
-        crate::RenderError::Sink(never) => match never {},
+        zline::RenderError::Table(e) => e.to_string(),
+        zline::RenderError::Sink(never) => match never {},
     })
 }
 
@@ -616,8 +616,8 @@ pub fn capacity_errors() -> Vec<(&'static str, String)> {
     let say =
         |r: Option<String>| r.map_or_else(|| "fits (UNEXPECTED)".into(), |e| format!("error: {e}"));
     let zbuffer_short = {
-        use crate::raster::zbuffer::{BandBuffers, DepthTest, render_bands};
-        use crate::raster::{ActiveEdge, ActivePolygon, TableArrays, Tables};
+        use zline::raster::zbuffer::{BandBuffers, DepthTest, render_bands};
+        use zline::raster::{ActiveEdge, ActivePolygon, TableArrays, Tables};
         let (w, h) = SIZE;
         let model = reference_model(&mesh, 0.0, 0.0).ok();
         let camera = ReferenceCamera::STANDARD.camera(w, h);
@@ -626,9 +626,9 @@ pub fn capacity_errors() -> Vec<(&'static str, String)> {
                 Ok(t) => std::boxed::Box::new(t),
                 Err(e) => return vec![("tables", e.to_string())],
             };
-        let mut cache = std::boxed::Box::new(crate::front::scene::VertexCache::<64>::new());
+        let mut cache = std::boxed::Box::new(zline::front::scene::VertexCache::<64>::new());
         let drawn = model.map(|m| {
-            crate::front::scene::draw_mesh(
+            zline::front::scene::draw_mesh(
                 &mut *tables,
                 &mut cache,
                 &mesh,
@@ -667,11 +667,11 @@ pub fn capacity_errors() -> Vec<(&'static str, String)> {
             &mut sink,
         );
         match (drawn, result) {
-            (Some(Ok(_)), Err(crate::RenderError::Table(e))) => Some(e.to_string()),
+            (Some(Ok(_)), Err(zline::RenderError::Table(e))) => Some(e.to_string()),
             _ => None,
         }
     };
-    use crate::FnSink;
+    use zline::FnSink;
     vec![
         (
             "scanline: vertex table (V = 8)",

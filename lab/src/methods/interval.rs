@@ -18,12 +18,10 @@
 
 use std::vec::Vec;
 
-use crate::raster::ActiveEdge;
-use crate::raster::depth::DepthFormat;
-use crate::raster::fixed::first_sample_at_or_after;
-use crate::raster::scan::{RowPlane, entry_corners, for_each_edge, row_plane};
-use crate::raster::tables::Prepared;
-use crate::sink::RowSink;
+use zline::raster::depth::DepthFormat;
+use zline::raster::inspect::{RowPlane, edge_crossing};
+use zline::raster::tables::Prepared;
+use zline::sink::RowSink;
 
 /// One polygon's span on the current row, with its plane on that row.
 #[derive(Debug, Clone, Copy)]
@@ -53,7 +51,7 @@ impl IntervalStats {
     /// active list and a row of colour.
     pub fn working_bytes<C>(&self, width: usize) -> usize {
         self.peak_spans * core::mem::size_of::<Segment>()
-            + self.peak_active * core::mem::size_of::<(usize, RowPlane)>()
+            + self.peak_active * core::mem::size_of::<(usize, Option<RowPlane>)>()
             + width * core::mem::size_of::<C>()
     }
 }
@@ -64,10 +62,11 @@ pub fn render_intervals<C: Copy, D: DepthFormat, K: RowSink<C, D::Value>>(
     tables: &Prepared<'_, C>,
     background: C,
     sink: &mut K,
-) -> Result<IntervalStats, crate::error::RenderError<K::Error>> {
-    let (width, height) = (i32::from(tables.width), tables.height);
+) -> Result<IntervalStats, zline::error::RenderError<K::Error>> {
+    let (width, height) = (i32::from(tables.width()), tables.height());
+    let polygons: Vec<_> = tables.polygons().collect();
     let mut stats = IntervalStats::default();
-    let mut active: Vec<(usize, RowPlane)> = Vec::new();
+    let mut active: Vec<(usize, Option<RowPlane>)> = Vec::new();
     let mut next = 0usize;
     let mut segments: Vec<Segment> = Vec::new();
     let mut crossings: Vec<i32> = Vec::new();
@@ -75,18 +74,12 @@ pub fn render_intervals<C: Copy, D: DepthFormat, K: RowSink<C, D::Value>>(
     let mut colors = std::vec![background; width as usize];
     let mut depths = std::vec![D::CLEAR; width as usize];
     for row in 0..height {
-        active.retain(|&(p, _)| tables.polygons[p].end_row > row);
-        while let Some(polygon) = tables.polygons.get(next).filter(|p| p.first_row <= row) {
-            if polygon.end_row > row {
-                // The plane as the core sets it up, at this row; later rows
-                // step it by dz_dy, done here by setting it up again.
-                active.push((
-                    next,
-                    RowPlane::Stepped {
-                        dz_dx: 0,
-                        row_value: 0,
-                    },
-                ));
+        active.retain(|&(p, _)| polygons[p].rows().end > row);
+        while let Some(polygon) = polygons.get(next).filter(|p| p.rows().start <= row) {
+            if polygon.rows().end > row {
+                // The plane as the core sets it up, set up again on each
+                // row below.
+                active.push((next, None));
             }
             next += 1;
         }
@@ -94,19 +87,15 @@ pub fn render_intervals<C: Copy, D: DepthFormat, K: RowSink<C, D::Value>>(
         segments.clear();
         for entry in &mut active {
             let position = entry.0;
-            match row_plane(tables, position, row) {
-                Some(plane) => entry.1 = plane,
-                None => continue,
-            }
-            let polygon = &tables.polygons[position];
+            let polygon = &polygons[position];
+            entry.1 = polygon.row_plane(row);
+            let Some(plane) = entry.1 else {
+                continue;
+            };
             crossings.clear();
-            let corners = entry_corners(polygon, tables.corners, tables.vertices);
-            for_each_edge(corners, |top, bottom| {
-                let first = first_sample_at_or_after(top.y);
-                let end = first_sample_at_or_after(bottom.y);
-                if first <= i32::from(row) && end > i32::from(row) {
-                    let edge = ActiveEdge::start(top, bottom, row, row + 1, u32::MAX);
-                    crossings.push(edge.x);
+            polygon.for_each_edge(|top, bottom| {
+                if let Some(x) = edge_crossing(top, bottom, row) {
+                    crossings.push(x);
                 }
             });
             crossings.sort_unstable();
@@ -118,7 +107,7 @@ pub fn render_intervals<C: Copy, D: DepthFormat, K: RowSink<C, D::Value>>(
                         end,
                         key: polygon.id() + 1,
                         position,
-                        plane: entry.1,
+                        plane,
                     });
                 }
             }
@@ -160,12 +149,12 @@ pub fn render_intervals<C: Copy, D: DepthFormat, K: RowSink<C, D::Value>>(
             };
             let value_of = |k: usize, x: i32| segments[k].plane.value(x, row);
             resolve(left, right, &nearest, &value_of, &mut |x, k, value| {
-                colors[x as usize] = tables.polygons[segments[k].position].color;
+                colors[x as usize] = polygons[segments[k].position].color();
                 depths[x as usize] = D::quantize(value);
             });
         }
         sink.write_row(row, &colors, &depths)
-            .map_err(crate::error::RenderError::Sink)?;
+            .map_err(zline::error::RenderError::Sink)?;
     }
     Ok(stats)
 }

@@ -9,16 +9,16 @@ use std::vec::Vec;
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 
 use super::reference::BACKGROUND;
-use crate::error::{Error, RenderError};
-use crate::front::geometry::Mat4;
-use crate::front::mesh::Mesh;
-use crate::front::scene::{Camera, Cull, DrawError, DrawStats, VertexCache, draw_mesh};
-use crate::front::shade::Shading;
-use crate::host::{ScanVecs, TableVecs, host_renderer};
-use crate::raster::Capacities;
-use crate::raster::depth::DepthFormat;
-use crate::raster::{FrameStats, Renderer};
-use crate::sink::FnSink;
+use zline::error::{Error, RenderError};
+use zline::front::geometry::Mat4;
+use zline::front::mesh::Mesh;
+use zline::front::scene::{Camera, Cull, DrawError, DrawStats, VertexCache, draw_mesh};
+use zline::front::shade::Shading;
+use zline::host::{ScanVecs, TableVecs, host_renderer};
+use zline::raster::Capacities;
+use zline::raster::depth::DepthFormat;
+use zline::raster::{FrameStats, Renderer};
+use zline::sink::FnSink;
 
 /// What the host renderer stores per pixel: the face and its colour.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -26,7 +26,7 @@
 //!   picture from the painter is no finding; a panic or an overflow in any
 //!   method is); and the same scene from vertices projected beforehand
 //!   ([`draw_mesh_projected`]) and in two bands on two threads
-//!   ([`crate::host::BandedRenderer::render_mesh`]) gives the same rows.
+//!   ([`zline::host::BandedRenderer::render_mesh`]) gives the same rows.
 
 use std::boxed::Box;
 use std::format;
@@ -34,24 +34,24 @@ use std::string::ToString;
 use std::vec;
 use std::vec::Vec;
 
-use crate::error::{Error, RenderError};
-use crate::front::geometry::{Mat4, Vec3};
-use crate::front::mesh::{Mesh, StaticMesh};
-use crate::front::obj::{ObjMesh, ObjReader, Statement, count};
-use crate::front::scene::{
+use crate::methods::exact::{Offered, check_frame_shared};
+use zline::error::{Error, RenderError};
+use zline::front::geometry::{Mat4, Vec3};
+use zline::front::mesh::{Mesh, StaticMesh};
+use zline::front::obj::{ObjMesh, ObjReader, Statement, count};
+use zline::front::scene::{
     Camera, Cull, DrawError, ProjectedVertex, VertexCache, draw_mesh, draw_mesh_projected,
     project_vertices, reference_model,
 };
-use crate::front::shade::Shading;
-use crate::host::{BandedRenderer, ScanVecs, host_renderer};
-use crate::host::{HostMesh, QuantizedHostMesh};
-use crate::methods::exact::{Offered, check_frame_shared};
-use crate::raster::depth::{Depth16, Depth24, DepthFormat};
-use crate::raster::fixed::{DEPTH_MAX, GUARD_BAND, MAX_POLYGONS, SUBPIXEL_STEPS};
-use crate::raster::vertex::Outline;
-use crate::raster::vertex::ScreenVertex;
-use crate::raster::{Admission, Capacities, PolygonTables, Scanner, scan};
-use crate::sink::FnSink;
+use zline::front::shade::Shading;
+use zline::host::{BandedRenderer, ScanVecs, host_renderer};
+use zline::host::{HostMesh, QuantizedHostMesh};
+use zline::raster::depth::{Depth16, Depth24, DepthFormat};
+use zline::raster::fixed::{DEPTH_MAX, GUARD_BAND, MAX_POLYGONS, SUBPIXEL_STEPS};
+use zline::raster::vertex::Outline;
+use zline::raster::vertex::ScreenVertex;
+use zline::raster::{Admission, Capacities, PolygonTables, Scanner, scan};
+use zline::sink::FnSink;
 
 /// Reads fixed-size values from the front of the input; zeros once it
 /// runs out, so every input decodes to something.
@@ -154,8 +154,8 @@ pub fn obj_reader(data: &[u8]) {
 /// error (all of them when it accepts the file) keeps both rules, and the
 /// line it stops at is refused with the kind the rules give, when they
 /// give one.
-fn line_model_check(data: &[u8], error: Option<crate::front::obj::ObjError>) {
-    use crate::front::obj::ObjErrorKind;
+fn line_model_check(data: &[u8], error: Option<zline::front::obj::ObjError>) {
+    use zline::front::obj::ObjErrorKind;
     let data = data.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(data);
     // Lines end with LF, CRLF or a lone CR.
     let mut lines = Vec::new();

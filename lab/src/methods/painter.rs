@@ -17,12 +17,11 @@
 //! and the order stays as it is).
 //!
 //! The drawing itself is the core's band method with no depth test
-//! ([`crate::raster::zbuffer`]), so the fill rule is the core's.
+//! ([`zline::raster::zbuffer`]), so the fill rule is the core's.
 
 use std::vec::Vec;
 
-use crate::raster::scan::entry_corners;
-use crate::raster::tables::Prepared;
+use zline::raster::tables::Prepared;
 
 /// Most later polygons each polygon is compared with.
 pub const NEWELL_WINDOW: usize = 64;
@@ -59,13 +58,15 @@ impl Extent {
 }
 
 /// The drawing order (positions in `tables`), far to near, and its counts.
-pub fn painter_order<C>(tables: &Prepared<'_, C>) -> (Vec<u32>, PainterStats) {
+pub fn painter_order<C: Copy>(tables: &Prepared<'_, C>) -> (Vec<u32>, PainterStats) {
     let mut stats = PainterStats::default();
+    let polygons: Vec<_> = tables.polygons().collect();
     let corners_of = |position: usize| {
-        entry_corners(&tables.polygons[position], tables.corners, tables.vertices)
+        polygons[position]
+            .corners()
             .map(|v| (f64::from(v.x), f64::from(v.y), f64::from(v.z)))
     };
-    let mut extents: Vec<Extent> = (0..tables.polygons.len())
+    let mut extents: Vec<Extent> = (0..polygons.len())
         .map(|position| {
             let mut e = Extent {
                 position: position as u32,
@@ -99,7 +100,7 @@ pub fn painter_order<C>(tables: &Prepared<'_, C>) -> (Vec<u32>, PainterStats) {
     let corners = |e: &Extent| corners_of(e.position as usize).collect::<Vec<_>>();
     // Relative tolerance of the plane tests, in depth steps.
     const SLACK: f64 = 0.5;
-    let mut moved = std::vec![false; tables.polygons.len()];
+    let mut moved = std::vec![false; polygons.len()];
     let mut i = 0;
     while i < extents.len() {
         let p = extents[i];

@@ -6,8 +6,8 @@ use std::format;
 use std::string::{String, ToString};
 use std::vec::Vec;
 
-use crate::front::mesh::{SharedPlane, planar_face_bits};
-use crate::host::{HostMesh, QuantizedHostMesh};
+use zline::front::mesh::{SharedPlane, planar_face_bits};
+use zline::host::{HostMesh, QuantizedHostMesh};
 
 /// Rust source defining `pub static NAME: zline::front::mesh::StaticMesh<'static>`
 /// and its three arrays (`NAME_POSITIONS`, `NAME_CORNERS`,
@@ -77,7 +77,7 @@ pub fn static_mesh_source(mesh: &HostMesh, name: &str, origin: &str) -> Result<S
     Ok(out)
 }
 
-/// Rust source for a [`QuantizedMesh`](crate::front::quantized::QuantizedMesh)
+/// Rust source for a [`QuantizedMesh`](zline::front::quantized::QuantizedMesh)
 /// of `mesh` named `name` (see [`QuantizedHostMesh`]): 6 bytes a vertex
 /// and 12 a face (its unit normal and its exact normal) in flash instead of
 /// 12 a vertex, and the integer front end draws it with no floating point

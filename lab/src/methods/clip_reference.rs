@@ -1,9 +1,9 @@
 //! An independent reference for the front end's clipping: a face's
 //! corners transformed, clipped to the near, far and clip-band planes and
 //! projected in double-double arithmetic (about 106 bits, twice `f64`'s
-//! precision), written apart from [`crate::front::clip`] and
-//! [`crate::front::scene`]. At the clipper's whole range
-//! ([`CLIP_RANGE`](crate::front::scene::CLIP_RANGE)) its own error is far
+//! precision), written apart from [`zline::front::clip`] and
+//! [`zline::front::scene`]. At the clipper's whole range
+//! ([`CLIP_RANGE`](zline::front::scene::CLIP_RANGE)) its own error is far
 //! below what it judges (`2^-53` of the front end's).
 //!
 //! [`compare_face`] judges what the pipeline made of one face against it:
@@ -11,10 +11,10 @@
 
 use std::vec::Vec;
 
-use crate::front::geometry::Mat4;
-use crate::front::scene::{CLIP_BAND_PX, Camera};
-use crate::raster::fixed::{DEPTH_ONE, SUBPIXEL_STEPS};
-use crate::raster::vertex::ScreenVertex;
+use zline::front::geometry::Mat4;
+use zline::front::scene::{CLIP_BAND_PX, Camera};
+use zline::raster::fixed::{DEPTH_ONE, SUBPIXEL_STEPS};
+use zline::raster::vertex::ScreenVertex;
 
 /// A double-double number: `hi + lo`, `|lo| <= ulp(hi) / 2`.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -168,7 +168,7 @@ pub fn clipped_face(model: &Mat4, camera: &Camera, corners: &[[f32; 3]]) -> Vec<
         .collect()
 }
 
-/// The clipper's size of a face ([`CLIP_RANGE`](crate::front::scene::CLIP_RANGE):
+/// The clipper's size of a face ([`CLIP_RANGE`](zline::front::scene::CLIP_RANGE):
 /// the largest sum of the absolute terms of a corner's transform by
 /// `|projection| · |view| · |model|`), and how much its corners'
 /// transforms cancel (the largest ratio of a corner's sum of terms to its

@@ -6,9 +6,17 @@ use std::f32::consts::TAU;
 use std::vec;
 use std::vec::Vec;
 
-use crate::host::HostMesh;
+use zline::host::HostMesh;
 
-impl HostMesh {
+/// Building a [`HostMesh`] a vertex and a face at a time.
+trait Build {
+    /// Adds a position; its index.
+    fn vertex(&mut self, p: [f32; 3]) -> u16;
+    /// Adds a face of these corners.
+    fn face(&mut self, corners: &[u16]);
+}
+
+impl Build for HostMesh {
     fn vertex(&mut self, p: [f32; 3]) -> u16 {
         self.positions.push(p);
         (self.positions.len() - 1) as u16

@@ -1,0 +1,20 @@
+//! # zline-lab
+//!
+//! What zline is measured and checked against, and what its tools share.
+//! Not published: a program that draws with zline never links it.
+//!
+//! | module | what it holds |
+//! |---|---|
+//! | [`methods`] | the hidden-surface methods zline is compared with, behind one input and output ([`methods::Method`], [`methods::MethodRenderer`]): the interval scanline, the painter's algorithm, the float64 ray-cast reference, the exact rational oracle for the core, the double-double clip reference, the accuracy comparison and the catalogue of adversarial scenes |
+//! | [`fuzz_checks`] | the properties the fuzzers check, replayed by `cargo test` |
+//! | [`shapes`] | procedural meshes (torus knot, icosphere, boxes, terrain) |
+//! | [`rust_source`] | a mesh as Rust statics for flash |
+//! | [`cli`] | the command-line helpers the tools share |
+//! | [`machine`] | the machine a measurement ran on |
+
+pub mod cli;
+pub mod fuzz_checks;
+pub mod machine;
+pub mod methods;
+pub mod rust_source;
+pub mod shapes;
