@@ -22,11 +22,11 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use zline::front::geometry::Mat4;
-use zline::front::mesh::Mesh;
-use zline::front::scene::{Camera, Cull, reference_model};
-use zline::front::shade::Shading;
+use zline::Mat4;
+use zline::Mesh;
+use zline::Shading;
 use zline::host::{HostMesh, QuantizedHostMesh};
+use zline::{Camera, Cull, reference_model};
 use zline::{Depth16, Depth24, DepthFormat};
 use zline_lab::cli::obj_files;
 use zline_lab::cli::parse_size;

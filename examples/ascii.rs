@@ -6,8 +6,8 @@
 //! cargo run --example ascii
 //! ```
 
-use zline::raster::{ScanArrays, TableArrays};
 use zline::{Depth16, FnSink, Renderer, ScreenVertex};
+use zline::{ScanArrays, TableArrays};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     // 64 columns; 24 vertices, 3 polygons, 24 edges (corners), 3 active

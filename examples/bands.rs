@@ -17,11 +17,11 @@ use std::time::{Duration, Instant};
 
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::IntoStorage;
-use zline::front::geometry::Mat4;
-use zline::front::mesh::Mesh;
-use zline::front::scene::{Camera, Cull, FaceInfo, VertexCache, draw_mesh, reference_model};
-use zline::front::shade::Shading;
+use zline::Mat4;
+use zline::Mesh;
+use zline::Shading;
 use zline::host::{BandedRenderer, HostMesh, SharedSteps, host_renderer};
+use zline::{Camera, Cull, FaceInfo, VertexCache, draw_mesh, reference_model};
 use zline::{Depth16, FnSink};
 use zline_lab::cli::load_model;
 use zline_lab::cli::parse_size;

@@ -21,8 +21,8 @@
 use std::process::ExitCode;
 use std::time::Instant;
 
-use zline::front::scene::{Camera, Cull, reference_model};
-use zline::front::shade::Shading;
+use zline::Shading;
+use zline::{Camera, Cull, reference_model};
 use zline::{Depth16, Depth24};
 use zline_lab::cli::load_model;
 use zline_lab::cli::parse_size;

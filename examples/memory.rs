@@ -8,7 +8,7 @@
 
 use core::mem::size_of;
 use embedded_graphics::pixelcolor::Rgb565;
-use zline::raster::{ActiveEdge, ActivePolygon, EdgeEntry, PolygonEntry, ScanArrays, TableArrays};
+use zline::{ActiveEdge, ActivePolygon, EdgeEntry, PolygonEntry, ScanArrays, TableArrays};
 use zline::{Depth16, Depth24, Renderer, ScreenVertex};
 
 /// 240x240, a 1,000-triangle mesh (about 500 vertices), generous active

@@ -5,7 +5,7 @@
 //! cargo run --release --example mesh_counts -- ../shared/meshes
 //! ```
 //!
-//! Every listed file is counted with [`zline::front::obj::count`] and loaded into
+//! Every listed file is counted with [`zline::obj::count`] and loaded into
 //! a fixed-capacity [`ObjMesh`]; v, vt, vn, f and tris must match the
 //! table exactly, and the mesh's vertex and face counts must match the
 //! count. Prints one line a file and a summary; exits non-zero if a file
@@ -14,8 +14,8 @@
 use std::path::Path;
 use std::process::ExitCode;
 
-use zline::front::mesh::Mesh;
-use zline::front::obj::{ObjCounts, ObjMesh, count};
+use zline::Mesh;
+use zline::obj::{ObjCounts, ObjMesh, count};
 
 /// Room for the Stanford bunny (35,947 vertices, 69,451 triangles) and
 /// faces of up to 8 corners.

@@ -14,8 +14,8 @@
 use std::process::ExitCode;
 
 use embedded_graphics::pixelcolor::Rgb565;
-use zline::front::scene::{Camera, Cull, reference_model};
-use zline::front::shade::Shading;
+use zline::Shading;
+use zline::{Camera, Cull, reference_model};
 use zline::{Capacities, Depth16, Depth24, FrameStats};
 use zline_lab::cli::load_model;
 use zline_lab::cli::parse_size;
@@ -100,7 +100,7 @@ fn run(args: &[String]) -> Result<(), String> {
          type Tables = zline::TableArrays<Rgb565, {{ CAPS.vertices }}, {{ CAPS.polygons }}, {{ CAPS.corners }}>;\n\
          type Rows = zline::ScanArrays<Rgb565, zline::Depth16, {{ CAPS.width }}, {{ CAPS.active_polygons }}, {{ CAPS.pooled_edges }}>;\n\
          type Zr = zline::Renderer<Tables, Rows>;\n\
-         type Cache = zline::front::scene::VertexCache<{}>;",
+         type Cache = zline::VertexCache<{}>;",
         size.0,
         size.1,
         caps.width,

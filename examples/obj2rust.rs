@@ -1,22 +1,22 @@
 //! Converts a Wavefront OBJ file into Rust source for a
-//! [`StaticMesh`](zline::front::mesh::StaticMesh) static:
+//! [`StaticMesh`](zline::StaticMesh) static:
 //!
 //! ```sh
 //! cargo run --example obj2rust -- [--quantized] MODEL.obj NAME > name.rs
 //! ```
 //!
 //! With `--quantized` it writes a
-//! [`QuantizedMesh`](zline::front::quantized::QuantizedMesh) instead:
+//! [`QuantizedMesh`](zline::QuantizedMesh) instead:
 //! `i16` positions in the mesh's bounding sphere and a unit normal per
 //! face (6 bytes a vertex and 6 a face), which `draw_mesh` transforms,
 //! projects and shades with integers only: the choice for a core without
 //! an FPU.
 //!
-//! `name.rs` defines `pub static NAME: zline::front::mesh::StaticMesh<'static>`
+//! `name.rs` defines `pub static NAME: zline::StaticMesh<'static>`
 //! over three `const` arrays (positions, corners, face starts). Include it
 //! in firmware with `include!("name.rs")`: the arrays are read-only data,
 //! so they stay in flash and cost no RAM. The mesh is checked by the
-//! `const` [`StaticMesh::new`](zline::front::mesh::StaticMesh::new) while
+//! `const` [`StaticMesh::new`](zline::StaticMesh::new) while
 //! compiling, so an invalid mesh is a compile error, not a runtime one.
 //!
 //! Positions are printed with `{:?}`, which round-trips every `f32`

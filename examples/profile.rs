@@ -44,10 +44,10 @@ use std::process::ExitCode;
 
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::IntoStorage;
-use zline::front::mesh::Mesh;
-use zline::front::scene::{Camera, Cull, VertexCache, draw_mesh, reference_model};
-use zline::front::shade::Shading;
+use zline::Mesh;
+use zline::Shading;
 use zline::host::{HostMesh, host_renderer};
+use zline::{Camera, Cull, VertexCache, draw_mesh, reference_model};
 use zline::{Depth16, FnSink};
 use zline_lab::cli::load_model;
 use zline_lab::cli::parse_size;
@@ -80,7 +80,7 @@ fn frames(
     // The bench's shading: each face's Lambert colour, computed once.
     let table: Vec<Rgb565> = (0..mesh.face_count())
         .map(|f| {
-            Rgb565::from(shading.color(&zline::front::scene::FaceInfo::new(
+            Rgb565::from(shading.color(&zline::FaceInfo::new(
                 f as u32,
                 true,
                 Default::default(),

@@ -29,7 +29,7 @@
 //! The view: positions normalised to the unit sphere about their bounding
 //! box centre, rotated `Rx(pitch) · Ry(yaw)`, eye at (0, 0, 3) looking down
 //! -Z, 45° vertical field of view, near 0.1, far 10 (see
-//! `zline::front::scene::reference_model` and `zline_lab::methods::ReferenceView`).
+//! `zline::reference_model` and `zline_lab::methods::ReferenceView`).
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -39,9 +39,9 @@ use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use embedded_graphics_simulator::{OutputSettings, SimulatorDisplay};
-use zline::front::scene::{Camera, Cull, reference_model};
-use zline::front::shade::Shading;
+use zline::Shading;
 use zline::host::HostMesh;
+use zline::{Camera, Cull, reference_model};
 use zline::{Depth16, Depth24, DepthFormat};
 use zline_lab::cli::load_model;
 use zline_lab::cli::parse_size;

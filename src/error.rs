@@ -27,15 +27,15 @@ pub enum Error {
         row: u16,
     },
     /// A polygon (or a mesh face) has more corners than
-    /// [`MAX_POLYGON_CORNERS`](crate::raster::fixed::MAX_POLYGON_CORNERS) (for a
-    /// face, [`MAX_FACE_CORNERS`](crate::front::scene::MAX_FACE_CORNERS)).
+    /// [`MAX_POLYGON_CORNERS`](crate::limits::MAX_POLYGON_CORNERS) (for a
+    /// face, [`MAX_FACE_CORNERS`](crate::limits::MAX_FACE_CORNERS)).
     TooManyCorners,
     /// A polygon has fewer than three corners.
     TooFewCorners,
     /// A polygon names a vertex that was never added.
     VertexOutOfRange,
     /// A vertex lies outside the guard band
-    /// ([`GUARD_BAND_PX`](crate::raster::fixed::GUARD_BAND_PX)), or is NaN/infinite.
+    /// ([`GUARD_BAND_PX`](crate::limits::GUARD_BAND_PX)), or is NaN/infinite.
     OutsideGuardBand,
     /// A vertex depth is outside `[0, DEPTH_MAX]`, or is NaN/infinite.
     DepthOutOfRange,
@@ -53,7 +53,7 @@ pub enum Error {
     /// position is not finite.
     MeshExtent,
     /// The frame width is zero or above the row capacity `W`, or the height
-    /// is zero or above [`MAX_FRAME_SIZE`](crate::raster::fixed::MAX_FRAME_SIZE).
+    /// is zero or above [`MAX_FRAME_SIZE`](crate::limits::MAX_FRAME_SIZE).
     BadFrameSize,
     /// The buffers lent to a z-buffer method
     /// ([`BandBuffers`](crate::raster::zbuffer::BandBuffers)) hold fewer
@@ -86,8 +86,8 @@ impl fmt::Display for Error {
             Error::TooManyCorners => write!(
                 f,
                 "polygon has more than {} corners (a mesh face more than {})",
-                crate::raster::fixed::MAX_POLYGON_CORNERS,
-                crate::front::scene::MAX_FACE_CORNERS
+                crate::limits::MAX_POLYGON_CORNERS,
+                crate::limits::MAX_FACE_CORNERS
             ),
             Error::TooFewCorners => f.write_str("polygon has fewer than 3 corners"),
             Error::VertexOutOfRange => f.write_str("polygon names a vertex that does not exist"),

@@ -3,46 +3,35 @@
 //! A `no_std`, allocation-free **scanline z-buffer** rasteriser for small
 //! framebuffers. It keeps one row of fixed-point depth and one row of
 //! colour, never a frame, and hands each finished row to any
-//! embedded-graphics [`DrawTarget`](embedded_graphics_core::draw_target::DrawTarget).
+//! embedded-graphics [`DrawTarget`](embedded_graphics_core::draw_target::DrawTarget)
+//! (through [`DrawTargetSink`]), or to a [`RowSink`] of your own, such as
+//! a display driver's DMA buffer.
 //!
-//! The pipeline, one module a stage (tiny-skia's shape: geometry, then
-//! edges, then scan conversion, then a blitter that receives finished
-//! rows):
+//! Its storage is fixed when it is built, sized from the scene (see
+//! [`Capacities`]); anything that does not fit is an [`Error`], never a
+//! panic and never silently dropped.
 //!
-//! | stage | module | what it does |
-//! |---|---|---|
-//! | front end | [`front`] | world-space meshes to screen polygons in the core's tables |
-//! | | [`front::mesh`] | the [`Mesh`](front::mesh::Mesh) trait over one array layout; [`StaticMesh`](front::mesh::StaticMesh) for flash; the planarity rule |
-//! | | [`front::obj`] | the `no_std` OBJ reader, with line numbers in every error |
-//! | | [`front::geometry`] | vectors, matrices, camera transforms, Newell's normal |
-//! | | [`front::clip`] | streaming homogeneous clipping in `f64` |
-//! | | [`front::scene`] | [`draw_mesh`](front::scene::draw_mesh): transform, cull, clip, project, shade, offer each face to the tables |
-//! | | [`front::shade`] | one colour per face: flat, Lambert, depth grey, face id |
-//! | | [`front::quantized`] | meshes quantized for the integer front end: `i16` positions, unit and exact face normals, in flash |
-//! | | [`front::fixed_point`] | the integer front end: transform, clip tests, projection and normals without floating point |
-//! | | [`front::backface`] | the integer front end's back-face test in model space, before a triangle's corners are transformed |
-//! | core | [`raster`] | the scanline z-buffer: screen polygons in, finished rows out |
-//! | | [`raster::fixed`] | the sub-pixel grid, input depth, guard band, exact rounding and division |
-//! | | [`raster::vertex`] | [`ScreenVertex`], the outline and bounding rectangle a polygon is judged by, the fill rule's sample test |
-//! | | [`raster::tables`] | the scene-sized tables (vertices, polygons, corners, edge table), sorted by first row in O(n) |
-//! | | [`raster::scan`](mod@raster::scan) | the row-sized [`Scanner`] (active polygon table, active edge pool, the rows) and [`scan()`] |
-//! | | [`raster::depth`] | the depth formats a row stores ([`Depth16`], [`Depth24`]) |
-//! | | [`raster::zbuffer`] | the z-buffer of K rows (a band, or the whole frame) on the same tables, formats and fill rule |
-//! | | [`raster::capacities`] | [`Capacities`] by name, and the [`Renderer`] bundle of tables and scanner |
-//! | | `raster::plane`, `raster::edge`, `raster::active`, `raster::slots`, `raster::lanes`, `raster::wide` (internal) | the plane set-up, the exact edge DDA, the active tables, the capacity-erased lists they live in (the active polygon table's with an order array of slots), the branch-free span blocks for hosts, exact 32x32→64 products for cores without a long multiply |
-//! | blitter | [`sink`] | finished rows to a `DrawTarget` ([`DrawTargetSink`]), a closure ([`FnSink`]) or a checksum ([`Crc32Sink`]); or drawn straight into a sink's own buffers ([`LentRow`]), a frame buffer's rows for one ([`FrameBufferSink`]) |
-//! | | [`error`] | what can go wrong, by name |
-//! | desktop (feature `std`) | [`host`] | what a desktop program needs: storage sized from the mesh, a frame in bands on threads |
-//! | | `host::host_mesh`, `host::storage` | meshes and core storage in `Vec`s ([`host::HostMesh`], [`host::TableVecs`], [`host::ScanVecs`]) |
-//! | | `host::bands` | one frame in bands of rows on several threads, each band's tables built from the whole scene ([`host::BandedRenderer`], [`host::BandTables`]) |
-//! | | [`host::coplanar`] | the faces of a mesh that overlap in one plane, to share it ([`front::mesh::SharedPlane`]) |
-//! | | `host::quantize` | a mesh quantized for the integer front end, in `Vec`s ([`host::QuantizedHostMesh`]) |
+//! ## What is where
+//!
+//! | you want to | use |
+//! |---|---|
+//! | draw a mesh | [`Renderer`] (tables and a scanner, sized by [`Capacities`]), [`draw_mesh`] with a [`Camera`] and a model matrix ([`reference_model`], [`Mat4`]), then [`Renderer::render`] into a [`RowSink`] |
+//! | give a mesh | [`StaticMesh`] (slices, for flash), [`QuantizedMesh`] (`i16` positions, drawn by the integer front end), the OBJ reader's [`obj::ObjMesh`], or your own [`Mesh`]; on a desktop [`host::HostMesh`] |
+//! | colour faces | a closure over [`FaceInfo`], or [`Shading`] (flat, [`Lambert`], depth grey, face id) |
+//! | send rows | [`DrawTargetSink`] (any embedded-graphics `DrawTarget`), [`FnSink`] (a closure), [`FrameBufferSink`] (a frame in memory, drawn in place), [`Crc32Sink`] (a checksum) |
+//! | screen polygons of your own | [`Renderer::push_polygon_vertices`] with [`ScreenVertex`]es, or [`Renderer::push_vertex`] and [`Renderer::push_polygon`] |
+//! | several scanners over one scene (threads, cores) | [`Tables::prepare`] and [`scan`] a band of rows each with a [`Scanner`]; on a desktop [`host::BandedRenderer`] |
+//! | the numbers of the sub-pixel grid, depth and limits | [`limits`] |
+//! | a renderer of your own over the same tables | [`inspect`]; the z-buffer methods on them, [`zbuffer`] |
+//!
+//! How it works (the polygon and edge tables bucketed by row, the active
+//! tables, depth stepped from each polygon's screen-space plane) is in the
+//! book, `docs/` in the repository.
 //!
 //! ```
 //! use embedded_graphics::mock_display::MockDisplay;
 //! use embedded_graphics::pixelcolor::BinaryColor;
-//! use zline::raster::{Renderer, ScanArrays, TableArrays};
-//! use zline::{Depth16, DrawTargetSink, ScreenVertex};
+//! use zline::{Depth16, DrawTargetSink, Renderer, ScanArrays, ScreenVertex, TableArrays};
 //!
 //! // A 16x16 frame. Tables: 8 vertices, 2 polygons, 8 corners. Scanner:
 //! // rows of 16 pixels, 2 active polygons, no pooled edges (triangles need
@@ -65,19 +54,37 @@
 #[cfg(feature = "std")]
 extern crate std;
 
-pub mod error;
-pub mod front;
+mod arith;
+mod error;
+mod front;
+pub mod limits;
+mod raster;
+mod sink;
+
 #[cfg(feature = "std")]
 pub mod host;
-pub mod raster;
-pub mod sink;
+pub use front::obj;
+pub use raster::inspect;
+pub use raster::zbuffer;
 
 pub use error::{Error, RenderError};
-pub use raster::depth::{Depth16, Depth24, DepthFormat};
-pub use raster::vertex::ScreenVertex;
+pub use front::geometry::{Mat4, Vec3, Vec4, newell_normal, radians};
+pub use front::mesh::{
+    Mesh, MeshArrays, MeshError, PLANARITY_TOLERANCE, QuantizedView, SharedPlane, StaticMesh,
+    is_planar, planar_face_bits,
+};
+pub use front::quantized::QuantizedMesh;
+pub use front::scene::{
+    CLIP_RANGE, Camera, Cull, DrawError, DrawStats, FaceInfo, ProjectedVertex, RADIUS_RANGE,
+    VertexCache, bounding_sphere, draw_mesh, draw_mesh_projected, project_vertices,
+    reference_model, reference_model_around,
+};
+pub use front::shade::{Lambert, Shading, face_id_color};
 pub use raster::{
-    Admission, Capacities, FrameStats, PolygonTables, Renderer, ScanArrays, ScanStorage, Scanner,
-    TableArrays, TableStorage, Tables, scan,
+    ActiveEdge, ActivePolygon, Admission, Capacities, Depth16, Depth24, DepthFormat, EdgeEntry,
+    FrameStats, Outline, OutlineBuilder, PolygonEntry, PolygonTables, Prepared, Renderer,
+    ScanArrays, ScanParts, ScanStorage, Scanner, ScreenRect, ScreenVertex, TableArrays, TableParts,
+    TablePartsRef, TableStorage, Tables, scan,
 };
 pub use sink::{Crc32Sink, DrawTargetSink, FnSink, FrameBufferSink, LentRow, RowSink};
 

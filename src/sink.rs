@@ -54,7 +54,7 @@ pub trait RowSink<C, Z> {
 /// back drawn in place:
 ///
 /// ```
-/// use zline::raster::{Renderer, ScanArrays, TableArrays};
+/// use zline::{Renderer, ScanArrays, TableArrays};
 /// use zline::{Depth16, LentRow, RowSink, ScreenVertex};
 ///
 /// /// Sends rows from one buffer of its own (a DMA buffer, say).

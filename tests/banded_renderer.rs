@@ -8,11 +8,11 @@ mod common;
 use std::time::Duration;
 
 use proptest::prelude::*;
-use zline::front::scene::{Camera, Cull, VertexCache, draw_mesh, reference_model};
+use zline::PolygonTables;
 use zline::host::{BandTables, BandedRenderer, host_renderer};
-use zline::raster::PolygonTables;
-use zline::raster::fixed::SUBPIXEL_STEPS;
+use zline::limits::SUBPIXEL_STEPS;
 use zline::{Admission, Capacities, Depth16, Depth24, DepthFormat, Error, FnSink, ScreenVertex};
+use zline::{Camera, Cull, VertexCache, draw_mesh, reference_model};
 use zline_lab::shapes;
 
 const W: u16 = 48;

@@ -7,12 +7,12 @@ mod common;
 
 use proptest::prelude::*;
 use zline::host::ScanVecs;
-use zline::raster::fixed::SUBPIXEL_STEPS;
-use zline::raster::{ScanArrays, TableArrays};
+use zline::limits::SUBPIXEL_STEPS;
 use zline::{
     Capacities, Depth16, Depth24, DepthFormat, FnSink, Renderer, ScanStorage, Scanner,
     ScreenVertex, scan,
 };
+use zline::{ScanArrays, TableArrays};
 
 const W: u16 = 48;
 const H: u16 = 40;
@@ -31,7 +31,7 @@ const CAPS: Capacities = Capacities {
 type Rows = Vec<(u16, Vec<u32>, Vec<u64>)>;
 
 fn scan_band<S: ScanStorage<Color = u32>>(
-    prepared: &zline::raster::Prepared<'_, u32>,
+    prepared: &zline::Prepared<'_, u32>,
     scanner: &mut Scanner<S>,
     band: core::ops::Range<u16>,
 ) -> Rows

@@ -10,14 +10,13 @@ mod common;
 
 use common::{Recorder, capture};
 use proptest::prelude::*;
-use zline::front::geometry::{Mat4, Vec3};
-use zline::front::mesh::{Mesh, StaticMesh};
-use zline::front::scene::{
-    CLIP_BAND_PX, CLIP_RANGE, Camera, Cull, DrawError, VertexCache, draw_mesh,
-};
-use zline::raster::fixed::SUBPIXEL_STEPS;
-use zline::raster::{ScanArrays, TableArrays};
+use zline::limits::CLIP_BAND_PX;
+use zline::limits::SUBPIXEL_STEPS;
+use zline::{CLIP_RANGE, Camera, Cull, DrawError, VertexCache, draw_mesh};
 use zline::{Depth24, Error, Renderer};
+use zline::{Mat4, Vec3};
+use zline::{Mesh, StaticMesh};
+use zline::{ScanArrays, TableArrays};
 use zline_lab::methods::clip_reference::{FaceError, clipped_face, compare_face};
 
 type R = Renderer<TableArrays<u32, 64, 16, 64>, ScanArrays<u32, Depth24, 160, 16, 16>>;

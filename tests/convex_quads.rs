@@ -8,14 +8,12 @@ mod common;
 
 use common::capture;
 use proptest::prelude::*;
-use zline::front::geometry::Mat4;
-use zline::front::mesh::{SharedPlane, StaticMesh};
-use zline::front::scene::{
-    Camera, Cull, DrawStats, ProjectedVertex, VertexCache, draw_mesh, project_vertices,
-};
-use zline::raster::fixed::{DEPTH_MAX, SUBPIXEL_STEPS};
-use zline::raster::{ScanArrays, TableArrays};
+use zline::Mat4;
+use zline::limits::{DEPTH_MAX, SUBPIXEL_STEPS};
+use zline::{Camera, Cull, DrawStats, ProjectedVertex, VertexCache, draw_mesh, project_vertices};
 use zline::{Depth16, Depth24, DepthFormat, Renderer, ScreenVertex};
+use zline::{ScanArrays, TableArrays};
+use zline::{SharedPlane, StaticMesh};
 
 const W: usize = 64;
 const H: u16 = 48;

@@ -10,9 +10,9 @@ mod common;
 
 use common::{capture, covers, exact_depth, exactly_rounded, format_scale};
 use proptest::prelude::*;
-use zline::raster::fixed::{DEPTH_MAX, SUBPIXEL_STEPS};
-use zline::raster::{ScanArrays, TableArrays};
+use zline::limits::{DEPTH_MAX, SUBPIXEL_STEPS};
 use zline::{Depth16, Depth24, DepthFormat, Renderer, ScreenVertex};
+use zline::{ScanArrays, TableArrays};
 
 const S: i32 = SUBPIXEL_STEPS;
 
@@ -235,8 +235,8 @@ proptest! {
     fn extreme_polygons_within_one_lsb(
         poly in prop::collection::vec(
             (
-                prop_oneof![Just(1 - zline::raster::fixed::GUARD_BAND), Just(zline::raster::fixed::GUARD_BAND - 1), -S..40 * S, -20_000..20_000],
-                prop_oneof![Just(1 - zline::raster::fixed::GUARD_BAND), Just(zline::raster::fixed::GUARD_BAND - 1), -S..40 * S, -20_000..20_000],
+                prop_oneof![Just(1 - zline::limits::GUARD_BAND), Just(zline::limits::GUARD_BAND - 1), -S..40 * S, -20_000..20_000],
+                prop_oneof![Just(1 - zline::limits::GUARD_BAND), Just(zline::limits::GUARD_BAND - 1), -S..40 * S, -20_000..20_000],
                 prop_oneof![Just(0), Just(DEPTH_MAX), 0..=DEPTH_MAX],
             ),
             3..=8,

@@ -5,12 +5,12 @@
 mod common;
 
 use common::{capture, vtx};
-use zline::raster::fixed::{DEPTH_MAX, GUARD_BAND, MAX_POLYGON_CORNERS, SUBPIXEL_STEPS};
-use zline::raster::{
+use zline::limits::{DEPTH_MAX, GUARD_BAND, MAX_POLYGON_CORNERS, SUBPIXEL_STEPS};
+use zline::{Admission, Depth16, Depth24, Error, FnSink, RenderError, Renderer, ScreenVertex};
+use zline::{
     EdgeEntry, PolygonEntry, ScanArrays, TableArrays, TableParts, TablePartsRef, TableStorage,
     Tables,
 };
-use zline::{Admission, Depth16, Depth24, Error, FnSink, RenderError, Renderer, ScreenVertex};
 
 const S: i32 = SUBPIXEL_STEPS;
 
@@ -392,13 +392,13 @@ fn slivers_and_edge_on_triangles_stay_within_their_depth_range() {
 }
 
 /// A storage with more polygon slots than the tables can address
-/// ([`MAX_POLYGONS`](zline::raster::fixed::MAX_POLYGONS), packed in 20
+/// ([`MAX_POLYGONS`](zline::limits::MAX_POLYGONS), packed in 20
 /// bits of an edge-table entry) uses that many: the next polygon is
 /// `PolygonTableFull`, and the frame is drawn (a position past the limit
 /// once made the sort loop forever).
 #[test]
 fn polygons_past_the_tables_limit_are_an_error() {
-    use zline::raster::fixed::MAX_POLYGONS;
+    use zline::limits::MAX_POLYGONS;
     let slots = MAX_POLYGONS + 16;
     let caps = zline::Capacities {
         width: 16,

@@ -3,10 +3,10 @@
 //! planes and the clip band: no capacity error, ever.
 
 use proptest::prelude::*;
-use zline::front::geometry::{Mat4, Vec3};
-use zline::front::scene::{Camera, Cull, VertexCache, draw_mesh};
 use zline::host::{HostMesh, host_renderer};
+use zline::{Camera, Cull, VertexCache, draw_mesh};
 use zline::{Depth16, Error, FnSink};
+use zline::{Mat4, Vec3};
 
 /// Draws `mesh` through `camera` in storage of `mesh.capacities(..)` and
 /// renders it: any error is returned (none is expected).

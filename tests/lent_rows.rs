@@ -7,7 +7,7 @@ mod common;
 
 use proptest::prelude::*;
 use zline::host::ScanVecs;
-use zline::raster::fixed::SUBPIXEL_STEPS;
+use zline::limits::SUBPIXEL_STEPS;
 use zline::{
     Depth16, Depth24, DepthFormat, Error, FnSink, FrameBufferSink, LentRow, RenderError, RowSink,
     Scanner, ScreenVertex, scan,

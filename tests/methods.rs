@@ -3,8 +3,8 @@
 //! scanline has no hard mismatch against the float64 reference; the
 //! painter draws, and its memory has no depth at all.
 
-use zline::front::scene::{Camera, Cull, reference_model};
-use zline::front::shade::Shading;
+use zline::Shading;
+use zline::{Camera, Cull, reference_model};
 use zline::{Depth16, Depth24, DepthFormat};
 use zline_lab::methods::{Method, MethodRenderer, ReferenceView, compare};
 use zline_lab::shapes;
@@ -128,10 +128,10 @@ fn methods_parse_and_print() {
 /// step, that holds for any depth rounding to it.
 #[test]
 fn a_surface_at_the_far_plane_shows_only_in_the_interval_method() {
-    use zline::raster::fixed::DEPTH_MAX;
+    use zline::limits::DEPTH_MAX;
     use zline::{FnSink, ScreenVertex};
     use zline_lab::methods::interval::render_intervals;
-    let s = zline::raster::fixed::SUBPIXEL_STEPS;
+    let s = zline::limits::SUBPIXEL_STEPS;
     let far = [(1, 1), (14, 1), (1, 10)]
         .map(|(x, y)| ScreenVertex::new(x * s, y * s, DEPTH_MAX).unwrap());
     let caps = zline::Capacities {

@@ -2,10 +2,10 @@
 //! error kind with its line, and random inputs that must never panic.
 
 use proptest::prelude::*;
-use zline::front::mesh::{Mesh, StaticMesh};
-use zline::front::obj::{
+use zline::obj::{
     Capacity, Element, ObjCounts, ObjError, ObjErrorKind, ObjMesh, ObjReader, Statement, count,
 };
+use zline::{Mesh, StaticMesh};
 
 /// Roomy enough for every hand-written input; 8 corners per face.
 type Small = ObjMesh<16, 64, 16, 8>;

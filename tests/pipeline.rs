@@ -5,15 +5,13 @@
 mod common;
 
 use common::capture;
-use zline::front::geometry::{Mat4, Vec3};
-use zline::front::mesh::{Mesh, StaticMesh};
-use zline::front::scene::{
-    Camera, Cull, DrawError, MAX_FACE_CORNERS, VertexCache, bounding_sphere, draw_mesh,
-    reference_model,
-};
 use zline::host::HostMesh;
-use zline::raster::{ScanArrays, TableArrays};
+use zline::limits::MAX_FACE_CORNERS;
+use zline::{Camera, Cull, DrawError, VertexCache, bounding_sphere, draw_mesh, reference_model};
 use zline::{Depth24, Error, Renderer};
+use zline::{Mat4, Vec3};
+use zline::{Mesh, StaticMesh};
+use zline::{ScanArrays, TableArrays};
 use zline_lab::shapes;
 
 type Big = Renderer<TableArrays<u32, 2048, 2048, 6144>, ScanArrays<u32, Depth24, 96, 512, 512>>;
@@ -297,7 +295,7 @@ fn issue_7_item_6_faces_of_many_corners_draw() {
     for k in 1..=MAX_FACE_CORNERS + 1 {
         obj.push_str(&format!(" {k}"));
     }
-    let error = zline::front::obj::count(obj.as_bytes()).unwrap_err();
+    let error = zline::obj::count(obj.as_bytes()).unwrap_err();
     assert_eq!(error.line, MAX_FACE_CORNERS as u32 + 2);
-    assert_eq!(error.kind, zline::front::obj::ObjErrorKind::TooManyCorners);
+    assert_eq!(error.kind, zline::obj::ObjErrorKind::TooManyCorners);
 }

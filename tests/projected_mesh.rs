@@ -4,13 +4,13 @@
 //! renderer send, on the float and the integer front end, with clipped
 //! and non-finite vertices, culled or not.
 
-use zline::front::geometry::Mat4;
-use zline::front::mesh::Mesh;
-use zline::front::scene::{
+use zline::Mat4;
+use zline::Mesh;
+use zline::host::{BandedRenderer, HostMesh, MESH_VERTICES, QuantizedHostMesh, host_renderer};
+use zline::{
     Camera, Cull, DrawError, FaceInfo, ProjectedVertex, VertexCache, bounding_sphere, draw_mesh,
     draw_mesh_projected, project_vertices, reference_model, reference_model_around,
 };
-use zline::host::{BandedRenderer, HostMesh, MESH_VERTICES, QuantizedHostMesh, host_renderer};
 use zline::{Capacities, Depth16, Error, FnSink};
 use zline_lab::shapes;
 
@@ -151,8 +151,12 @@ fn scenes() -> Vec<(&'static str, HostMesh, Mat4)> {
     let knot = shapes::torus_knot(2, 3, 64, 8, 0.45);
     let view = reference_model(&knot, 30.0, 20.0).unwrap();
     let (centre, radius) = bounding_sphere(&knot).unwrap();
-    let close = Mat4::translation(zline::front::geometry::Vec3::new(0.3, 0.2, 1.6))
-        .mul(&reference_model_around(centre, radius * 0.3, 30.0, 20.0));
+    let close = Mat4::translation(zline::Vec3::new(0.3, 0.2, 1.6)).mul(&reference_model_around(
+        centre,
+        radius * 0.3,
+        30.0,
+        20.0,
+    ));
     let boxes = shapes::box_field(4).with_face_analysis();
     let boxes_view = reference_model(&boxes, 30.0, 35.0).unwrap();
     let mut broken = knot.clone();
@@ -407,9 +411,7 @@ fn one_banded_renderer_draws_large_and_small_meshes_in_turn() {
     let large_view = reference_model(&large, 30.0, 20.0).unwrap();
     let small_view = reference_model(&small, 30.0, 20.0)
         .unwrap()
-        .mul(&Mat4::translation(zline::front::geometry::Vec3::new(
-            0.4, 0.0, 0.0,
-        )));
+        .mul(&Mat4::translation(zline::Vec3::new(0.4, 0.0, 0.0)));
     let (large_rows, small_rows) = (one(&large, &large_view), one(&small, &small_view));
     assert_ne!(large_rows, small_rows);
     let mut renderer = BandedRenderer::<u32, Depth16>::new(&caps, width, height, 0, 2).unwrap();

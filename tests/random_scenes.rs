@@ -11,9 +11,9 @@ mod common;
 
 use common::capture;
 use proptest::prelude::*;
-use zline::raster::fixed::{DEPTH_MAX, SUBPIXEL_STEPS};
-use zline::raster::{ScanArrays, TableArrays};
+use zline::limits::{DEPTH_MAX, SUBPIXEL_STEPS};
 use zline::{Admission, Depth16, Depth24, DepthFormat, Renderer, ScreenVertex};
+use zline::{ScanArrays, TableArrays};
 use zline_lab::methods::exact::check_frame;
 
 const W: usize = 40;

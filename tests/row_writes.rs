@@ -4,8 +4,8 @@
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
-use zline::raster::{ScanArrays, TableArrays};
 use zline::{Depth16, DrawTargetSink, Renderer, ScreenVertex};
+use zline::{ScanArrays, TableArrays};
 
 #[derive(Default)]
 struct Recorder {

@@ -4,15 +4,15 @@
 mod common;
 
 use common::capture;
-use zline::front::geometry::{Mat4, Vec3};
-use zline::front::mesh::{SharedPlane, StaticMesh};
-use zline::front::scene::{
+use zline::limits::DEPTH_ONE;
+use zline::{
     Camera, Cull, DrawError, DrawStats, VertexCache, draw_mesh, reference_model,
     reference_model_around,
 };
-use zline::raster::fixed::DEPTH_ONE;
-use zline::raster::{ScanArrays, TableArrays};
 use zline::{Depth24, Renderer};
+use zline::{Mat4, Vec3};
+use zline::{ScanArrays, TableArrays};
+use zline::{SharedPlane, StaticMesh};
 
 /// Unit cube, quads wound counter-clockwise seen from outside.
 static CUBE: StaticMesh<'static> = match StaticMesh::new(

@@ -6,8 +6,8 @@
 mod common;
 
 use common::{art, capture, vtx};
-use zline::raster::{ScanArrays, TableArrays};
 use zline::{Admission, Depth16, Depth24, DepthFormat, Renderer};
+use zline::{ScanArrays, TableArrays};
 
 type Small<D> = Renderer<TableArrays<u32, 64, 16, 64>, ScanArrays<u32, D, 16, 16, 64>>;
 

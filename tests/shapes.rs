@@ -5,10 +5,10 @@
 use std::collections::HashMap;
 
 use zline::Depth24;
-use zline::front::mesh::Mesh;
-use zline::front::scene::{Camera, Cull, reference_model};
-use zline::front::shade::Shading;
+use zline::Mesh;
+use zline::Shading;
 use zline::host::HostMesh;
+use zline::{Camera, Cull, reference_model};
 use zline_lab::methods::HostScanline;
 use zline_lab::shapes;
 

@@ -7,10 +7,10 @@ mod common;
 
 use common::{Rows, scanline_rows, zbuffer_rows};
 use proptest::prelude::*;
+use zline::TableArrays;
 use zline::host::TableVecs;
-use zline::raster::TableArrays;
-use zline::raster::fixed::{DEPTH_MAX, SUBPIXEL_STEPS};
-use zline::raster::zbuffer::DepthTest;
+use zline::limits::{DEPTH_MAX, SUBPIXEL_STEPS};
+use zline::zbuffer::DepthTest;
 use zline::{Admission, Capacities, Depth16, Depth24, DepthFormat, Error, ScreenVertex, Tables};
 use zline_lab::methods::exact::{Offered, check_frame_shared, covers};
 

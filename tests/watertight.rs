@@ -8,9 +8,9 @@ use common::covers;
 use embedded_graphics::pixelcolor::BinaryColor;
 use embedded_graphics::prelude::*;
 use proptest::prelude::*;
-use zline::raster::fixed::SUBPIXEL_STEPS;
-use zline::raster::{ScanArrays, TableArrays};
+use zline::limits::SUBPIXEL_STEPS;
 use zline::{Depth16, DrawTargetSink, Renderer, ScreenVertex};
+use zline::{ScanArrays, TableArrays};
 
 const W: usize = 48;
 const H: u16 = 40;

@@ -8,8 +8,8 @@ mod common;
 
 use common::{Rows, scanline_rows, zbuffer_rows};
 use proptest::prelude::*;
-use zline::raster::fixed::SUBPIXEL_STEPS;
-use zline::raster::zbuffer::DepthTest;
+use zline::limits::SUBPIXEL_STEPS;
+use zline::zbuffer::DepthTest;
 use zline::{Capacities, Depth16, Depth24, DepthFormat, ScreenVertex};
 
 const W: u16 = 40;

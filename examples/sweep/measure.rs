@@ -5,10 +5,10 @@
 use std::path::Path;
 use std::time::Instant;
 
-use zline::front::mesh::Mesh;
-use zline::front::scene::{Camera, Cull, reference_model};
-use zline::front::shade::Shading;
+use zline::Mesh;
+use zline::Shading;
 use zline::host::{HostMesh, QuantizedHostMesh};
+use zline::{Camera, Cull, reference_model};
 use zline::{Depth16, Depth24};
 use zline_lab::methods::{
     BACKGROUND, Memory, Method, MethodFrame, MethodRenderer, ReferenceCamera, ReferenceFrame,
@@ -183,7 +183,7 @@ impl Scene {
         r: &mut MethodRenderer<D>,
         method: Method,
         mesh: &M,
-        model: &zline::front::geometry::Mat4,
+        model: &zline::Mat4,
     ) -> Result<MethodFrame, String>
     where
         D::Value: Into<u32>,

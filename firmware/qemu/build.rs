@@ -20,14 +20,14 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
-use zline::front::mesh::Mesh;
-use zline::front::quantized::QuantizedMesh;
-use zline::front::scene::VertexCache;
+use zline::Mesh;
+use zline::QuantizedMesh;
+use zline::VertexCache;
 use zline::host::{HostMesh, QuantizedHostMesh};
-use zline_lab::rust_source::quantized_mesh_source;
-use zline_lab::shapes;
 use zline::host::{ScanVecs, TableVecs, host_renderer};
 use zline::{Capacities, Crc32Sink, Depth16, Depth24, DepthFormat, FrameStats, Renderer};
+use zline_lab::rust_source::quantized_mesh_source;
+use zline_lab::shapes;
 
 /// (shape, yaw, pitch): each is rendered with both depth formats.
 const SCENES: [(&str, f32, f32); 4] = [
@@ -180,7 +180,7 @@ fn expected<D: DepthFormat>(
         renderer,
         cache,
         mesh,
-        zline::front::scene::bounding_sphere(mesh).expect("mesh size"),
+        zline::bounding_sphere(mesh).expect("mesh size"),
         (yaw, pitch),
         &mut crc,
     )

@@ -22,13 +22,14 @@ use std::fs;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use zline::front::mesh::{Mesh, StaticMesh};
-use zline::front::scene::{MAX_FACE_CORNERS, VertexCache, bounding_sphere};
-use zline::front::shade::Shading;
+use zline::Shading;
 use zline::host::{HostMesh, QuantizedHostMesh, ScanVecs, TableVecs, host_renderer};
+use zline::limits::MAX_FACE_CORNERS;
+use zline::{Capacities, Crc32Sink, Depth16, FrameStats, Renderer, RowSink};
+use zline::{Mesh, StaticMesh};
+use zline::{VertexCache, bounding_sphere};
 use zline_lab::rust_source::quantized_mesh_source;
 use zline_lab::shapes;
-use zline::{Capacities, Crc32Sink, Depth16, FrameStats, Renderer, RowSink};
 
 /// Room for any view on the host, where the capacities are measured.
 const HOST_CAPACITIES: Capacities = Capacities {

@@ -35,23 +35,23 @@ use std::vec;
 use std::vec::Vec;
 
 use crate::methods::exact::{Offered, check_frame_shared};
-use zline::error::{Error, RenderError};
-use zline::front::geometry::{Mat4, Vec3};
-use zline::front::mesh::{Mesh, StaticMesh};
-use zline::front::obj::{ObjMesh, ObjReader, Statement, count};
-use zline::front::scene::{
+use zline::FnSink;
+use zline::Outline;
+use zline::ScreenVertex;
+use zline::Shading;
+use zline::host::{BandedRenderer, ScanVecs, host_renderer};
+use zline::host::{HostMesh, QuantizedHostMesh};
+use zline::limits::{DEPTH_MAX, GUARD_BAND, MAX_POLYGONS, SUBPIXEL_STEPS};
+use zline::obj::{ObjMesh, ObjReader, Statement, count};
+use zline::{Admission, Capacities, PolygonTables, Scanner, scan};
+use zline::{
     Camera, Cull, DrawError, ProjectedVertex, VertexCache, draw_mesh, draw_mesh_projected,
     project_vertices, reference_model,
 };
-use zline::front::shade::Shading;
-use zline::host::{BandedRenderer, ScanVecs, host_renderer};
-use zline::host::{HostMesh, QuantizedHostMesh};
-use zline::raster::depth::{Depth16, Depth24, DepthFormat};
-use zline::raster::fixed::{DEPTH_MAX, GUARD_BAND, MAX_POLYGONS, SUBPIXEL_STEPS};
-use zline::raster::vertex::Outline;
-use zline::raster::vertex::ScreenVertex;
-use zline::raster::{Admission, Capacities, PolygonTables, Scanner, scan};
-use zline::sink::FnSink;
+use zline::{Depth16, Depth24, DepthFormat};
+use zline::{Error, RenderError};
+use zline::{Mat4, Vec3};
+use zline::{Mesh, StaticMesh};
 
 /// Reads fixed-size values from the front of the input; zeros once it
 /// runs out, so every input decodes to something.
@@ -154,8 +154,8 @@ pub fn obj_reader(data: &[u8]) {
 /// error (all of them when it accepts the file) keeps both rules, and the
 /// line it stops at is refused with the kind the rules give, when they
 /// give one.
-fn line_model_check(data: &[u8], error: Option<zline::front::obj::ObjError>) {
-    use zline::front::obj::ObjErrorKind;
+fn line_model_check(data: &[u8], error: Option<zline::obj::ObjError>) {
+    use zline::obj::ObjErrorKind;
     let data = data.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(data);
     // Lines end with LF, CRLF or a lone CR.
     let mut lines = Vec::new();

@@ -6,10 +6,10 @@ use std::format;
 use std::string::{String, ToString};
 use std::vec::Vec;
 
-use zline::front::mesh::{SharedPlane, planar_face_bits};
 use zline::host::{HostMesh, QuantizedHostMesh};
+use zline::{SharedPlane, planar_face_bits};
 
-/// Rust source defining `pub static NAME: zline::front::mesh::StaticMesh<'static>`
+/// Rust source defining `pub static NAME: zline::StaticMesh<'static>`
 /// and its three arrays (`NAME_POSITIONS`, `NAME_CORNERS`,
 /// `NAME_FACE_STARTS`). The mesh goes through the `const`
 /// `StaticMesh::new`, so a broken one fails at compile time. Floats are
@@ -66,7 +66,7 @@ pub fn static_mesh_source(mesh: &HostMesh, name: &str, origin: &str) -> Result<S
     let _ = writeln!(
         out,
         "/// Mesh from {origin}, checked at compile time.\n\
-         pub static {name}: zline::front::mesh::StaticMesh<'static> = match zline::front::mesh::StaticMesh::new(\n    \
+         pub static {name}: zline::StaticMesh<'static> = match zline::StaticMesh::new(\n    \
          &{name}_POSITIONS,\n    &{name}_CORNERS,\n    &{name}_FACE_STARTS,\n) {{\n    \
          Ok(mesh) => match mesh.with_planar_faces(&{name}_PLANAR) {{\n        \
          Ok(mesh) => match mesh.with_shared_planes(&{name}_SHARED) {{\n            \
@@ -77,7 +77,7 @@ pub fn static_mesh_source(mesh: &HostMesh, name: &str, origin: &str) -> Result<S
     Ok(out)
 }
 
-/// Rust source for a [`QuantizedMesh`](zline::front::quantized::QuantizedMesh)
+/// Rust source for a [`QuantizedMesh`](zline::QuantizedMesh)
 /// of `mesh` named `name` (see [`QuantizedHostMesh`]): 6 bytes a vertex
 /// and 12 a face (its unit normal and its exact normal) in flash instead of
 /// 12 a vertex, and the integer front end draws it with no floating point
@@ -140,7 +140,7 @@ pub fn quantized_mesh_source(mesh: &HostMesh, name: &str, origin: &str) -> Resul
     let _ = writeln!(
         out,
         "/// Mesh from {origin}, quantized, checked at compile time.\n\
-         pub static {name}: zline::front::quantized::QuantizedMesh<'static> = match zline::front::quantized::QuantizedMesh::new(\n    \
+         pub static {name}: zline::QuantizedMesh<'static> = match zline::QuantizedMesh::new(\n    \
          &{name}_POSITIONS,\n    &{name}_NORMALS,\n    &{name}_CORNERS,\n    &{name}_FACE_STARTS,\n    &{name}_PLANAR,\n    \
          [{:?}, {:?}, {:?}],\n    {:?},\n) {{\n    \
          Ok(mesh) => match mesh.with_shared_planes(&{name}_SHARED) {{\n        \
@@ -158,10 +158,10 @@ fn shared_planes_source(out: &mut String, name: &str, shared: &[SharedPlane]) {
     let _ = writeln!(
         out,
         "// Faces that share one plane with overlapping coplanar faces.\n\
-         static {name}_SHARED: [zline::front::mesh::SharedPlane; {}] = [\n{}];\n",
+         static {name}_SHARED: [zline::SharedPlane; {}] = [\n{}];\n",
         shared.len(),
         rows(shared, 1, |p| format!(
-            "zline::front::mesh::SharedPlane {{ face: {}, vertices: [{}, {}, {}] }}",
+            "zline::SharedPlane {{ face: {}, vertices: [{}, {}, {}] }}",
             p.face, p.vertices[0], p.vertices[1], p.vertices[2]
         ))
     );

@@ -42,7 +42,7 @@
 //!   can hold.
 //! * `n` depends on the triangle alone ([`exact_normal`]): a quantized
 //!   mesh may carry them in a table, checked when it is made
-//!   ([`QuantizedMesh::with_exact_normals`]), so a draw reads three
+//!   ([`QuantizedMesh::with_exact_normals`](crate::front::quantized::QuantizedMesh::with_exact_normals)), so a draw reads three
 //!   numbers a face instead of working them out.
 //!
 //! A back face is left out at once. A front face skips the early
@@ -53,8 +53,6 @@
 //! rounded corners would have turned by a hair).
 
 use crate::front::fixed_point::FixedFrame;
-#[cfg(doc)]
-use crate::front::quantized::QuantizedMesh;
 
 /// Largest eye coordinate, in quantized units, the test accepts.
 const EYE_MAX: u64 = 1 << 28;
@@ -216,7 +214,7 @@ impl EyeTest {
 /// component lies outside `[-2^15, 2^15)`: `N` is exact in `i32` only
 /// inside (each product at most `2^30`, each difference of two below
 /// `2^31 - 2^15` in magnitude). `const`, so that a flash mesh's table
-/// ([`QuantizedMesh::with_exact_normals`]) is checked at compile time.
+/// ([`QuantizedMesh::with_exact_normals`](crate::front::quantized::QuantizedMesh::with_exact_normals)) is checked at compile time.
 pub const fn exact_normal(q0: [i16; 3], q1: [i16; 3], q2: [i16; 3]) -> [i16; 3] {
     let (x0, y0, z0) = (q0[0] as i32, q0[1] as i32, q0[2] as i32);
     let (ax, ay, az) = (q1[0] as i32 - x0, q1[1] as i32 - y0, q1[2] as i32 - z0);
@@ -253,8 +251,6 @@ mod tests {
     use super::*;
     use crate::front::fixed_point::FixedFrame;
     use crate::front::geometry::Mat4;
-    #[cfg(doc)]
-    use crate::front::quantized::QuantizedMesh;
     use crate::front::scene::Camera;
     use proptest::prelude::*;
 

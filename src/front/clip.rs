@@ -96,20 +96,11 @@ pub fn guard_planes(gx: f64, gy: f64) -> [[f64; 4]; 6] {
     ]
 }
 
-/// Bit `k` set when `p` lies outside `planes[k]`. A polygon whose corners'
-/// masks share a bit lies wholly outside that plane.
-pub fn outside_mask(p: ClipPoint, planes: &[[f64; 4]]) -> u32 {
-    planes
-        .iter()
-        .enumerate()
-        .filter(|(_, q)| p.dot(**q) < 0.0)
-        .fold(0, |mask, (k, _)| mask | 1 << k)
-}
-
-/// [`outside_mask`] where `p` lies outside a plane by more than
-/// `margin`: the planes it lies beyond for certain when each of its
-/// distances may be off by `margin`.
-pub fn outside_mask_beyond(p: ClipPoint, planes: &[[f64; 4]], margin: f64) -> u32 {
+/// Bit `k` set when `p` lies outside `planes[k]` by more than `margin`
+/// (the planes it lies beyond for certain when each of its distances may
+/// be off by `margin`). A polygon whose corners' masks share a bit lies
+/// wholly outside that plane.
+pub fn outside_mask(p: ClipPoint, planes: &[[f64; 4]], margin: f64) -> u32 {
     planes
         .iter()
         .enumerate()
@@ -306,11 +297,11 @@ mod tests {
         assert!(clip(&behind, FRUSTUM).is_empty());
         let masks = behind
             .iter()
-            .fold(u32::MAX, |m, &p| m & outside_mask(p, &FRUSTUM));
+            .fold(u32::MAX, |m, &p| m & outside_mask(p, &FRUSTUM, 0.0));
         assert_eq!(masks, 1 << 4, "all outside the near plane");
         let inside = [v(-0.5, 0.0), v(0.5, 0.0), v(0.0, 0.5)];
         assert_eq!(clip(&inside, FRUSTUM).as_slice(), &inside);
-        assert_eq!(outside_mask(inside[0], &FRUSTUM), 0);
+        assert_eq!(outside_mask(inside[0], &FRUSTUM, 0.0), 0);
     }
 
     #[test]

@@ -51,15 +51,15 @@
 //! front end. The tests check the bound against `f64` for random
 //! matrices and positions.
 
-use crate::front::geometry::Mat4;
-use crate::front::quantized::{NORMAL_SCALE, POSITION_SCALE};
-use crate::front::scene::CLIP_BAND_PX;
-use crate::raster::fixed::{DEPTH_MAX, SUBPIXEL_STEPS};
-use crate::raster::vertex::ScreenVertex;
-use crate::raster::wide::{
-    DOT3_COEFFICIENT_MAX, dot3_plus, leading_zeros_u64, mul_i64_i32, mul_u32, mul_u32_i32, shl_i64,
-    shr_i64,
+use crate::arith::divide::{div_round_away_i128, reciprocal62};
+use crate::arith::wide::{
+    DOT3_COEFFICIENT_MAX, dot3_plus, leading_zeros_u64, mul_i64_i32, mul_u32_i32, shl_i64, shr_i64,
 };
+use crate::front::geometry::Mat4;
+use crate::limits::CLIP_BAND_PX;
+use crate::limits::{DEPTH_MAX, SUBPIXEL_STEPS};
+use crate::limits::{NORMAL_SCALE, POSITION_SCALE};
+use crate::raster::vertex::ScreenVertex;
 
 /// Smallest scale exponent `T` the integer front end works with: below it
 /// the clip coordinates would be coarser than `2^-16` and the `f32` front
@@ -87,7 +87,8 @@ pub struct FixedFrame {
     /// The view rotation of normals in units of `2^-15`, when the
     /// model-view matrix is a rotation times a uniform scale.
     rotation: Option<[[i32; 3]; 3]>,
-    /// The scale exponent `T`.
+    /// The scale exponent `T` (the tests read it).
+    #[cfg_attr(not(test), allow(dead_code))]
     scale_bits: i32,
 }
 
@@ -177,53 +178,6 @@ fn exact_sum(terms: &[Exact]) -> (i128, i32) {
     (sum, base)
 }
 
-/// `round(n / d)` (ties away from zero) for `d > 0`. When `|n|` and `d`
-/// are below `2^61` (every call of an ordinary frame) the same rounding is
-/// done in `i64` (`2·|n| + d < 2^63`), which a 32-bit core divides far
-/// faster than `i128`. Out of line: the per-frame rotation set-up calls it
-/// nine times, and inlined that was 29 KB of a Cortex-M0+ firmware's
-/// flash for no speed.
-#[inline(never)]
-pub(crate) fn div_round_i128(n: i128, d: i128) -> i128 {
-    const LIMIT: u128 = 1 << 61;
-    if n.unsigned_abs() < LIMIT && d.unsigned_abs() < LIMIT {
-        let (n, d) = (n as i64, d as i64);
-        return i128::from(if n >= 0 {
-            (2 * n + d) / (2 * d)
-        } else {
-            -((-2 * n + d) / (2 * d))
-        });
-    }
-    if let Ok(small) = u16::try_from(d) {
-        // A divisor below 2^16 (the dequantization's 32767): long division
-        // in 16-bit digits, each step a 32-bit division.
-        let (q, r) = div_rem_by_u16(n.unsigned_abs(), small);
-        let q = q + u128::from(2 * u32::from(r) >= u32::from(small));
-        return if n >= 0 { q as i128 } else { -(q as i128) };
-    }
-    if n >= 0 {
-        (2 * n + d) / (2 * d)
-    } else {
-        -((-2 * n + d) / (2 * d))
-    }
-}
-
-/// `n / d` and `n % d` for `d > 0`, by 16-bit digits from the top: each
-/// partial dividend is `r·2^16 + digit < d·2^16 <= 2^32`, so every step is
-/// one 32-bit division (on an RP2040, its 8-cycle divider; a `u128`
-/// division is a long library call).
-fn div_rem_by_u16(n: u128, d: u16) -> (u128, u16) {
-    let d = u32::from(d);
-    let (mut q, mut r) = (0u128, 0u32);
-    let digits = (128 - n.leading_zeros()).div_ceil(16);
-    for k in (0..digits).rev() {
-        let partial = (r << 16) | ((n >> (16 * k)) as u32 & 0xFFFF);
-        q = (q << 16) | u128::from(partial / d);
-        r = partial % d;
-    }
-    (q, r as u16)
-}
-
 /// `floor(sqrt(v))`, bit by bit.
 fn isqrt(v: u128) -> u128 {
     let mut root = 0u128;
@@ -239,93 +193,6 @@ fn isqrt(v: u128) -> u128 {
         bit >>= 2;
     }
     root
-}
-
-/// `2^62 / w` for `w` in `[2^30, 2^31)`, within 8 of the exact quotient
-/// (relative error below `2^-28`): a 16-bit estimate from one 32-bit
-/// division (the RP2040's SIO divider does it in 8 cycles), then one
-/// Newton step in 64-bit products of 32-bit operands (from 16-bit halves
-/// on a Cortex-M0+, `src/raster/wide.rs`).
-///
-/// Ranges: `d = w >> 15` in `[2^15, 2^16)`, so `r0 = (2^32 - 1) / d` in
-/// `(2^16, 2^17)` and `R0 = r0·2^15` within `2^-15` (relative, from
-/// above or below) of `2^62 / w`; `w·R0 < 2^63`; the residual
-/// `e = 2^62 - w·R0` in `[-2^47, 2^47]`; `r0 · (e >> 2) <= 2^62`.
-#[inline]
-pub fn reciprocal62(w: u32) -> u64 {
-    debug_assert!((1 << 30..1 << 31).contains(&w));
-    let d = w >> 15;
-    let r0 = u64::from(max_div(d));
-    let r0s = r0 << 15;
-    // r0 < 2^17, so r0s < 2^32 and r0 fits i32: 32-bit operands.
-    let e = (1i64 << 62) - mul_u32(w, r0s as u32) as i64;
-    let correction = mul_i64_i32(e >> 2, r0 as i32) >> 45;
-    (r0s as i64 + correction) as u64
-}
-
-/// `(2^32 - 1) / d` exactly, for `d` in `[2^15, 2^16)`: the quotient is in
-/// `(2^16, 2^17)`. Where a division is cheap it is one; on a Cortex-M0+
-/// without a divider (where compiler-builtins' routine takes about 190
-/// instructions for a 17-bit quotient) it is [`max_div_by_table`].
-#[inline]
-fn max_div(d: u32) -> u32 {
-    if crate::raster::fixed::DIVISION_IS_CHEAP {
-        u32::MAX / d
-    } else {
-        max_div_by_table(d)
-    }
-}
-
-/// Entries of [`RECIPROCAL_TABLE`]: one per 2^7-wide interval of `d`.
-const RECIPROCAL_ENTRIES: usize = 256;
-
-/// `2^32 / m` for the midpoint `m = 2^15 + 2^7·i + 2^6` of interval `i`:
-/// within `2^-9` (relative) of `2^32 / d` for every `d` of the interval.
-/// Every entry is in `(2^16, 2^17)`.
-static RECIPROCAL_TABLE: [u32; RECIPROCAL_ENTRIES] = {
-    let mut table = [0u32; RECIPROCAL_ENTRIES];
-    let mut i = 0;
-    while i < RECIPROCAL_ENTRIES {
-        let mid = (1u64 << 15) + ((i as u64) << 7) + (1 << 6);
-        table[i] = ((1u64 << 32) / mid) as u32;
-        i += 1;
-    }
-    table
-};
-
-/// The estimate of [`max_div_by_table`] before its corrections.
-#[inline(always)]
-fn max_div_estimate(d: u32) -> u32 {
-    debug_assert!((1 << 15..1 << 16).contains(&d));
-    let x0 = RECIPROCAL_TABLE[((d >> 7) & 0xFF) as usize];
-    let e = 0u32.wrapping_sub(d.wrapping_mul(x0)) as i32;
-    x0.wrapping_add_signed(((e >> 8) * (x0 >> 2) as i32) >> 22)
-}
-
-/// [`max_div`] by products alone: a table estimate `x0` (relative error
-/// below `2^-9`), one Newton step in 32-bit products, and exact
-/// corrections against the remainder.
-///
-/// Ranges (`d` in `[2^15, 2^16)`, `x0` in `(2^16, 2^17)`): `d·x0` is
-/// within `2^32·2^-9` of `2^32`, so the residual `e = 2^32 - d·x0`
-/// (wrapping, as `i32`) is at most `2^23` in magnitude; `(e >> 8)·(x0 >>
-/// 2)` is at most `2^15·2^15 = 2^30`; the step leaves `q` within 2 of the
-/// quotient (the tests check every `d`, and that each correction loop runs
-/// at most twice); `q·d` wraps `u32`, but `2^32 - 1 - q·d` is within
-/// `3·d < 2^18` of `[0, d)`, so its wrapping difference as `i32` is exact.
-#[inline]
-fn max_div_by_table(d: u32) -> u32 {
-    let mut q = max_div_estimate(d);
-    let mut r = u32::MAX.wrapping_sub(q.wrapping_mul(d)) as i32;
-    while r < 0 {
-        q -= 1;
-        r += d as i32;
-    }
-    while r >= d as i32 {
-        q += 1;
-        r -= d as i32;
-    }
-    q
 }
 
 /// `n / d` rounded to the nearest integer (ties up), for `d > 0`.
@@ -399,9 +266,9 @@ impl FixedFrame {
             }
             let k = l.e + t;
             let q = if k >= 0 {
-                div_round_i128(l.m << k, scale)
+                div_round_away_i128(l.m << k, scale)
             } else if k > -80 {
-                div_round_i128(l.m, scale << -k)
+                div_round_away_i128(l.m, scale << -k)
             } else {
                 0
             };
@@ -437,6 +304,7 @@ impl FixedFrame {
     }
 
     /// The scale exponent `T` of this draw's coefficients.
+    #[cfg(test)]
     pub fn scale_bits(&self) -> i32 {
         self.scale_bits
     }
@@ -575,7 +443,7 @@ pub fn unit_q15(v: [f32; 3]) -> Option<[i32; 3]> {
     if length == 0 {
         return None;
     }
-    Some(x.map(|c| div_round_i128(c * i128::from(NORMAL_SCALE), length) as i32))
+    Some(x.map(|c| div_round_away_i128(c * i128::from(NORMAL_SCALE), length) as i32))
 }
 
 /// `round(v · 2^bits)` for a finite `f32` `v` with `abs(v) <= 1`, exactly
@@ -623,29 +491,13 @@ fn view_rotation(m: &Mat4) -> Option<[[i32; 3]; 3]> {
         return None;
     }
     let length = isqrt(n0.unsigned_abs()) as i128;
-    Some(v.map(|row| row.map(|x| div_round_i128(x << 15, length) as i32)))
+    Some(v.map(|row| row.map(|x| div_round_away_i128(x << 15, length) as i32)))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    #[test]
-    fn max_div_by_table_is_exact_for_every_divisor() {
-        let (mut worst_residual, mut worst_miss) = (0u32, 0u32);
-        for d in 1u32 << 15..1 << 16 {
-            let exact = u32::MAX / d;
-            assert_eq!(max_div_by_table(d), exact, "d = {d}");
-            let x0 = RECIPROCAL_TABLE[((d >> 7) & 0xFF) as usize];
-            assert!((1 << 16..1 << 17).contains(&x0));
-            let residual = ((1i64 << 32) - i64::from(d) * i64::from(x0)).unsigned_abs();
-            worst_residual = worst_residual.max(residual as u32);
-            worst_miss = worst_miss.max(max_div_estimate(d).abs_diff(exact));
-        }
-        // The ranges stated on `max_div_by_table`.
-        assert!(worst_residual <= 1 << 23, "residual {worst_residual}");
-        assert!(worst_miss <= 2, "estimate off by {worst_miss}");
-    }
     use crate::front::geometry::{Vec3, radians};
     use crate::front::scene::Camera;
     use proptest::prelude::*;
@@ -737,90 +589,6 @@ mod tests {
 
     /// `round(n / d)`, ties away from zero, straight from the definition
     /// in `i128` (no fast path).
-    fn div_round_wide(n: i128, d: i128) -> i128 {
-        let (q, r) = (n.div_euclid(d), n.rem_euclid(d));
-        // n = q·d + r, 0 <= r < d: round up when 2r > d, or 2r == d and the
-        // value is positive (away from zero).
-        if 2 * r > d || (2 * r == d && n >= 0) {
-            q + 1
-        } else {
-            q
-        }
-    }
-
-    #[test]
-    fn rounded_division_is_exact_on_both_paths() {
-        const LIMIT: i128 = 1 << 61;
-        let nums = [
-            0,
-            1,
-            -1,
-            2,
-            -2,
-            3,
-            -3,
-            LIMIT - 1,
-            -(LIMIT - 1),
-            LIMIT,
-            -LIMIT,
-            1 << 100,
-        ];
-        let dens = [1, 2, 3, 32767, 65534, LIMIT - 1, LIMIT, 1 << 90];
-        for &n in &nums {
-            for &d in &dens {
-                assert_eq!(div_round_i128(n, d), div_round_wide(n, d), "{n} / {d}");
-            }
-        }
-    }
-
-    proptest::proptest! {
-        #[test]
-        fn rounded_division_by_a_short_divisor_matches_its_definition(
-            n in proptest::prelude::any::<i128>().prop_map(|n| n >> 2),
-            d in 1i128..(1i128 << 16),
-        ) {
-            proptest::prop_assert_eq!(div_round_i128(n, d), div_round_wide(n, d));
-        }
-
-        #[test]
-        fn rounded_division_matches_its_definition(
-            n in -(1i128 << 62)..(1i128 << 62),
-            d in 1i128..(1i128 << 62),
-        ) {
-            proptest::prop_assert_eq!(div_round_i128(n, d), div_round_wide(n, d));
-        }
-    }
-
-    #[test]
-    fn reciprocal_within_eight() {
-        let check = |w: u32| {
-            let exact = (1u128 << 62) / u128::from(w);
-            let r = u128::from(reciprocal62(w));
-            assert!(r.abs_diff(exact) <= 8, "w {w}: {r} vs {exact}");
-            // Never above the quotient, so below 2^32 (`Divisor` multiplies
-            // it as a 32-bit operand).
-            assert!(r <= exact && r < 1 << 32, "w {w}: {r} vs {exact}");
-        };
-        for w in [
-            1 << 30,
-            (1 << 30) + 1,
-            (1 << 31) - 1,
-            (1 << 31) - 2,
-            3 << 29,
-            0x5555_5555,
-            0x7FFF_8000,
-            0x4000_7FFF,
-        ] {
-            check(w);
-        }
-        let mut x = 0x1234_5678u32;
-        for _ in 0..200_000 {
-            x ^= x << 13;
-            x ^= x >> 17;
-            x ^= x << 5;
-            check((1 << 30) | (x >> 2));
-        }
-    }
 
     #[test]
     fn extremes_stay_in_range() {
@@ -932,5 +700,36 @@ mod tests {
         shear.m[0][1] += 0.5;
         let f = FixedFrame::new(&m, &shear, [0.0; 3], 1.0, 240, 240).unwrap();
         assert!(f.view_normal([0, 0, 32767]).is_none());
+    }
+
+    #[test]
+    fn a_shear_keeps_integers_without_normals_and_a_huge_scale_leaves_them() {
+        // A unit sphere at the reference view, sheared: the transform stays
+        // integer, the normals do not (not a rotation times a scale).
+        let camera = Camera::reference(240, 240);
+        let model = Mat4::rotation_y(radians(30.0));
+        let mut shear = Mat4::IDENTITY;
+        shear.m[0][1] = 0.4;
+        let shear = shear.mul(&model);
+        let (mv, mvp) = {
+            let mv = camera.view.mul(&shear);
+            (mv, camera.projection.mul(&mv))
+        };
+        let frame = FixedFrame::new(&mvp, &mv, [0.0; 3], 1.0, 240, 240).expect("integer ranges");
+        assert!(frame.view_normal([0, 0, 32767]).is_none());
+        // A billion times larger and further: the same picture, with
+        // coefficients beyond the integer ranges.
+        let far = Camera::perspective(
+            Mat4::translation(Vec3::new(0.0, 0.0, -3.0e9)),
+            45.0,
+            240,
+            240,
+            1.0e8,
+            1.0e10,
+        );
+        let huge = Mat4::scale(Vec3::new(1.0e9, 1.0e9, 1.0e9)).mul(&model);
+        let mv = far.view.mul(&huge);
+        let mvp = far.projection.mul(&mv);
+        assert!(FixedFrame::new(&mvp, &mv, [0.0; 3], 1.0, 240, 240).is_none());
     }
 }

@@ -9,7 +9,7 @@
 //! from `face_starts[f]` up to `face_starts[f + 1]` (or the end of
 //! `corners` for the last face), each corner a 0-based vertex index.
 
-use crate::front::quantized::QuantizedView;
+use crate::limits::POSITION_SCALE;
 
 /// A polygon mesh: positions and faces of 3 or more corners.
 pub trait Mesh {
@@ -81,7 +81,7 @@ pub enum MeshError {
     /// Fewer planarity bits than faces.
     BadPlanarity,
     /// A face has more corners than the pipeline draws
-    /// ([`MAX_FACE_CORNERS`](crate::front::scene::MAX_FACE_CORNERS)).
+    /// ([`MAX_FACE_CORNERS`](crate::limits::MAX_FACE_CORNERS)).
     FaceTooLarge {
         /// The offending face.
         face: usize,
@@ -103,7 +103,7 @@ pub enum MeshError {
     },
     /// A quantized mesh's table of exact normals: not one per face (`face:
     /// None`), or one that is not its triangle's
-    /// [`exact_normal`](crate::front::backface::exact_normal) (`face:
+    /// [`QuantizedMesh::exact_normal`](crate::QuantizedMesh::exact_normal) (`face:
     /// Some(f)`; zero for a face that is not a triangle).
     BadExactNormals {
         /// The offending face, if one.
@@ -128,7 +128,7 @@ impl<'a> StaticMesh<'a> {
     /// checked at compile time:
     ///
     /// ```
-    /// use zline::front::mesh::{Mesh, StaticMesh};
+    /// use zline::{Mesh, StaticMesh};
     /// static QUAD: StaticMesh<'static> = match StaticMesh::new(
     ///     &[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
     ///     &[0, 1, 2, 3],
@@ -165,7 +165,7 @@ impl<'a> StaticMesh<'a> {
             if end > corners.len() || start + 3 > end {
                 return Err(MeshError::BadFaceStarts { face: f });
             }
-            if end - start > crate::front::scene::MAX_FACE_CORNERS {
+            if end - start > crate::limits::MAX_FACE_CORNERS {
                 return Err(MeshError::FaceTooLarge { face: f });
             }
             f += 1;
@@ -394,6 +394,41 @@ pub fn is_planar<M: Mesh + ?Sized>(mesh: &M, index: usize) -> bool {
     let tolerance = f64::from(PLANARITY_TOLERANCE);
     // distance = along / |normal| <= tolerance · radius, squared.
     length2 > 0.0 && deviation2 <= tolerance * tolerance * radius2 * length2
+}
+
+/// What the integer front end reads from a quantized mesh: its positions,
+/// its face normals, and the sphere they are quantized in.
+#[derive(Debug, Clone, Copy)]
+pub struct QuantizedView<'a> {
+    /// Vertex positions, `centre + radius · q / POSITION_SCALE`.
+    pub positions: &'a [[i16; 3]],
+    /// One unit normal per face, `n / NORMAL_SCALE`; zero for a face of no
+    /// area.
+    pub normals: &'a [[i16; 3]],
+    /// Centre of the quantization sphere.
+    pub centre: [f32; 3],
+    /// Radius of the quantization sphere (positive, finite).
+    pub radius: f32,
+    /// Each triangle's exact normal (see
+    /// [`QuantizedMesh::with_exact_normals`](crate::front::quantized::QuantizedMesh::with_exact_normals);
+    /// zero for a face that is not a triangle), or empty: the model-space
+    /// back-face test then works them out.
+    pub exact_normals: &'a [[i16; 3]],
+}
+
+impl QuantizedView<'_> {
+    /// The position vertex `index` stands for, in `f64` (exact: a 16-bit
+    /// integer times a `f32` fits a `f64`'s mantissa, up to the final sum).
+    pub fn position64(&self, index: usize) -> [f64; 3] {
+        let q = self.positions[index];
+        let scale = f64::from(self.radius) / f64::from(POSITION_SCALE);
+        core::array::from_fn(|k| f64::from(self.centre[k]) + f64::from(q[k]) * scale)
+    }
+
+    /// The position vertex `index` stands for, in `f32`.
+    pub fn position(&self, index: usize) -> [f32; 3] {
+        self.position64(index).map(|v| v as f32)
+    }
 }
 
 #[cfg(test)]

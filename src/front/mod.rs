@@ -18,12 +18,12 @@
 //! * [`backface`]: the integer front end's back-face test in model space,
 //!   before a triangle's corners are transformed.
 
-pub mod backface;
-pub mod clip;
-pub mod fixed_point;
-pub mod geometry;
-pub mod mesh;
+pub(crate) mod backface;
+pub(crate) mod clip;
+pub(crate) mod fixed_point;
+pub(crate) mod geometry;
+pub(crate) mod mesh;
 pub mod obj;
-pub mod quantized;
-pub mod scene;
-pub mod shade;
+pub(crate) mod quantized;
+pub(crate) mod scene;
+pub(crate) mod shade;

@@ -11,8 +11,8 @@
 //!   host.
 //!
 //! ```
-//! use zline::front::mesh::Mesh;
-//! use zline::front::obj::ObjMesh;
+//! use zline::Mesh;
+//! use zline::obj::ObjMesh;
 //!
 //! let bytes = b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nf -4 -2 -1\n";
 //! // Up to 8 vertices, 16 corners, 4 faces, 4 corners per face.
@@ -28,7 +28,7 @@
 //!   and ignored. Every number must be finite: `nan`, `inf` and any other
 //!   token are errors.
 //! - `f` lists 3 or more corners (at most `N`, and at most
-//!   [`crate::front::scene::MAX_FACE_CORNERS`]), each `v`,
+//!   [`crate::limits::MAX_FACE_CORNERS`]), each `v`,
 //!   `v/vt`, `v//vn` or `v/vt/vn`. Only `v` is used, but `vt` and `vn` are
 //!   checked like `v` against the `vt` and `vn` lines.
 //!   Positive indices count from 1 and may name any line of their kind in
@@ -58,7 +58,7 @@ use core::fmt;
 use heapless::Vec;
 
 use crate::front::mesh::{MeshArrays, StaticMesh};
-use crate::front::scene::MAX_FACE_CORNERS;
+use crate::limits::MAX_FACE_CORNERS;
 
 /// Most vertices a file may define: corners are `u16`.
 pub const MAX_VERTICES: usize = 1 << 16;
@@ -537,7 +537,7 @@ pub enum Statement<'a, const N: usize> {
 /// file. After an error the iterator ends.
 ///
 /// ```
-/// use zline::front::obj::{ObjReader, Statement};
+/// use zline::obj::{ObjReader, Statement};
 ///
 /// let bytes = b"v 0 0 0\nvt 0 0\nv 1 0 0\nv 0 1 0\nf 1/1 2/1 3/1\n";
 /// let mut reader = ObjReader::<4>::new(bytes);
@@ -639,7 +639,7 @@ impl ObjCounts {
 /// [`MAX_FACE_CORNERS`] corners).
 ///
 /// ```
-/// let counts = zline::front::obj::count(b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n").unwrap();
+/// let counts = zline::obj::count(b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n").unwrap();
 /// assert_eq!((counts.vertices, counts.faces, counts.triangles), (4, 1, 2));
 /// ```
 pub fn count(bytes: &[u8]) -> Result<ObjCounts, ObjError> {

@@ -15,15 +15,13 @@
 //! every target computes the same frame bit for bit.
 
 use crate::front::backface::exact_normal;
-use crate::front::geometry::Vec3;
-use crate::front::mesh::{Mesh, MeshError, SharedPlane, check_shared_planes, face_of, is_planar};
-use crate::front::scene::MAX_FACE_CORNERS;
-
-/// A quantized coordinate `q` is `q / POSITION_SCALE` bounding-sphere
-/// radii from the centre.
-pub const POSITION_SCALE: i32 = 32_767;
-/// A quantized normal component `n` is `n / NORMAL_SCALE`.
-pub const NORMAL_SCALE: i32 = 32_767;
+use crate::front::mesh::{
+    Mesh, MeshError, QuantizedView, SharedPlane, check_shared_planes, face_of, is_planar,
+};
+use crate::limits::MAX_FACE_CORNERS;
+use crate::limits::NORMAL_SCALE;
+#[cfg(any(test, feature = "std"))]
+use crate::limits::POSITION_SCALE;
 
 /// Largest squared length a stored normal may have: `(32767 · (1 +
 /// 2^-12))^2`, room for rounding each component of a unit vector. With it,
@@ -34,40 +32,6 @@ const NORMAL_LENGTH2_MAX: i64 = {
     let len = n + n / 4096 + 1;
     len * len
 };
-
-/// What the integer front end reads from a quantized mesh: its positions,
-/// its face normals, and the sphere they are quantized in.
-#[derive(Debug, Clone, Copy)]
-pub struct QuantizedView<'a> {
-    /// Vertex positions, `centre + radius · q / POSITION_SCALE`.
-    pub positions: &'a [[i16; 3]],
-    /// One unit normal per face, `n / NORMAL_SCALE`; zero for a face of no
-    /// area.
-    pub normals: &'a [[i16; 3]],
-    /// Centre of the quantization sphere.
-    pub centre: [f32; 3],
-    /// Radius of the quantization sphere (positive, finite).
-    pub radius: f32,
-    /// Each face's [`exact_normal`] (zero for a face that is not a
-    /// triangle), or empty: the model-space back-face test then works
-    /// them out.
-    pub exact_normals: &'a [[i16; 3]],
-}
-
-impl QuantizedView<'_> {
-    /// The position vertex `index` stands for, in `f64` (exact: a 16-bit
-    /// integer times a `f32` fits a `f64`'s mantissa, up to the final sum).
-    pub fn position64(&self, index: usize) -> [f64; 3] {
-        let q = self.positions[index];
-        let scale = f64::from(self.radius) / f64::from(POSITION_SCALE);
-        core::array::from_fn(|k| f64::from(self.centre[k]) + f64::from(q[k]) * scale)
-    }
-
-    /// The position vertex `index` stands for, in `f32`.
-    pub fn position(&self, index: usize) -> [f32; 3] {
-        self.position64(index).map(|v| v as f32)
-    }
-}
 
 /// A quantized mesh over borrowed slices: `'static` ones live in flash.
 /// It is a [`Mesh`] like any other (positions read back in `f32`), and
@@ -171,9 +135,20 @@ impl<'a> QuantizedMesh<'a> {
         Ok(Self { shared, ..self })
     }
 
-    /// The same mesh with a table of each face's [`exact_normal`] (zero
-    /// for a face that is not a triangle), which the model-space back-face
-    /// test ([`crate::front::backface`]) reads instead of working them out
+    /// The exact normal `N = (q1 - q0) x (q2 - q0)` of a triangle of
+    /// quantized corners, shifted right (by 0, 8, 16 or 17 bits, rounding
+    /// down) until every component is below `2^14` in magnitude: what the
+    /// integer front end's back-face test takes, and what
+    /// [`Self::with_exact_normals`] checks each entry against. Zero when an
+    /// edge component lies outside `[-2^15, 2^15)` (`N` is exact in `i32`
+    /// only inside).
+    pub const fn exact_normal(q0: [i16; 3], q1: [i16; 3], q2: [i16; 3]) -> [i16; 3] {
+        exact_normal(q0, q1, q2)
+    }
+
+    /// The same mesh with a table of each face's [`Self::exact_normal`]
+    /// (zero for a face that is not a triangle), which the integer front
+    /// end's model-space back-face test reads instead of working them out
     /// each draw. `const`, so a flash mesh's table is checked entry by
     /// entry at compile time.
     pub const fn with_exact_normals(self, table: &'a [[i16; 3]]) -> Result<Self, MeshError> {
@@ -262,8 +237,9 @@ impl Mesh for QuantizedMesh<'_> {
 /// A position quantized in a sphere: `round((p - centre) / radius ·
 /// POSITION_SCALE)`, each component clamped to `±POSITION_SCALE` (a
 /// position outside the sphere, which a bounding sphere never leaves out,
-/// is pulled onto its box).
-pub fn quantize_position(p: [f64; 3], centre: [f64; 3], radius: f64) -> [i16; 3] {
+/// is pulled onto its box). (The host's quantizer writes meshes with it.)
+#[cfg(any(test, feature = "std"))]
+pub(crate) fn quantize_position(p: [f64; 3], centre: [f64; 3], radius: f64) -> [i16; 3] {
     let scale = f64::from(POSITION_SCALE) / radius;
     core::array::from_fn(|k| {
         let v = libm::round((p[k] - centre[k]) * scale);
@@ -274,7 +250,8 @@ pub fn quantize_position(p: [f64; 3], centre: [f64; 3], radius: f64) -> [i16; 3]
 /// A face's unit normal, quantized: Newell's normal of `corners` in `f64`,
 /// normalised and rounded to [`NORMAL_SCALE`]; zero when the face has no
 /// area.
-pub fn quantize_normal(corners: impl IntoIterator<Item = [f64; 3]> + Clone) -> [i16; 3] {
+#[cfg(any(test, feature = "std"))]
+pub(crate) fn quantize_normal(corners: impl IntoIterator<Item = [f64; 3]> + Clone) -> [i16; 3] {
     let (mut a, mut b, mut c) = (0.0f64, 0.0f64, 0.0f64);
     let first = corners.clone().into_iter().next();
     let next = corners.clone().into_iter().skip(1).chain(first);
@@ -289,16 +266,6 @@ pub fn quantize_normal(corners: impl IntoIterator<Item = [f64; 3]> + Clone) -> [
     }
     let s = f64::from(NORMAL_SCALE) / length;
     [a, b, c].map(|v| libm::round(v * s) as i16)
-}
-
-/// The normal a quantized face stands for, as a `f32` vector.
-pub fn normal_vector(n: [i16; 3]) -> Vec3 {
-    let s = 1.0 / NORMAL_SCALE as f32;
-    Vec3::new(
-        f32::from(n[0]) * s,
-        f32::from(n[1]) * s,
-        f32::from(n[2]) * s,
-    )
 }
 
 #[cfg(test)]

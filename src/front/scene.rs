@@ -58,28 +58,18 @@
 use core::cell::OnceCell;
 use core::fmt;
 
+use crate::arith::wide::cross;
 use crate::error::Error;
 use crate::front::backface::{EyeTest, Side};
 use crate::front::clip::{self, ClipPoint, ClipVertex, Clipper};
 use crate::front::fixed_point::FixedFrame;
 use crate::front::geometry::{Mat4, Vec3, Vec4, newell_normal, radians};
+use crate::front::mesh::QuantizedView;
 use crate::front::mesh::{Mesh, SharedPlane};
-use crate::front::quantized::{NORMAL_SCALE, QuantizedView};
-use crate::raster::fixed::MAX_POLYGON_CORNERS;
+use crate::limits::NORMAL_SCALE;
+use crate::limits::{CLIP_BAND_PX, MAX_FACE_CORNERS, MAX_POLYGON_CORNERS};
 use crate::raster::vertex::{Outline, OutlineBuilder, ScreenVertex};
-use crate::raster::wide::cross;
 use crate::raster::{Admission, PolygonTables};
-
-/// Most corners a mesh face may have: clipping adds at most one corner per
-/// plane (six), and a polygon has at most
-/// [`crate::raster::fixed::MAX_POLYGON_CORNERS`].
-pub const MAX_FACE_CORNERS: usize = MAX_POLYGON_CORNERS - 6;
-/// Half-width of the band around the frame's centre, in pixels, inside
-/// which vertices are projected as they are. Faces reaching beyond it are
-/// clipped to it. It is half the core's guard band
-/// ([`GUARD_BAND_PX`](crate::raster::fixed::GUARD_BAND_PX)), so rounding
-/// can never push a vertex out of the core's range.
-pub const CLIP_BAND_PX: f32 = (crate::raster::fixed::GUARD_BAND_PX / 2) as f32;
 
 /// A camera: view and projection matrices and the frame they map to.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -152,7 +142,7 @@ pub const RADIUS_RANGE: (f32, f32) = (f32::MIN_POSITIVE, 1.0 / f32::MIN_POSITIVE
 
 /// Centre of the axis-aligned bounding box of all vertices, and the largest
 /// distance from it to a vertex (0 for an empty or one-point mesh). For a
-/// [quantized mesh](crate::front::quantized) it is the sphere it was
+/// [quantized mesh](crate::QuantizedMesh) it is the sphere it was
 /// quantized in: the original mesh's.
 ///
 /// Computed in `f64`, so no finite `f32` coordinates overflow or underflow
@@ -299,7 +289,7 @@ impl FaceInfo<'_> {
     }
 
     /// The unit normal in view space in integers, units of `1/32767`, when
-    /// the face comes from a [quantized mesh](crate::front::quantized):
+    /// the face comes from a [quantized mesh](crate::QuantizedMesh):
     /// its stored normal rotated by the model-view rotation, the same on
     /// every target and with no floating point. `None` for other faces.
     pub fn normal_q15(&self) -> Option<[i32; 3]> {
@@ -761,7 +751,7 @@ impl Frame {
             let margin = CLIP_ERROR * corner_size;
             // Bit 6: not in front of the eye (w <= 0) for certain.
             let behind = if p.w <= -margin { 1 << 6 } else { 0 };
-            outside &= clip::outside_mask_beyond(p, &clip::FRUSTUM, margin) | behind;
+            outside &= clip::outside_mask(p, &clip::FRUSTUM, margin) | behind;
             size = size.max(corner_size);
         }
         if outside != 0 {

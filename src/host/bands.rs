@@ -231,7 +231,7 @@ pub struct BandTiming {
 /// faster. [`Self::set_one_thread_below`] moves that limit.
 ///
 /// ```
-/// use zline::front::scene::{Camera, Cull, reference_model};
+/// use zline::{Camera, Cull, reference_model};
 /// use zline::host::{BandedRenderer, HostMesh};
 /// use zline::{Capacities, Depth16, FnSink};
 ///
@@ -743,7 +743,7 @@ where
 /// [`NOT_PROJECTED`]. Projected vertices lie in the guard band, whose rows
 /// fit in `i16` with room to spare (`GUARD_BAND_PX` < 2^15).
 fn vertex_row(vertex: &ProjectedVertex) -> i16 {
-    const _: () = assert!(crate::raster::fixed::GUARD_BAND_PX < (1 << 14));
+    const _: () = assert!(crate::limits::GUARD_BAND_PX < (1 << 14));
     match vertex {
         ProjectedVertex::Screen(v) => first_sample_at_or_after(v.y) as i16,
         _ => NOT_PROJECTED,
@@ -787,7 +787,7 @@ struct SharedProjection {
 const NEEDS_CLIP: u32 = u32::MAX - 1;
 /// [`SharedProjection::z`] of a vertex that is not finite.
 const NON_FINITE: u32 = u32::MAX;
-const _: () = assert!(crate::raster::fixed::DEPTH_MAX < NEEDS_CLIP);
+const _: () = assert!(crate::limits::DEPTH_MAX < NEEDS_CLIP);
 
 impl SharedProjection {
     /// Room for `count` vertices (the old values stay, to be written over).

@@ -4,9 +4,9 @@ use std::vec::Vec;
 
 use crate::front::mesh::{Mesh, MeshArrays, SharedPlane, planar_face_bits};
 use crate::front::obj::{ObjError, ObjReader, Statement};
-use crate::front::scene::MAX_FACE_CORNERS;
+use crate::limits::MAX_FACE_CORNERS;
+use crate::limits::{MAX_POLYGON_CORNERS, MAX_POLYGONS};
 use crate::raster::Capacities;
-use crate::raster::fixed::{MAX_POLYGON_CORNERS, MAX_POLYGONS};
 
 /// Positions and faces in growable storage, in the layout of
 /// [`StaticMesh`](crate::front::mesh::StaticMesh).

@@ -29,7 +29,7 @@ pub struct QuantizedHostMesh {
     pub radius: f32,
     /// The original mesh's shared planes (quantizing keeps the vertices).
     pub shared_planes: Vec<SharedPlane>,
-    /// Each face's [`exact_normal`] from the quantized positions (zero for
+    /// Each face's [`QuantizedMesh::exact_normal`](crate::QuantizedMesh::exact_normal) from the quantized positions (zero for
     /// a face that is not a triangle).
     pub exact_normals: Vec<[i16; 3]>,
 }

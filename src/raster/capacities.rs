@@ -6,7 +6,7 @@
 //!
 //! ```
 //! use embedded_graphics_core::pixelcolor::Rgb565;
-//! use zline::raster::{Capacities, Renderer, ScanArrays, TableArrays};
+//! use zline::{Capacities, Renderer, ScanArrays, TableArrays};
 //! use zline::Depth16;
 //!
 //! const CAPS: Capacities = Capacities {
@@ -44,7 +44,7 @@ pub struct Capacities {
     /// Vertices in the vertex table (at most 65,536).
     pub vertices: usize,
     /// Polygons in the polygon table (at most
-    /// [`MAX_POLYGONS`](crate::raster::fixed::MAX_POLYGONS) are used).
+    /// [`MAX_POLYGONS`](crate::limits::MAX_POLYGONS) are used).
     pub polygons: usize,
     /// Corners of all polygons together (3 per triangle); the edge table
     /// has as many entries.

@@ -18,14 +18,17 @@
 //! resolution, within one step (1 LSB) of the exactly rounded value of the
 //! exact plane; `tests/depth_bound.rs` checks this over full-width spans.
 
-use crate::raster::fixed::PLANE_FRAC_BITS;
-use crate::raster::wide::mul_i64_small;
+use crate::arith::wide::mul_i64_small;
+use crate::limits::PLANE_FRAC_BITS;
 
-/// A depth-row format: the stored value type, its span accumulator and the
-/// conversions from plane units.
-pub trait DepthFormat {
+/// A depth-row format: what one entry of the depth row stores, and how a
+/// span steps it from a polygon's plane. Implemented by [`Depth16`] and
+/// [`Depth24`], and sealed: the scanner relies on each format's stepping
+/// arithmetic and its stated error bound, so no other type implements it.
+pub trait DepthFormat: sealed::Sealed {
     /// What one depth-row entry stores.
     type Value: Copy + Ord + core::fmt::Debug;
+    #[doc(hidden)]
     /// The per-pixel accumulator stepped along a span.
     type Accum: Copy + From<i32>;
     /// Value the row is cleared to: the far plane.
@@ -35,23 +38,28 @@ pub trait DepthFormat {
     /// Resolution of the stored value, in bits.
     const BITS: u32;
 
+    #[doc(hidden)]
     /// Accumulator and per-pixel step for a span of `len >= 1` pixels whose
     /// first pixel has plane value `start` and which steps by `step` per
     /// pixel. `None` when some pixel of the span would leave the format's
     /// range; the renderer then quantises pixel by pixel with
     /// [`DepthFormat::quantize`].
     fn span(start: i64, step: i64, len: u32) -> Option<(Self::Accum, Self::Accum)>;
+    #[doc(hidden)]
     /// The stored value for the current pixel.
     fn value(acc: Self::Accum) -> Self::Value;
+    #[doc(hidden)]
     /// Advances the accumulator by one pixel.
     fn advance(acc: Self::Accum, step: Self::Accum) -> Self::Accum;
     /// Rounds a plane value to the nearest stored value, clamped to the
     /// format's range.
     fn quantize(plane_value: i64) -> Self::Value;
+    #[doc(hidden)]
     /// A polygon's per-pixel plane step (`abs(step) < 2^40`) as this
     /// format's accumulator step, computed once per polygon; `None` when it
     /// does not fit the accumulator.
     fn accumulator_step(step: i64) -> Option<i64>;
+    #[doc(hidden)]
     /// The accumulator at pixel `column` of a row whose plane value at
     /// column 0 is `row_value` (the polygon's gradient `dz_dx`, its
     /// accumulator step `step` from [`DepthFormat::accumulator_step`]),
@@ -70,11 +78,13 @@ pub trait DepthFormat {
         column: i32,
     ) -> (Self::Accum, Self::Accum);
 
+    #[doc(hidden)]
     /// Whether an in-range triangle steps a 32-bit row accumulator
     /// ([`NarrowRow`], from [`DepthFormat::narrow_row`]) rather than its
     /// plane value in plane units: a format whose accumulator is an `i32`.
     const NARROW: bool = false;
 
+    #[doc(hidden)]
     /// The [`NarrowRow`] of an in-range triangle (every value it covers in
     /// [`IN_RANGE`] depth steps) on the row `rows` rows below its first,
     /// the plane value at column 0 of that first row being `first_value`
@@ -90,6 +100,7 @@ pub trait DepthFormat {
         None
     }
 
+    #[doc(hidden)]
     /// The accumulator at `column` of a [`NarrowRow`], and its step.
     #[inline(always)]
     fn narrow_at(row: &NarrowRow, column: i32) -> (Self::Accum, Self::Accum) {
@@ -100,7 +111,7 @@ pub trait DepthFormat {
     }
 }
 
-/// A [`NARROW`](DepthFormat::NARROW) format's row state for an in-range
+/// A `NARROW` format's row state for an in-range
 /// triangle: the accumulator at column 0 of the current row and its steps
 /// per row and per pixel, all modulo 2^32 (column 0 may lie far outside
 /// the triangle; the value at a covered pixel is in range). Stepping it
@@ -138,7 +149,7 @@ impl NarrowRow {
 /// sixteenth of a step of it ([`Depth16::narrow_row`]); the margin of 256
 /// steps covers that and the [`Depth16`] rounding (a depth above
 /// `2^24 - 128` would round to 2^16).
-pub const IN_RANGE: core::ops::RangeInclusive<u32> = 1..=crate::raster::fixed::DEPTH_MAX - 256;
+pub const IN_RANGE: core::ops::RangeInclusive<u32> = 1..=crate::limits::DEPTH_MAX - 256;
 
 /// 16-bit depth: `u16` entries (480 bytes for a 240-pixel row); one step is
 /// 2^-16 of the depth range. The span accumulator is a 32-bit word in
@@ -270,7 +281,7 @@ impl DepthFormat for Depth16 {
 impl DepthFormat for Depth24 {
     type Value = u32;
     type Accum = i64;
-    const CLEAR: u32 = crate::raster::fixed::DEPTH_MAX;
+    const CLEAR: u32 = crate::limits::DEPTH_MAX;
     const NAME: &'static str = "z24";
     const BITS: u32 = 24;
 
@@ -289,7 +300,7 @@ impl DepthFormat for Depth24 {
         let last = start + step * (i64::from(len) - 1);
         let (lo, hi) = (
             -(1i64 << 15),
-            (i64::from(crate::raster::fixed::DEPTH_MAX) << widen) - (1 << 15),
+            (i64::from(crate::limits::DEPTH_MAX) << widen) - (1 << 15),
         );
         let in_range = |v: i64| (lo..hi).contains(&v);
         (in_range(start) && in_range(last))
@@ -308,8 +319,8 @@ impl DepthFormat for Depth24 {
 
     #[inline]
     fn quantize(plane_value: i64) -> u32 {
-        shift_round(plane_value, PLANE_FRAC_BITS)
-            .clamp(0, i64::from(crate::raster::fixed::DEPTH_MAX)) as u32
+        shift_round(plane_value, PLANE_FRAC_BITS).clamp(0, i64::from(crate::limits::DEPTH_MAX))
+            as u32
     }
 
     #[inline]
@@ -348,10 +359,7 @@ mod tests {
         assert_eq!(Depth24::quantize(plane(10.49)), 10);
         assert_eq!(Depth24::quantize(plane(10.5)), 11);
         assert_eq!(Depth24::quantize(plane(-3.0)), 0);
-        assert_eq!(
-            Depth24::quantize(plane(1e9)),
-            crate::raster::fixed::DEPTH_MAX
-        );
+        assert_eq!(Depth24::quantize(plane(1e9)), crate::limits::DEPTH_MAX);
         assert_eq!(Depth16::quantize(plane(256.0 * 7.49)), 7);
         assert_eq!(Depth16::quantize(plane(256.0 * 7.5)), 8);
         assert_eq!(Depth16::quantize(plane(-1.0)), 0);
@@ -509,4 +517,12 @@ mod tests {
         // Depth24 keeps the exact plane value: no narrow rows.
         assert_eq!(Depth24::narrow_row(0, 1, 1, 0), None);
     }
+}
+
+/// Keeps [`DepthFormat`] to this crate's formats.
+mod sealed {
+    /// The seal.
+    pub trait Sealed {}
+    impl Sealed for super::Depth16 {}
+    impl Sealed for super::Depth24 {}
 }

@@ -33,10 +33,9 @@
 //! The tests below step edges between the guard band's corners over every
 //! row they cover and compare each crossing with the exact `i128` value.
 
+use crate::arith::divide::DIVISION_IS_CHEAP;
+use crate::limits::{HALF_PIXEL, MAX_POLYGONS, SUBPIXEL_BITS, SUBPIXEL_STEPS};
 use crate::raster::BRANCH_FREE;
-use crate::raster::fixed::{
-    DIVISION_IS_CHEAP, HALF_PIXEL, MAX_POLYGONS, SUBPIXEL_BITS, SUBPIXEL_STEPS,
-};
 use crate::raster::vertex::ScreenVertex;
 
 /// Edge-table entry, packed in 4 bytes: the row where edges of a polygon
@@ -340,7 +339,7 @@ mod tests {
         }
     }
 
-    const G: i32 = crate::raster::fixed::GUARD_BAND - 1;
+    const G: i32 = crate::limits::GUARD_BAND - 1;
 
     #[test]
     fn floor_division_by_steps_is_exact() {

@@ -147,8 +147,8 @@ enum RowPlaneKind {
 impl RowPlane {
     /// The plane's value at pixel `x` of `row` (the row it was set up
     /// for), in plane units: input depth steps
-    /// ([`DEPTH_ONE`](crate::raster::fixed::DEPTH_ONE) a unit of depth)
-    /// times `2^`[`PLANE_FRAC_BITS`](crate::raster::fixed::PLANE_FRAC_BITS).
+    /// ([`DEPTH_ONE`](crate::limits::DEPTH_ONE) a unit of depth)
+    /// times `2^`[`PLANE_FRAC_BITS`](crate::limits::PLANE_FRAC_BITS).
     pub fn value(&self, x: i32, row: u16) -> i64 {
         match self.0 {
             RowPlaneKind::Stepped { dz_dx, row_value } => row_value + dz_dx * i64::from(x),

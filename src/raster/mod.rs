@@ -21,31 +21,31 @@
 //!
 //! Only one row of depth and one of colour exist: nothing is frame-sized.
 
-mod active;
-pub mod capacities;
-pub mod depth;
-mod edge;
-pub mod fixed;
+pub(crate) mod active;
+pub(crate) mod capacities;
+pub(crate) mod depth;
+pub(crate) mod edge;
+pub(crate) mod fixed;
 pub mod inspect;
 pub(crate) mod lanes;
-mod plane;
-pub mod scan;
-mod slots;
-pub mod tables;
-pub mod vertex;
-pub(crate) mod wide;
+pub(crate) mod plane;
+pub(crate) mod scan;
+pub(crate) mod slots;
+pub(crate) mod tables;
+pub(crate) mod vertex;
 pub mod zbuffer;
 
 pub use active::ActivePolygon;
 pub use capacities::{Capacities, Renderer};
+pub use depth::{Depth16, Depth24, DepthFormat};
 pub use edge::{ActiveEdge, EdgeEntry};
 pub use scan::{FrameStats, ScanArrays, ScanParts, ScanStorage, Scanner, scan};
 pub use tables::{
     Admission, PolygonEntry, Prepared, TableArrays, TableParts, TablePartsRef, TableStorage, Tables,
 };
+pub use vertex::{Outline, OutlineBuilder, ScreenRect, ScreenVertex};
 
 use crate::error::Error;
-use vertex::{Outline, ScreenVertex};
 
 /// Whether the hot loops avoid data-dependent branches: on every target
 /// but 32-bit Arm. A host predicts branches and pays 15-20 cycles for each
@@ -61,7 +61,7 @@ pub(crate) const BRANCH_FREE: bool = !cfg!(target_arch = "arm");
 
 /// What scene building needs from a renderer: its frame, its vertex table
 /// and its polygon table. [`Renderer`] implements it for every
-/// configuration, so [`crate::front::scene`] needs none of the capacities.
+/// configuration, so [`draw_mesh`](crate::draw_mesh) needs none of the capacities.
 ///
 /// A polygon enters in one of two ways, neither needing a buffer per
 /// polygon:

@@ -36,17 +36,17 @@
 //! they can) and check each bound and each result against `i128`
 //! arithmetic, with overflow checks on.
 
-use crate::raster::fixed::{
-    DIVISION_IS_CHEAP, Divisor, HALF_PIXEL, MAX_POLYGON_CORNERS, PLANE_FRAC_BITS, Reciprocal,
-    SUBPIXEL_BITS, SUBPIXEL_STEPS,
+use crate::arith::divide::{DIVISION_IS_CHEAP, Divisor, Reciprocal};
+use crate::arith::wide::{cross, mul_i64_i32, mul_sub_small};
+use crate::limits::{
+    HALF_PIXEL, MAX_POLYGON_CORNERS, PLANE_FRAC_BITS, SUBPIXEL_BITS, SUBPIXEL_STEPS,
 };
 use crate::raster::vertex::ScreenVertex;
-use crate::raster::wide::{cross, mul_i64_i32, mul_sub_small};
 
 /// A gradient of this magnitude (plane units per pixel) or more changes
 /// depth by the whole depth range within one pixel: such a polygon is
 /// (nearly) edge-on and its depth is evaluated exactly per pixel instead.
-pub(crate) const STEEP_GRADIENT: i64 = 1 << (crate::raster::fixed::DEPTH_BITS + PLANE_FRAC_BITS);
+pub(crate) const STEEP_GRADIENT: i64 = 1 << (crate::limits::DEPTH_BITS + PLANE_FRAC_BITS);
 
 /// Bound on `|a|` and `|b|` of Newell's normal.
 pub(crate) const NEWELL_AB_BOUND: u64 = 1 << 57;
@@ -604,7 +604,8 @@ impl TrianglePlane {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::raster::fixed::{DEPTH_MAX, GUARD_BAND, div_round_i128};
+    use crate::arith::divide::div_round_i128;
+    use crate::limits::{DEPTH_MAX, GUARD_BAND};
     use proptest::prelude::*;
     use std::vec::Vec;
 

@@ -21,6 +21,7 @@
 
 use core::ops::Range;
 
+use crate::arith::wide::{cross, mul_i64_small};
 use crate::error::{Error, RenderError};
 use crate::raster::BRANCH_FREE;
 use crate::raster::active::{ActivePolygon, EdgePool, NO_EDGE, NO_ROW, SpanDepth};
@@ -32,7 +33,6 @@ use crate::raster::plane::{Plane, TrianglePlane};
 use crate::raster::slots::{OrderedSlots, Slots};
 use crate::raster::tables::{PolygonEntry, Prepared, entry_corner_ids};
 use crate::raster::vertex::{ScreenVertex, TriangleTest};
-use crate::raster::wide::{cross, mul_i64_small};
 use crate::sink::{LentRow, RowSink};
 
 /// Where a scanner's arrays live: the active polygon table, the edge pool

@@ -18,14 +18,13 @@
 
 use core::ops::Range;
 
+use crate::arith::wide::cross;
 use crate::error::Error;
+use crate::limits::{MAX_FRAME_SIZE, MAX_POLYGON_CORNERS, MAX_POLYGONS};
 use crate::raster::edge::EdgeEntry;
-use crate::raster::fixed::{
-    MAX_FRAME_SIZE, MAX_POLYGON_CORNERS, MAX_POLYGONS, first_sample_at_or_after,
-};
+use crate::raster::fixed::first_sample_at_or_after;
 use crate::raster::slots::Slots;
 use crate::raster::vertex::{Outline, OutlineBuilder, ScreenRect, ScreenVertex, TriangleTest};
-use crate::raster::wide::cross;
 
 /// A polygon-table entry (opaque: its fields are the core's own).
 ///

@@ -4,16 +4,16 @@
 use core::ops::Range;
 
 use crate::error::Error;
+use crate::limits::{DEPTH_MAX, GUARD_BAND, HALF_PIXEL, SUBPIXEL_STEPS};
 use crate::raster::fixed::{
-    DEPTH_MAX, GUARD_BAND, HALF_PIXEL, SUBPIXEL_STEPS, depth_from_f32, depth_from_f64,
-    first_sample_at_or_after, subpixel_from_f32, subpixel_from_f64,
+    depth_from_f32, depth_from_f64, first_sample_at_or_after, subpixel_from_f32, subpixel_from_f64,
 };
 
 /// A vertex after projection: position on the sub-pixel grid and depth.
 ///
-/// `x` and `y` are in 1/256 pixel ([`crate::raster::fixed::SUBPIXEL_STEPS`]),
+/// `x` and `y` are in 1/256 pixel ([`crate::limits::SUBPIXEL_STEPS`]),
 /// `z` is Q0.24 with 0 at the near plane and
-/// [`crate::raster::fixed::DEPTH_MAX`] at the far plane (smaller is
+/// [`crate::limits::DEPTH_MAX`] at the far plane (smaller is
 /// nearer). `z` must be affine in screen space (e.g. `z_ndc`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct ScreenVertex {
@@ -136,23 +136,6 @@ impl ScreenRect {
     }
 }
 
-/// Whether the triangle `a b c` covers the sample point `(xs, ys)` (sub-pixel
-/// steps), by the core's fill rule: an edge counts when it spans the
-/// sample's row (top inclusive, bottom exclusive) and crosses it at or left
-/// of the sample; the sample is inside when an odd number count. This is
-/// exactly the rule the edge DDA applies, with no division. (For many
-/// samples of one triangle, make a [`TriangleTest`] once.)
-#[inline]
-pub fn triangle_covers(
-    a: ScreenVertex,
-    b: ScreenVertex,
-    c: ScreenVertex,
-    xs: i32,
-    ys: i32,
-) -> bool {
-    TriangleTest::new(a, b, c).covers(xs, ys)
-}
-
 /// One edge of a [`TriangleTest`], its ends ordered top first.
 #[derive(Debug, Clone, Copy)]
 struct EdgeTest {
@@ -191,7 +174,7 @@ impl EdgeTest {
 }
 
 /// The fill rule's sample test for one triangle, set up once and asked for
-/// many samples (see [`triangle_covers`]): the core uses it to drop tiny
+/// many samples (see [`TriangleTest::covers`]): the core uses it to drop tiny
 /// triangles that cover none of the few samples in their bounding box, to
 /// find the rows they do cover, and to draw those covering one row.
 #[derive(Debug, Clone, Copy)]
@@ -247,7 +230,7 @@ pub struct Outline {
 /// Gathers an [`Outline`] corner by corner, with no buffer: the area is the
 /// fan of cross products from the first corner (exactly Newell's `c`).
 ///
-/// Feed it at most [`MAX_POLYGON_CORNERS`](crate::raster::fixed::MAX_POLYGON_CORNERS)
+/// Feed it at most [`MAX_POLYGON_CORNERS`](crate::limits::MAX_POLYGON_CORNERS)
 /// corners: then every term is below `2^45` and the sum below `2^55`.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct OutlineBuilder {

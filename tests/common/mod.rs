@@ -2,8 +2,8 @@
 //! `zline_lab::methods::exact`), frame capture, and recording tables.
 #![allow(dead_code)]
 
-use zline::raster::{ScanArrays, TableArrays};
 use zline::{DepthFormat, FnSink, Renderer, ScreenVertex};
+use zline::{ScanArrays, TableArrays};
 #[allow(unused_imports)]
 pub use zline_lab::methods::exact::{covers, exact_depth, exactly_rounded, format_scale, sample};
 
@@ -119,11 +119,11 @@ impl Recorder {
     fn offer(
         &mut self,
         ids: Vec<u16>,
-        decide: impl FnOnce(&zline::raster::vertex::Outline) -> Option<u32>,
+        decide: impl FnOnce(&zline::Outline) -> Option<u32>,
     ) -> zline::Admission {
         let corners: Vec<zline::ScreenVertex> =
             ids.iter().map(|&i| self.vertices[usize::from(i)]).collect();
-        let mut outline = zline::raster::vertex::OutlineBuilder::default();
+        let mut outline = zline::OutlineBuilder::default();
         corners.iter().for_each(|&v| outline.add(v));
         let outline = outline.finish();
         if outline.twice_area == 0 {
@@ -160,7 +160,7 @@ impl zline::PolygonTables<u32> for Recorder {
     fn offer_polygon<I>(
         &mut self,
         corners: I,
-        decide: impl FnOnce(&zline::raster::vertex::Outline) -> Option<u32>,
+        decide: impl FnOnce(&zline::Outline) -> Option<u32>,
     ) -> Result<zline::Admission, zline::Error>
     where
         I: IntoIterator<Item = u16>,
@@ -193,7 +193,7 @@ impl zline::PolygonTables<u32> for Recorder {
     }
     fn finish_polygon(
         &mut self,
-        decide: impl FnOnce(&zline::raster::vertex::Outline) -> Option<u32>,
+        decide: impl FnOnce(&zline::Outline) -> Option<u32>,
     ) -> Result<zline::Admission, zline::Error> {
         let ids = std::mem::take(&mut self.open);
         let admission = self.offer(ids, decide);
@@ -209,9 +209,7 @@ impl zline::PolygonTables<u32> for Recorder {
 pub type Rows = Vec<(u16, Vec<u32>, Vec<u64>)>;
 
 /// The rows the scanline core sends for prepared tables, `W` wide.
-pub fn scanline_rows<D: DepthFormat, const W: usize>(
-    prepared: &zline::raster::Prepared<'_, u32>,
-) -> Rows
+pub fn scanline_rows<D: DepthFormat, const W: usize>(prepared: &zline::Prepared<'_, u32>) -> Rows
 where
     D::Value: Into<u64>,
 {
@@ -233,9 +231,9 @@ where
 /// The rows the z-buffer sends for tables in drawing order, in bands of
 /// `k` rows, with `test` and the drawing `order` (`None`: as added).
 pub fn zbuffer_rows<D: DepthFormat>(
-    drawn: &zline::raster::Prepared<'_, u32>,
+    drawn: &zline::Prepared<'_, u32>,
     k: u16,
-    test: zline::raster::zbuffer::DepthTest,
+    test: zline::zbuffer::DepthTest,
     order: Option<&[u32]>,
 ) -> Rows
 where
@@ -244,12 +242,12 @@ where
     let width = usize::from(drawn.width());
     let n = usize::from(k) * width;
     let (mut depth, mut color, mut scratch) = (vec![D::CLEAR; n], vec![0u32; n], vec![0u32; width]);
-    let mut active = vec![zline::raster::ActivePolygon::filler(0u32); 1];
-    let mut pool = vec![zline::raster::ActiveEdge::EMPTY; 16];
+    let mut active = vec![zline::ActivePolygon::filler(0u32); 1];
+    let mut pool = vec![zline::ActiveEdge::EMPTY; 16];
     let mut rows = Vec::new();
-    zline::raster::zbuffer::render_bands::<u32, D, _>(
+    zline::zbuffer::render_bands::<u32, D, _>(
         drawn,
-        zline::raster::zbuffer::BandBuffers {
+        zline::zbuffer::BandBuffers {
             depth: &mut depth,
             color: &mut color,
             scratch: &mut scratch,
@@ -278,12 +276,12 @@ pub fn random_polygon(
     max_corners: usize,
 ) -> impl proptest::strategy::Strategy<Value = Vec<ScreenVertex>> {
     use proptest::prelude::*;
-    let s = zline::raster::fixed::SUBPIXEL_STEPS;
+    let s = zline::limits::SUBPIXEL_STEPS;
     prop::collection::vec(
         (
             -margin * s..(i32::from(width) + margin) * s,
             -margin * s..(i32::from(height) + margin) * s,
-            0..=zline::raster::fixed::DEPTH_MAX,
+            0..=zline::limits::DEPTH_MAX,
         ),
         3..=max_corners,
     )

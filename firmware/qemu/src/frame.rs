@@ -5,14 +5,12 @@
 //! pixels.
 
 use embedded_graphics_core::pixelcolor::Rgb565;
-use zline::front::geometry::Vec3;
-use zline::front::mesh::Mesh;
-use zline::front::scene::{
-    Camera, Cull, DrawStats, VertexCache, draw_mesh, reference_model_around,
-};
-use zline::front::shade::Shading;
-use zline::raster::{ScanStorage, TableStorage};
+use zline::Mesh;
+use zline::Shading;
+use zline::Vec3;
+use zline::{Camera, Cull, DrawStats, VertexCache, draw_mesh, reference_model_around};
 use zline::{DepthFormat, FrameStats, RenderError, Renderer, RowSink};
+use zline::{ScanStorage, TableStorage};
 
 /// Frame width and height.
 pub const SIZE: u16 = 240;
@@ -46,19 +44,19 @@ where
 }
 
 /// [`render_frame`] by the full-frame z-buffer instead of the scanline
-/// (`zline::raster::zbuffer`, with the same tables, formats and fill rule):
+/// (`zline::zbuffer`, with the same tables, formats and fill rule):
 /// the frame must be the scanline's, bit for bit. `buffers` holds the
 /// frame's depth and colour.
 #[allow(dead_code)] // The build script includes this file but only needs `render_frame`.
 pub fn render_frame_zbuffer<T, D, K, M, const VM: usize>(
-    tables: &mut zline::raster::Tables<T>,
+    tables: &mut zline::Tables<T>,
     cache: &mut VertexCache<VM>,
     mesh: &M,
     (centre, radius): (Vec3, f32),
     (yaw, pitch): (f32, f32),
-    buffers: zline::raster::zbuffer::BandBuffers<'_, Rgb565, D>,
+    buffers: zline::zbuffer::BandBuffers<'_, Rgb565, D>,
     sink: &mut K,
-) -> Result<(DrawStats, zline::raster::zbuffer::BandStats), RenderError<K::Error>>
+) -> Result<(DrawStats, zline::zbuffer::BandStats), RenderError<K::Error>>
 where
     T: TableStorage<Color = Rgb565>,
     D: DepthFormat,
@@ -66,7 +64,7 @@ where
     M: Mesh,
 {
     use embedded_graphics_core::pixelcolor::RgbColor;
-    use zline::raster::zbuffer::{DepthTest, render_bands};
+    use zline::zbuffer::{DepthTest, render_bands};
     tables.clear();
     let model = reference_model_around(centre, radius, yaw, pitch);
     let camera = Camera::reference(SIZE, SIZE);

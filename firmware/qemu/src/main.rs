@@ -23,10 +23,10 @@ use cortex_m_rt::entry;
 use cortex_m_semihosting::{debug, hprintln};
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use static_cell::ConstStaticCell;
-use zline::front::quantized::QuantizedMesh;
-use zline::front::scene::VertexCache;
-use zline::raster::zbuffer::BandBuffers;
-use zline::raster::{ActiveEdge, ActivePolygon, ScanArrays, ScanStorage, TableArrays};
+use zline::QuantizedMesh;
+use zline::VertexCache;
+use zline::zbuffer::BandBuffers;
+use zline::{ActiveEdge, ActivePolygon, ScanArrays, ScanStorage, TableArrays};
 use zline::{Crc32Sink, Depth16, Depth24, DepthFormat, FnSink, FrameStats, Renderer};
 
 /// Which depth format a scene uses.
@@ -121,7 +121,7 @@ fn run_zbuffer<S: ScanStorage<Color = Rgb565>>(
     scene: &Scene,
     syst: &mut SYST,
 ) -> Result<(u32, u32), zline::RenderError<Infallible>> {
-    let sphere = zline::front::scene::bounding_sphere(scene.mesh)?;
+    let sphere = zline::bounding_sphere(scene.mesh)?;
     let view = (scene.yaw, scene.pitch);
     let mut crc = Crc32Sink::new();
     frame::render_frame_zbuffer(
@@ -186,7 +186,7 @@ fn run<S: ScanStorage<Color = Rgb565>>(
 ) -> Result<Outcome, zline::RenderError<Infallible>> {
     let mut crc = Crc32Sink::new();
     // Once per mesh, outside the timed frame.
-    let sphere = zline::front::scene::bounding_sphere(scene.mesh)?;
+    let sphere = zline::bounding_sphere(scene.mesh)?;
     frame::render_frame(
         renderer,
         cache,

@@ -5,14 +5,12 @@
 
 use embedded_graphics_core::pixelcolor::Rgb565;
 use embedded_graphics_core::prelude::IntoStorage;
-use zline::front::geometry::Vec3;
-use zline::front::mesh::Mesh;
-use zline::front::scene::{
-    Camera, Cull, DrawStats, VertexCache, draw_mesh, reference_model_around,
-};
-use zline::front::shade::Shading;
-use zline::raster::{ScanStorage, TableStorage};
+use zline::Mesh;
+use zline::Shading;
+use zline::Vec3;
+use zline::{Camera, Cull, DrawStats, VertexCache, draw_mesh, reference_model_around};
 use zline::{DepthFormat, FrameStats, RenderError, Renderer, RowSink};
+use zline::{ScanStorage, TableStorage};
 
 /// A pixel as the ST7789 takes it: Rgb565 whose two bytes in memory are
 /// big-endian, the wire's order. The scanner is generic over its colour,

@@ -29,11 +29,11 @@ use core::sync::atomic::{AtomicU32, Ordering};
 use panic_halt as _;
 use rp2040_hal as hal;
 use static_cell::ConstStaticCell;
-use zline::front::geometry::Vec3;
-use zline::front::scene::{VertexCache, bounding_sphere};
-use zline::front::shade::Shading;
-use zline::raster::{ScanArrays, TableArrays};
+use zline::Shading;
+use zline::Vec3;
 use zline::{Depth16, FrameStats, RenderError, Renderer};
+use zline::{ScanArrays, TableArrays};
+use zline::{VertexCache, bounding_sphere};
 
 use frame::{WIRE_BLACK, WireColor};
 use lcd::LcdRows;

@@ -19,9 +19,9 @@ use std::vec::Vec;
 use super::accuracy::{Comparison, compare};
 use super::reference::{ReferenceCamera, ReferenceFrame, ReferenceView};
 use super::run::{Method, MethodFrame, MethodRenderer};
-use zline::front::scene::{Cull, reference_model};
-use zline::front::shade::Shading;
+use zline::Shading;
 use zline::host::HostMesh;
+use zline::{Cull, reference_model};
 use zline::{Depth16, Depth24, DepthFormat};
 
 /// What a method is expected to do with a case.
@@ -574,9 +574,9 @@ pub fn run(case: &Case, method: Method, z24: bool) -> (Outcome, Option<MethodFra
 fn draw_with<const V: usize, const P: usize, const E: usize, const AP: usize, const VM: usize>(
     mesh: &HostMesh,
 ) -> Option<String> {
-    use zline::front::scene::{VertexCache, draw_mesh};
-    use zline::raster::{ScanArrays, TableArrays};
     use zline::{FnSink, Renderer};
+    use zline::{ScanArrays, TableArrays};
+    use zline::{VertexCache, draw_mesh};
     let (w, h) = SIZE;
     let mut renderer: std::boxed::Box<
         Renderer<TableArrays<u32, V, P, E>, ScanArrays<u32, Depth16, 160, AP, 8>>,
@@ -616,8 +616,8 @@ pub fn capacity_errors() -> Vec<(&'static str, String)> {
     let say =
         |r: Option<String>| r.map_or_else(|| "fits (UNEXPECTED)".into(), |e| format!("error: {e}"));
     let zbuffer_short = {
-        use zline::raster::zbuffer::{BandBuffers, DepthTest, render_bands};
-        use zline::raster::{ActiveEdge, ActivePolygon, TableArrays, Tables};
+        use zline::zbuffer::{BandBuffers, DepthTest, render_bands};
+        use zline::{ActiveEdge, ActivePolygon, TableArrays, Tables};
         let (w, h) = SIZE;
         let model = reference_model(&mesh, 0.0, 0.0).ok();
         let camera = ReferenceCamera::STANDARD.camera(w, h);
@@ -626,9 +626,9 @@ pub fn capacity_errors() -> Vec<(&'static str, String)> {
                 Ok(t) => std::boxed::Box::new(t),
                 Err(e) => return vec![("tables", e.to_string())],
             };
-        let mut cache = std::boxed::Box::new(zline::front::scene::VertexCache::<64>::new());
+        let mut cache = std::boxed::Box::new(zline::VertexCache::<64>::new());
         let drawn = model.map(|m| {
-            zline::front::scene::draw_mesh(
+            zline::draw_mesh(
                 &mut *tables,
                 &mut cache,
                 &mesh,

@@ -3,7 +3,7 @@
 //! projected in double-double arithmetic (about 106 bits, twice `f64`'s
 //! precision), written apart from [`zline::front::clip`] and
 //! [`zline::front::scene`]. At the clipper's whole range
-//! ([`CLIP_RANGE`](zline::front::scene::CLIP_RANGE)) its own error is far
+//! ([`CLIP_RANGE`](zline::CLIP_RANGE)) its own error is far
 //! below what it judges (`2^-53` of the front end's).
 //!
 //! [`compare_face`] judges what the pipeline made of one face against it:
@@ -11,10 +11,11 @@
 
 use std::vec::Vec;
 
-use zline::front::geometry::Mat4;
-use zline::front::scene::{CLIP_BAND_PX, Camera};
-use zline::raster::fixed::{DEPTH_ONE, SUBPIXEL_STEPS};
-use zline::raster::vertex::ScreenVertex;
+use zline::Camera;
+use zline::Mat4;
+use zline::ScreenVertex;
+use zline::limits::CLIP_BAND_PX;
+use zline::limits::{DEPTH_ONE, SUBPIXEL_STEPS};
 
 /// A double-double number: `hi + lo`, `|lo| <= ulp(hi) / 2`.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -168,7 +169,7 @@ pub fn clipped_face(model: &Mat4, camera: &Camera, corners: &[[f32; 3]]) -> Vec<
         .collect()
 }
 
-/// The clipper's size of a face ([`CLIP_RANGE`](zline::front::scene::CLIP_RANGE):
+/// The clipper's size of a face ([`CLIP_RANGE`](zline::CLIP_RANGE):
 /// the largest sum of the absolute terms of a corner's transform by
 /// `|projection| · |view| · |model|`), and how much its corners'
 /// transforms cancel (the largest ratio of a corner's sum of terms to its

@@ -7,9 +7,9 @@ use std::format;
 use std::string::String;
 use std::vec::Vec;
 
-use zline::raster::depth::DepthFormat;
-use zline::raster::fixed::{DEPTH_MAX, HALF_PIXEL, SUBPIXEL_STEPS};
-use zline::raster::vertex::ScreenVertex;
+use zline::DepthFormat;
+use zline::ScreenVertex;
+use zline::limits::{DEPTH_MAX, HALF_PIXEL, SUBPIXEL_STEPS};
 
 /// Sample point of pixel `(i, j)` in sub-pixel steps.
 pub fn sample(i: i32, j: i32) -> (i64, i64) {
@@ -99,7 +99,7 @@ pub struct Offered {
     /// Its corners.
     pub corners: Vec<ScreenVertex>,
     /// The three corners of the plane it shares, if it was given one
-    /// ([`Tables::share_plane`](zline::raster::Tables::share_plane)).
+    /// ([`Tables::share_plane`](zline::Tables::share_plane)).
     pub plane: Option<[ScreenVertex; 3]>,
     /// Whether it was queued.
     pub queued: bool,

@@ -18,10 +18,10 @@
 
 use std::vec::Vec;
 
-use zline::raster::depth::DepthFormat;
-use zline::raster::inspect::{RowPlane, edge_crossing};
-use zline::raster::tables::Prepared;
-use zline::sink::RowSink;
+use zline::DepthFormat;
+use zline::Prepared;
+use zline::RowSink;
+use zline::inspect::{RowPlane, edge_crossing};
 
 /// One polygon's span on the current row, with its plane on that row.
 #[derive(Debug, Clone, Copy)]
@@ -62,7 +62,7 @@ pub fn render_intervals<C: Copy, D: DepthFormat, K: RowSink<C, D::Value>>(
     tables: &Prepared<'_, C>,
     background: C,
     sink: &mut K,
-) -> Result<IntervalStats, zline::error::RenderError<K::Error>> {
+) -> Result<IntervalStats, zline::RenderError<K::Error>> {
     let (width, height) = (i32::from(tables.width()), tables.height());
     let polygons: Vec<_> = tables.polygons().collect();
     let mut stats = IntervalStats::default();
@@ -154,7 +154,7 @@ pub fn render_intervals<C: Copy, D: DepthFormat, K: RowSink<C, D::Value>>(
             });
         }
         sink.write_row(row, &colors, &depths)
-            .map_err(zline::error::RenderError::Sink)?;
+            .map_err(zline::RenderError::Sink)?;
     }
     Ok(stats)
 }

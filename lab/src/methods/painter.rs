@@ -17,11 +17,11 @@
 //! and the order stays as it is).
 //!
 //! The drawing itself is the core's band method with no depth test
-//! ([`zline::raster::zbuffer`]), so the fill rule is the core's.
+//! ([`zline::zbuffer`]), so the fill rule is the core's.
 
 use std::vec::Vec;
 
-use zline::raster::tables::Prepared;
+use zline::Prepared;
 
 /// Most later polygons each polygon is compared with.
 pub const NEWELL_WINDOW: usize = 64;

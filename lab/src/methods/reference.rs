@@ -23,9 +23,9 @@ use std::vec::Vec;
 
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 
-use zline::front::geometry::Vec3;
-use zline::front::mesh::Mesh;
-use zline::front::scene::FaceInfo;
+use zline::FaceInfo;
+use zline::Mesh;
+use zline::Vec3;
 
 /// Face id of pixels no face covers.
 pub const BACKGROUND: u32 = u32::MAX;
@@ -48,7 +48,7 @@ pub struct ReferenceCamera {
 
 impl ReferenceCamera {
     /// The reference view's camera: eye at distance 3, 45 degrees, near 0.1,
-    /// far 10 (the same as [`Camera::reference`](zline::front::scene::Camera::reference)).
+    /// far 10 (the same as [`Camera::reference`](zline::Camera::reference)).
     pub const STANDARD: Self = Self {
         eye_distance: 3.0,
         fov_y_deg: 45.0,
@@ -57,10 +57,10 @@ impl ReferenceCamera {
     };
 
     /// The same camera for the `f32` pipeline, at `width` x `height`.
-    pub fn camera(&self, width: u16, height: u16) -> zline::front::scene::Camera {
-        use zline::front::geometry::{Mat4, Vec3};
+    pub fn camera(&self, width: u16, height: u16) -> zline::Camera {
+        use zline::{Mat4, Vec3};
         let view = Mat4::translation(Vec3::new(0.0, 0.0, -(self.eye_distance as f32)));
-        zline::front::scene::Camera::perspective(
+        zline::Camera::perspective(
             view,
             self.fov_y_deg as f32,
             width,
@@ -270,7 +270,7 @@ impl ReferenceFrame {
     }
 
     /// Each pixel's colour: `shading` of its face, black where none.
-    pub fn colors(&self, shading: &zline::front::shade::Shading) -> Vec<Rgb888> {
+    pub fn colors(&self, shading: &zline::Shading) -> Vec<Rgb888> {
         self.ids
             .iter()
             .map(|&id| {

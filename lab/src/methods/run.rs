@@ -16,18 +16,18 @@ use super::interval::render_intervals;
 use super::painter::painter_order;
 use super::reference::{BACKGROUND, ReferenceCamera, ReferenceFrame, ReferenceView};
 use super::scanline_host::{HOST_CAPACITIES, HostPixel};
-use zline::error::RenderError;
-use zline::front::geometry::Mat4;
-use zline::front::mesh::Mesh;
-use zline::front::scene::{Camera, Cull, DrawStats, VertexCache, draw_mesh};
-use zline::front::shade::Shading;
+use zline::DepthFormat;
+use zline::FnSink;
+use zline::Mat4;
+use zline::Mesh;
+use zline::PolygonEntry;
+use zline::RenderError;
+use zline::ScreenVertex;
+use zline::Shading;
 use zline::host::{ScanVecs, TableVecs};
-use zline::raster::depth::DepthFormat;
-use zline::raster::tables::PolygonEntry;
-use zline::raster::vertex::ScreenVertex;
-use zline::raster::zbuffer::{BandBuffers, DepthTest, render_bands};
-use zline::raster::{ActiveEdge, ActivePolygon, Capacities, FrameStats, Scanner, Tables, scan};
-use zline::sink::FnSink;
+use zline::zbuffer::{BandBuffers, DepthTest, render_bands};
+use zline::{ActiveEdge, ActivePolygon, Capacities, FrameStats, Scanner, Tables, scan};
+use zline::{Camera, Cull, DrawStats, VertexCache, draw_mesh};
 
 /// A hidden-surface method.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -186,7 +186,7 @@ where
             band_color: vec![EMPTY; frame],
             scratch: vec![0; usize::from(width)],
             active: vec![ActivePolygon::filler(EMPTY); 1],
-            pool: vec![ActiveEdge::EMPTY; zline::raster::fixed::MAX_POLYGON_CORNERS],
+            pool: vec![ActiveEdge::EMPTY; zline::limits::MAX_POLYGON_CORNERS],
             reference_camera: ReferenceCamera::STANDARD,
         })
     }

@@ -9,16 +9,16 @@ use std::vec::Vec;
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 
 use super::reference::BACKGROUND;
-use zline::error::{Error, RenderError};
-use zline::front::geometry::Mat4;
-use zline::front::mesh::Mesh;
-use zline::front::scene::{Camera, Cull, DrawError, DrawStats, VertexCache, draw_mesh};
-use zline::front::shade::Shading;
+use zline::Capacities;
+use zline::DepthFormat;
+use zline::FnSink;
+use zline::Mat4;
+use zline::Mesh;
+use zline::Shading;
 use zline::host::{ScanVecs, TableVecs, host_renderer};
-use zline::raster::Capacities;
-use zline::raster::depth::DepthFormat;
-use zline::raster::{FrameStats, Renderer};
-use zline::sink::FnSink;
+use zline::{Camera, Cull, DrawError, DrawStats, VertexCache, draw_mesh};
+use zline::{Error, RenderError};
+use zline::{FrameStats, Renderer};
 
 /// What the host renderer stores per pixel: the face and its colour.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

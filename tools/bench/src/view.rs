@@ -24,7 +24,7 @@
 
 use std::path::Path;
 
-use zline::front::mesh::Mesh as _;
+use zline::Mesh as _;
 use zline::host::HostMesh;
 use zline_lab::methods::ReferenceView;
 
@@ -250,7 +250,7 @@ impl Scene {
     /// zline's `Shading::lambert()` constants (warm white, light from the
     /// upper left behind the viewer, 20 % ambient) of the normal in view
     /// space. The normal is the face's (Newell) normal, or, for a face that
-    /// is not planar (`zline::front::mesh::Mesh::face_is_planar`), the triangle's
+    /// is not planar (`zline::Mesh::face_is_planar`), the triangle's
     /// own, as zline's pipeline and reference shade such faces.
     pub fn triangle_colors(&self, view: &View) -> Vec<u16> {
         let mv = mul(&view.view_matrix(), &self.model(view));

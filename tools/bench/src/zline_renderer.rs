@@ -1,12 +1,10 @@
 //! zline behind the [`Renderer`] trait. Everything that depends on zline's
 //! rendering API is in this file, so an API change is adapted here alone.
 
-use zline::front::geometry::Mat4 as ZMat4;
-use zline::front::scene::{
-    Camera, Cull as ZCull, FaceInfo, VertexCache, draw_mesh, reference_model,
-};
-use zline::front::shade::Shading;
+use zline::Mat4 as ZMat4;
+use zline::Shading;
 use zline::host::{BandedRenderer, ScanVecs, TableVecs, host_renderer};
+use zline::{Camera, Cull as ZCull, FaceInfo, VertexCache, draw_mesh, reference_model};
 use zline::{Depth16, FrameBufferSink, Renderer as ZRenderer};
 use zline_lab::methods::HostScanline;
 
@@ -19,7 +17,7 @@ use crate::view::{Cull, Scene, View};
 ///
 /// Timed region (one frame): clear the tables, `draw_mesh` (transform
 /// every vertex with the model matrix from
-/// `zline::front::scene::reference_model` and `Camera::reference`; cull,
+/// `zline::reference_model` and `Camera::reference`; cull,
 /// when `--cull back`, faces running clockwise on screen; clip; project;
 /// shade each face with `Shading::lambert()`, converted to Rgb565; offer
 /// it to the tables), then prepare the tables (bucket sort by first row)

@@ -13,12 +13,12 @@ use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use embedded_graphics_simulator::SimulatorDisplay;
-use zline::front::geometry::{Mat4, Vec3};
-use zline::front::scene::{Camera, Cull, VertexCache, draw_mesh, reference_model};
-use zline::front::shade::Shading;
+use zline::Shading;
 use zline::host::HostMesh;
 use zline::host::{ScanVecs, TableVecs, host_renderer};
+use zline::{Camera, Cull, VertexCache, draw_mesh, reference_model};
 use zline::{Depth16, Depth24, DepthFormat, DrawTargetSink, RenderError, Renderer};
+use zline::{Mat4, Vec3};
 use zline_lab::methods::{BACKGROUND, MethodRenderer, ReferenceFrame, ReferenceView};
 
 /// Most vertices a mesh may have (the vertex cache's capacity).

@@ -48,7 +48,7 @@ use embedded_graphics_simulator::sdl2::Keycode;
 use embedded_graphics_simulator::{
     OutputSettingsBuilder, SimulatorDisplay, SimulatorEvent, Window,
 };
-use zline::front::scene::Cull;
+use zline::Cull;
 
 use frame::{Method, Renderers, SHADINGS, View};
 use options::{KEYS, Options, USAGE};

@@ -7,7 +7,7 @@ use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::prelude::*;
 use embedded_graphics::text::{Baseline, Text};
 use embedded_graphics_simulator::SimulatorDisplay;
-use zline::front::scene::Cull;
+use zline::Cull;
 
 use crate::frame::{FrameReport, Method, SHADINGS, View};
 
