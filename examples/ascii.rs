@@ -13,7 +13,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     // 64 columns; 24 vertices, 3 polygons, 24 edges (corners), 3 active
     // polygons, 24 pooled active edges.
     let mut renderer: Renderer<TableArrays<char, 24, 3, 24>, ScanArrays<char, Depth16, 64, 3, 24>> =
-        Renderer::new(24, '.')?;
+        Renderer::with_height(24, '.')?;
     let v = |x: f32, y: f32, z: f32| ScreenVertex::from_f32(x, y, z);
     // A square at mid depth.
     renderer.push_polygon_vertices(

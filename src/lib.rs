@@ -37,7 +37,7 @@
 //! // rows of 16 pixels, 2 active polygons, no pooled edges (triangles need
 //! // none).
 //! type Zr = Renderer<TableArrays<BinaryColor, 8, 2, 8>, ScanArrays<BinaryColor, Depth16, 16, 2, 0>>;
-//! let mut renderer = Zr::with_size(16, 16, BinaryColor::Off).unwrap();
+//! let mut renderer = Zr::new(16, 16, BinaryColor::Off).unwrap();
 //! let v = |x: f32, y: f32, z: f32| ScreenVertex::from_f32(x, y, z).unwrap();
 //! renderer
 //!     .push_polygon_vertices(&[v(2.0, 2.0, 0.5), v(14.0, 2.0, 0.5), v(8.0, 14.0, 0.5)], BinaryColor::On)
@@ -59,6 +59,7 @@ mod error;
 mod front;
 pub mod limits;
 mod raster;
+mod renderer;
 mod sink;
 
 #[cfg(feature = "std")]
@@ -75,17 +76,18 @@ pub use front::mesh::{
 };
 pub use front::quantized::QuantizedMesh;
 pub use front::scene::{
-    CLIP_RANGE, Camera, Cull, DrawError, DrawStats, FaceInfo, ProjectedVertex, RADIUS_RANGE,
-    VertexCache, bounding_sphere, draw_mesh, draw_mesh_projected, project_vertices,
-    reference_model, reference_model_around,
+    CLIP_RANGE, CacheStorage, Camera, Cull, DrawError, DrawStats, FaceInfo, NoVertexCache,
+    ProjectedVertex, RADIUS_RANGE, VertexCache, bounding_sphere, draw_mesh, draw_mesh_projected,
+    project_vertices, reference_model, reference_model_around,
 };
 pub use front::shade::{Lambert, Shading, face_id_color};
 pub use raster::{
     ActiveEdge, ActivePolygon, Admission, Capacities, Depth16, Depth24, DepthFormat, EdgeEntry,
-    FrameStats, Outline, OutlineBuilder, PolygonEntry, PolygonTables, Prepared, Renderer,
+    FrameStats, MeshCounts, Outline, OutlineBuilder, PolygonEntry, PolygonTables, Prepared,
     ScanArrays, ScanParts, ScanStorage, Scanner, ScreenRect, ScreenVertex, TableArrays, TableParts,
     TablePartsRef, TableStorage, Tables, scan,
 };
+pub use renderer::Renderer;
 pub use sink::{Crc32Sink, DrawTargetSink, FnSink, FrameBufferSink, LentRow, RowSink};
 
 /// Compiles the README's code examples as doctests.

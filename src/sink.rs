@@ -81,7 +81,7 @@ pub trait RowSink<C, Z> {
 /// }
 ///
 /// type Zr = Renderer<TableArrays<u16, 3, 1, 3>, ScanArrays<u16, Depth16, 8, 1, 0>>;
-/// let mut renderer = Zr::with_size(8, 4, 0).unwrap();
+/// let mut renderer = Zr::new(8, 4, 0).unwrap();
 /// let v = |x, y| ScreenVertex::from_f32(x, y, 0.5).unwrap();
 /// renderer.push_polygon_vertices(&[v(0.0, 0.0), v(8.0, 0.0), v(0.0, 4.0)], 7).unwrap();
 /// let mut wire = Wire { buffer: [0; 8], sent: Vec::new() };

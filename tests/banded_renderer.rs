@@ -26,6 +26,7 @@ const CAPS: Capacities = Capacities {
     corners: 512,
     active_polygons: 64,
     pooled_edges: 128,
+    mesh_vertices: 0,
 };
 
 /// A frame as (row, colours, depths), in the order the sinks got the rows.
@@ -47,7 +48,7 @@ fn offer<T: PolygonTables<u32> + ?Sized>(tables: &mut T, scene: &[Vec<ScreenVert
 fn whole<D: DepthFormat>(
     caps: &Capacities,
     (width, height): (u16, u16),
-    build: impl Fn(&mut zline::Renderer<zline::host::TableVecs<u32>, zline::host::ScanVecs<u32, D>>),
+    build: impl Fn(&mut zline::host::HostRenderer<u32, D>),
 ) -> Rows
 where
     D::Value: Into<u64>,
@@ -140,6 +141,7 @@ fn a_mesh_in_bands_equals_one_renderer_culled_or_not() {
         corners: 8192,
         active_polygons: 2048,
         pooled_edges: 256,
+        mesh_vertices: 0,
     };
     let model = reference_model(&mesh, 30.0, 20.0).unwrap();
     let camera = Camera::reference(width, height);
@@ -375,6 +377,7 @@ fn small_frames_stay_on_the_calling_thread() {
         corners: 49152,
         active_polygons: 16384,
         pooled_edges: 256,
+        mesh_vertices: 0,
     };
     // Two triangles: microseconds of work.
     let small = zline::host::HostMesh {

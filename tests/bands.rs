@@ -25,6 +25,7 @@ const CAPS: Capacities = Capacities {
     corners: 256,
     active_polygons: 32,
     pooled_edges: 64,
+    mesh_vertices: 0,
 };
 
 /// The frame as rows of (colour, depth), row by row as the sink got them.
@@ -192,7 +193,7 @@ fn array_and_vec_storage_give_the_same_frame() {
         ],
     ];
     let mut fixed: Renderer<TableArrays<u32, 16, 4, 16>, ScanArrays<u32, Depth16, 48, 4, 4>> =
-        Renderer::with_size(W, H, 0).unwrap();
+        Renderer::new(W, H, 0).unwrap();
     let mut vecs = zline::host::host_renderer::<u32, Depth16>(&CAPS, W, H, 0).unwrap();
     for (k, poly) in scene.iter().enumerate() {
         fixed.push_polygon_vertices(poly, k as u32 + 1).unwrap();

@@ -293,7 +293,7 @@ fn issue_7_item_3_huge_ground_quad_is_cut_not_dropped() {
         Vec3::new(0.0, 1.0, 0.0),
     );
     let camera = Camera::perspective(view, 60.0, 160, 120, near as f32, far as f32);
-    let mut renderer = R::with_size(160, 120, 0).unwrap();
+    let mut renderer = R::new(160, 120, 0).unwrap();
     let mut cache: VertexCache<4> = VertexCache::new();
     let stats = draw_mesh(
         &mut renderer,

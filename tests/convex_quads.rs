@@ -34,7 +34,7 @@ fn strictly_convex(q: &[ScreenVertex; 4]) -> bool {
 
 /// The frame of `polygons` (each coloured 1) pushed as screen polygons.
 fn frame<D: DepthFormat>(polygons: &[&[ScreenVertex]]) -> common::Frame<D::Value> {
-    let mut renderer = R::<D>::new(H, 0).unwrap();
+    let mut renderer = R::<D>::with_height(H, 0).unwrap();
     for p in polygons {
         renderer.push_polygon_vertices(p, 1).unwrap();
     }
@@ -184,7 +184,7 @@ proptest! {
         let color = if front { 1 } else { 2 };
 
         let camera = Camera::reference(W as u16, H);
-        let mut renderer = R::<Depth16>::new(H, 0).unwrap();
+        let mut renderer = R::<Depth16>::with_height(H, 0).unwrap();
         let mut cache: VertexCache<16> = VertexCache::new();
         let mut fronts = Vec::new();
         let stats = draw_mesh(
@@ -204,7 +204,7 @@ proptest! {
         prop_assert_eq!(stats.convex_quads, u32::from(strictly_convex(&q)), "{:?}", q);
         prop_assert!(fronts.len() <= 1, "shaded {} times", fronts.len());
 
-        let mut whole = R::<Depth16>::new(H, 0).unwrap();
+        let mut whole = R::<Depth16>::with_height(H, 0).unwrap();
         whole.push_polygon_vertices(&q, color).unwrap();
         let whole = capture(&mut whole).0;
         prop_assert_eq!(&drawn.colors, &whole.colors, "{:?}", q);
@@ -222,7 +222,7 @@ proptest! {
 /// front face.
 fn draw(mesh: &StaticMesh, cull: Cull) -> (common::Frame<u32>, DrawStats, Vec<bool>) {
     let camera = Camera::reference(W as u16, H);
-    let mut renderer = R::<Depth24>::new(H, 0).unwrap();
+    let mut renderer = R::<Depth24>::with_height(H, 0).unwrap();
     let mut cache: VertexCache<16> = VertexCache::new();
     let mut fronts = Vec::new();
     let stats = draw_mesh(
@@ -336,7 +336,7 @@ fn a_convex_quad_that_does_not_fit_is_an_error() {
     let mesh = StaticMesh::new(&POSITIONS, &[0, 1, 2, 3], &[0]).unwrap();
     let camera = Camera::reference(W as u16, H);
     let mut renderer: Renderer<TableArrays<u32, 16, 1, 32>, ScanArrays<u32, Depth24, W, 8, 16>> =
-        Renderer::new(H, 0).unwrap();
+        Renderer::with_height(H, 0).unwrap();
     let mut cache: VertexCache<16> = VertexCache::new();
     let result = draw_mesh(
         &mut renderer,

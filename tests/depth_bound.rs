@@ -58,7 +58,7 @@ where
     D::Value: Into<u64>,
 {
     let mut renderer: Renderer<TableArrays<u32, 3, 1, 3>, ScanArrays<u32, D, W, 1, 3>> =
-        Renderer::new(height, 0).unwrap();
+        Renderer::with_height(height, 0).unwrap();
     renderer.push_polygon_vertices(&tri, 1).unwrap();
     let (frame, _) = capture(&mut renderer);
     let (lsb, max) = format_scale::<D>();
@@ -157,7 +157,7 @@ where
     D::Value: Into<u64>,
 {
     let mut renderer: Renderer<TableArrays<u32, 8, 1, 8>, ScanArrays<u32, D, W, 1, 8>> =
-        Renderer::new(height, 0).unwrap();
+        Renderer::with_height(height, 0).unwrap();
     renderer.push_polygon_vertices(poly, 1).unwrap();
     let (frame, _) = capture(&mut renderer);
     let (lsb, max) = format_scale::<D>();

@@ -21,7 +21,7 @@ fn tri(x: f32, y: f32) -> [ScreenVertex; 3] {
 #[test]
 fn vertex_table_full() {
     let mut r: Renderer<TableArrays<u32, 4, 4, 16>, ScanArrays<u32, Depth16, 16, 4, 16>> =
-        Renderer::new(16, 0).unwrap();
+        Renderer::with_height(16, 0).unwrap();
     for _ in 0..4 {
         r.push_vertex(vtx(1.0, 1.0, 0.5)).unwrap();
     }
@@ -32,7 +32,7 @@ fn vertex_table_full() {
     assert_eq!(r.vertex_count(), 4);
     // A polygon needing 3 more vertices fails whole: nothing half-added.
     let mut r: Renderer<TableArrays<u32, 5, 4, 16>, ScanArrays<u32, Depth16, 16, 4, 16>> =
-        Renderer::new(16, 0).unwrap();
+        Renderer::with_height(16, 0).unwrap();
     r.push_polygon_vertices(&tri(1.0, 1.0), 1).unwrap();
     assert_eq!(
         r.push_polygon_vertices(&tri(5.0, 5.0), 2),
@@ -44,7 +44,7 @@ fn vertex_table_full() {
 #[test]
 fn polygon_table_full() {
     let mut r: Renderer<TableArrays<u32, 16, 2, 16>, ScanArrays<u32, Depth16, 16, 4, 16>> =
-        Renderer::new(16, 0).unwrap();
+        Renderer::with_height(16, 0).unwrap();
     r.push_polygon_vertices(&tri(1.0, 1.0), 1).unwrap();
     r.push_polygon_vertices(&tri(5.0, 5.0), 2).unwrap();
     assert_eq!(
@@ -58,7 +58,7 @@ fn polygon_table_full() {
 fn edge_table_full() {
     // E = 5: one triangle (3 corners) fits, a second does not.
     let mut r: Renderer<TableArrays<u32, 16, 4, 5>, ScanArrays<u32, Depth16, 16, 4, 5>> =
-        Renderer::new(16, 0).unwrap();
+        Renderer::with_height(16, 0).unwrap();
     r.push_polygon_vertices(&tri(1.0, 1.0), 1).unwrap();
     assert_eq!(
         r.push_polygon_vertices(&tri(5.0, 5.0), 2),
@@ -138,7 +138,7 @@ fn a_short_edge_table_bounds_the_corners() {
 fn active_tables_full_stop_the_frame_at_the_row() {
     // Three triangles overlapping rows 4..8, but only two active polygons.
     let mut r: Renderer<TableArrays<u32, 16, 4, 16>, ScanArrays<u32, Depth16, 16, 2, 16>> =
-        Renderer::new(16, 0).unwrap();
+        Renderer::with_height(16, 0).unwrap();
     r.push_polygon_vertices(&tri(0.0, 4.0), 1).unwrap();
     r.push_polygon_vertices(&tri(5.0, 4.0), 2).unwrap();
     r.push_polygon_vertices(&tri(10.0, 4.0), 3).unwrap();
@@ -155,7 +155,7 @@ fn active_tables_full_stop_the_frame_at_the_row() {
 
     // Triangles keep their two active edges inline: AE = 0 is enough.
     let mut r: Renderer<TableArrays<u32, 16, 4, 16>, ScanArrays<u32, Depth16, 16, 4, 0>> =
-        Renderer::new(16, 0).unwrap();
+        Renderer::with_height(16, 0).unwrap();
     r.push_polygon_vertices(&tri(0.0, 4.0), 1).unwrap();
     r.push_polygon_vertices(&tri(5.0, 4.0), 2).unwrap();
     let stats = r
@@ -176,7 +176,7 @@ fn active_tables_full_stop_the_frame_at_the_row() {
         vtx(1.0, 9.0, 0.5),
     ];
     let mut r: Renderer<TableArrays<u32, 16, 4, 16>, ScanArrays<u32, Depth16, 16, 4, 1>> =
-        Renderer::new(16, 0).unwrap();
+        Renderer::with_height(16, 0).unwrap();
     r.push_polygon_vertices(&u, 1).unwrap();
     let result = r.render(&mut FnSink(|_: u16, _: &[u32], _: &[u16]| Ok::<(), ()>(())));
     assert_eq!(
@@ -184,7 +184,7 @@ fn active_tables_full_stop_the_frame_at_the_row() {
         Err(RenderError::Table(Error::ActiveEdgesFull { row: 1 }))
     );
     let mut r: Renderer<TableArrays<u32, 16, 4, 16>, ScanArrays<u32, Depth16, 16, 4, 2>> =
-        Renderer::new(16, 0).unwrap();
+        Renderer::with_height(16, 0).unwrap();
     r.push_polygon_vertices(&u, 1).unwrap();
     let stats = r
         .render(&mut FnSink(|_: u16, _: &[u32], _: &[u16]| Ok::<(), ()>(())))
@@ -195,7 +195,7 @@ fn active_tables_full_stop_the_frame_at_the_row() {
 #[test]
 fn sink_errors_come_back() {
     let mut r: Renderer<TableArrays<u32, 16, 4, 16>, ScanArrays<u32, Depth16, 16, 4, 16>> =
-        Renderer::new(16, 0).unwrap();
+        Renderer::with_height(16, 0).unwrap();
     let result = r.render(&mut FnSink(
         |y: u16, _: &[u32], _: &[u16]| if y == 3 { Err(y) } else { Ok(()) },
     ));
@@ -205,7 +205,7 @@ fn sink_errors_come_back() {
 #[test]
 fn corner_counts_and_indices() {
     let mut r: Renderer<TableArrays<u32, 16, 4, 16>, ScanArrays<u32, Depth16, 16, 4, 16>> =
-        Renderer::new(16, 0).unwrap();
+        Renderer::with_height(16, 0).unwrap();
     let a = r.push_vertex(vtx(1.0, 1.0, 0.5)).unwrap();
     let b = r.push_vertex(vtx(9.0, 1.0, 0.5)).unwrap();
     let c = r.push_vertex(vtx(9.0, 9.0, 0.5)).unwrap();
@@ -273,7 +273,7 @@ fn bad_vertices_are_refused() {
     );
     assert!(ScreenVertex::new(GUARD_BAND - 1, 1 - GUARD_BAND, DEPTH_MAX).is_ok());
     let mut r: Renderer<TableArrays<u32, 16, 4, 16>, ScanArrays<u32, Depth16, 16, 4, 16>> =
-        Renderer::new(16, 0).unwrap();
+        Renderer::with_height(16, 0).unwrap();
     let raw = ScreenVertex {
         x: GUARD_BAND,
         y: 0,
@@ -286,18 +286,18 @@ fn bad_vertices_are_refused() {
 #[test]
 fn frame_size_is_checked() {
     type R = Renderer<TableArrays<u32, 4, 4, 16>, ScanArrays<u32, Depth16, 16, 4, 16>>;
-    assert_eq!(R::new(0, 0).err(), Some(Error::BadFrameSize));
-    assert_eq!(R::new(5000, 0).err(), Some(Error::BadFrameSize));
-    assert!(R::new(4096, 0).is_ok());
-    assert_eq!(R::with_size(17, 4, 0).err(), Some(Error::BadFrameSize));
-    assert_eq!(R::with_size(0, 4, 0).err(), Some(Error::BadFrameSize));
-    assert!(R::with_size(9, 4, 0).is_ok());
+    assert_eq!(R::with_height(0, 0).err(), Some(Error::BadFrameSize));
+    assert_eq!(R::with_height(5000, 0).err(), Some(Error::BadFrameSize));
+    assert!(R::with_height(4096, 0).is_ok());
+    assert_eq!(R::new(17, 4, 0).err(), Some(Error::BadFrameSize));
+    assert_eq!(R::new(0, 4, 0).err(), Some(Error::BadFrameSize));
+    assert!(R::new(9, 4, 0).is_ok());
 }
 
 #[test]
 fn off_screen_and_zero_area_polygons_are_counted_not_drawn() {
     let mut r: Renderer<TableArrays<u32, 64, 8, 64>, ScanArrays<u32, Depth16, 16, 8, 64>> =
-        Renderer::new(16, 0).unwrap();
+        Renderer::with_height(16, 0).unwrap();
     // Collinear: zero area.
     let line = [vtx(1.0, 1.0, 0.1), vtx(5.0, 5.0, 0.2), vtx(9.0, 9.0, 0.3)];
     assert_eq!(r.push_polygon_vertices(&line, 1), Ok(Admission::Degenerate));
@@ -366,7 +366,7 @@ fn slivers_and_edge_on_triangles_stay_within_their_depth_range() {
             z: next(DEPTH_MAX as i32) as u32,
         };
         let mut r: Renderer<TableArrays<u32, 3, 1, 3>, ScanArrays<u32, Depth24, 32, 1, 3>> =
-            Renderer::new(32, 0).unwrap();
+            Renderer::with_height(32, 0).unwrap();
         match r.push_polygon_vertices(&[a, b, c], 1).unwrap() {
             Admission::Queued(_) => {}
             Admission::Degenerate | Admission::OffScreen | Admission::Declined => continue,
@@ -407,6 +407,7 @@ fn polygons_past_the_tables_limit_are_an_error() {
         corners: 3 * slots,
         active_polygons: 4,
         pooled_edges: 0,
+        mesh_vertices: 0,
     };
     let mut r = zline::host::host_renderer::<u32, Depth16>(&caps, 16, 16, 0).unwrap();
     // A triangle covering the sample of pixel (4, 4) alone: drawn when it
@@ -456,13 +457,13 @@ fn both_push_functions_judge_before_they_take_room() {
         (line, Ok(Admission::Degenerate)),
         (pentagon(4.0, 4.0), Err(Error::EdgeTableFull)),
     ] {
-        let mut by_vertices = R::new(16, 0).unwrap();
+        let mut by_vertices = R::with_height(16, 0).unwrap();
         assert_eq!(by_vertices.push_polygon_vertices(&corners, 1), verdict);
         assert_eq!(
             (by_vertices.vertex_count(), by_vertices.polygon_count()),
             (0, 0)
         );
-        let mut by_indices = R::new(16, 0).unwrap();
+        let mut by_indices = R::with_height(16, 0).unwrap();
         let ids: Vec<u16> = corners
             .iter()
             .map(|&v| by_indices.push_vertex(v).unwrap())
@@ -473,7 +474,7 @@ fn both_push_functions_judge_before_they_take_room() {
     // A full vertex table: a triangle that covers no sample is still
     // judged (off-screen), one that would be queued does not fit.
     let mut full: Renderer<TableArrays<u32, 2, 4, 16>, ScanArrays<u32, Depth16, 16, 4, 16>> =
-        Renderer::new(16, 0).unwrap();
+        Renderer::with_height(16, 0).unwrap();
     assert_eq!(
         full.push_polygon_vertices(&tri(30.0, 4.0), 1),
         Ok(Admission::OffScreen)

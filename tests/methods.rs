@@ -141,6 +141,7 @@ fn a_surface_at_the_far_plane_shows_only_in_the_interval_method() {
         corners: 8,
         active_polygons: 2,
         pooled_edges: 0,
+        mesh_vertices: 0,
     };
     let mut renderer = zline::host::host_renderer::<u32, Depth24>(&caps, 16, 12, 0).unwrap();
     renderer.push_polygon_vertices(&far, 1).unwrap();

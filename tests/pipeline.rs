@@ -20,7 +20,7 @@ const H: u16 = 72;
 
 /// Face ids (+1, 0 for background) of `mesh` in the reference view.
 fn ids(mesh: &HostMesh, model: &Mat4) -> Vec<u32> {
-    let mut renderer = Box::new(Big::with_size(W, H, 0).unwrap());
+    let mut renderer = Box::new(Big::new(W, H, 0).unwrap());
     let mut cache: Box<VertexCache<4096>> = Box::new(VertexCache::new());
     let camera = Camera::reference(W, H);
     draw_mesh(
@@ -130,7 +130,7 @@ fn issue_7_item_5_one_cache_serves_two_meshes() {
     let right =
         Mat4::translation(Vec3::new(0.9, 0.2, -0.5)).mul(&Mat4::scale(Vec3::new(0.5, 0.5, 0.5)));
     let camera = Camera::reference(W, H);
-    let mut renderer = Box::new(Big::with_size(W, H, 0).unwrap());
+    let mut renderer = Box::new(Big::new(W, H, 0).unwrap());
     let mut cache: Box<VertexCache<4096>> = Box::new(VertexCache::new());
     draw_mesh(
         &mut *renderer,
@@ -170,7 +170,7 @@ fn issue_7_item_5_one_cache_serves_two_meshes() {
                 .extend(mesh.face(f).iter().map(|&c| c + base));
         }
     }
-    let mut renderer = Box::new(Big::with_size(W, H, 0).unwrap());
+    let mut renderer = Box::new(Big::new(W, H, 0).unwrap());
     draw_mesh(
         &mut *renderer,
         &mut *cache,
@@ -196,7 +196,7 @@ fn issue_7_item_5_one_cache_serves_two_meshes() {
     );
 
     // The same mesh drawn twice with two model matrices: both copies show.
-    let mut renderer = Box::new(Big::with_size(W, H, 0).unwrap());
+    let mut renderer = Box::new(Big::new(W, H, 0).unwrap());
     for (k, model) in [&left, &right].into_iter().enumerate() {
         draw_mesh(
             &mut *renderer,
@@ -265,7 +265,7 @@ fn issue_7_item_6_faces_of_many_corners_draw() {
     mesh.positions = big.positions;
     mesh.face_starts.push(mesh.corners.len() as u32);
     mesh.corners.extend(0..(MAX_FACE_CORNERS + 1) as u16);
-    let mut renderer = Box::new(Big::with_size(W, H, 0).unwrap());
+    let mut renderer = Box::new(Big::new(W, H, 0).unwrap());
     let mut cache: Box<VertexCache<4096>> = Box::new(VertexCache::new());
     let result = draw_mesh(
         &mut *renderer,

@@ -20,8 +20,7 @@ const HEIGHT: u16 = 72;
 /// A frame as (row, colours, depths), in the order the rows were sent.
 type Rows = Vec<(u16, Vec<u32>, Vec<u16>)>;
 
-type HostRenderer =
-    zline::Renderer<zline::host::TableVecs<u32>, zline::host::ScanVecs<u32, Depth16>>;
+type HostRenderer = zline::host::HostRenderer<u32, Depth16>;
 
 fn caps() -> Capacities {
     Capacities {
@@ -31,6 +30,7 @@ fn caps() -> Capacities {
         corners: 32768,
         active_polygons: 8192,
         pooled_edges: 1024,
+        mesh_vertices: 0,
     }
 }
 

@@ -51,7 +51,7 @@ where
     let mut renderer: Renderer<
         TableArrays<u32, MAX_VERTICES, MAX_POLYGONS, MAX_VERTICES>,
         ScanArrays<u32, D, W, MAX_POLYGONS, MAX_VERTICES>,
-    > = Renderer::new(H, 0).unwrap();
+    > = Renderer::with_height(H, 0).unwrap();
     let polygons: Vec<(Vec<ScreenVertex>, bool)> = scene
         .iter()
         .enumerate()

@@ -56,7 +56,7 @@ fn one_fill_contiguous_per_row() {
     let mut renderer: Renderer<
         TableArrays<Rgb565, 8, 2, 8>,
         ScanArrays<Rgb565, Depth16, 24, 2, 8>,
-    > = Renderer::new(10, Rgb565::BLUE).unwrap();
+    > = Renderer::with_height(10, Rgb565::BLUE).unwrap();
     let v = |x, y| ScreenVertex::from_f32(x, y, 0.5).unwrap();
     renderer
         .push_polygon_vertices(&[v(2.0, 2.0), v(20.0, 3.0), v(8.0, 9.0)], Rgb565::RED)
@@ -84,7 +84,7 @@ fn origin_offsets_every_row() {
     let mut renderer: Renderer<
         TableArrays<Rgb565, 8, 2, 8>,
         ScanArrays<Rgb565, Depth16, 24, 2, 8>,
-    > = Renderer::new(3, Rgb565::BLACK).unwrap();
+    > = Renderer::with_height(3, Rgb565::BLACK).unwrap();
     let mut recorder = Recorder::default();
     renderer
         .render(&mut DrawTargetSink::with_origin(
@@ -103,7 +103,7 @@ fn runtime_width_below_capacity() {
     let mut renderer: Renderer<
         TableArrays<Rgb565, 8, 2, 8>,
         ScanArrays<Rgb565, Depth16, 24, 2, 8>,
-    > = Renderer::with_size(10, 4, Rgb565::BLACK).unwrap();
+    > = Renderer::new(10, 4, Rgb565::BLACK).unwrap();
     let v = |x, y| ScreenVertex::from_f32(x, y, 0.5).unwrap();
     renderer
         .push_polygon_vertices(&[v(0.0, 0.0), v(30.0, 0.0), v(0.0, 30.0)], Rgb565::RED)

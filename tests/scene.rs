@@ -48,7 +48,7 @@ fn draw(
     camera: &Camera,
     cull: Cull,
 ) -> (common::Frame<u32>, DrawStats) {
-    let mut renderer = R::with_size(camera.width, camera.height, 0).unwrap();
+    let mut renderer = R::new(camera.width, camera.height, 0).unwrap();
     let mut cache: VertexCache<64> = VertexCache::new();
     let stats = draw_mesh(&mut renderer, &mut cache, mesh, model, camera, cull, |f| {
         f.face + 1
@@ -214,7 +214,7 @@ fn mesh_behind_the_camera_is_culled_and_nan_is_skipped() {
 #[test]
 fn a_cache_smaller_than_the_mesh_is_an_error() {
     let camera = Camera::reference(96, 72);
-    let mut renderer = R::with_size(96, 72, 0).unwrap();
+    let mut renderer = R::new(96, 72, 0).unwrap();
     let mut cache: VertexCache<4> = VertexCache::new();
     let result = draw_mesh(
         &mut renderer,
@@ -325,7 +325,7 @@ fn back_faces_are_culled_wherever_they_lie_and_only_kept_faces_are_shaded() {
     let camera = Camera::reference(96, 72);
     let model = reference_model(&FACING, 0.0, 0.0).unwrap();
     let run = |cull: Cull| {
-        let mut renderer = R::with_size(camera.width, camera.height, 0).unwrap();
+        let mut renderer = R::new(camera.width, camera.height, 0).unwrap();
         let mut cache: VertexCache<64> = VertexCache::new();
         let mut shaded = Vec::new();
         let stats = draw_mesh(

@@ -21,7 +21,7 @@ fn rect(x0: f32, y0: f32, x1: f32, y1: f32, z: f32) -> [zline::ScreenVertex; 4] 
 }
 
 fn render<D: DepthFormat>(height: u16, polygons: &[(&[zline::ScreenVertex], u32)]) -> String {
-    let mut renderer: Small<D> = Renderer::new(height, 0).unwrap();
+    let mut renderer: Small<D> = Renderer::with_height(height, 0).unwrap();
     for (corners, color) in polygons {
         let admission = renderer.push_polygon_vertices(corners, *color).unwrap();
         assert!(matches!(admission, Admission::Queued(_)), "{admission:?}");
@@ -160,7 +160,7 @@ fn concave_arrow_matches_reference() {
         vtx(2.0, 13.0, 0.3),
         vtx(6.0, 7.5, 0.3),
     ];
-    let mut renderer: Small<Depth16> = Renderer::new(16, 0).unwrap();
+    let mut renderer: Small<Depth16> = Renderer::with_height(16, 0).unwrap();
     renderer.push_polygon_vertices(&arrow, 1).unwrap();
     let frame = capture(&mut renderer).0;
     for j in 0..16 {

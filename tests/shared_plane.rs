@@ -25,6 +25,7 @@ const CAPS: Capacities = Capacities {
     corners: 256,
     active_polygons: 32,
     pooled_edges: 64,
+    mesh_vertices: 0,
 };
 
 /// A plane in screen space: depth at the frame's centre and gradients in

@@ -54,7 +54,7 @@ fn coverage_counts(vertices: &[ScreenVertex], triangles: &[[usize; 3]]) -> Vec<u
         let mut renderer: Renderer<
             TableArrays<BinaryColor, 3, 1, 3>,
             ScanArrays<BinaryColor, Depth16, W, 1, 3>,
-        > = Renderer::new(H, BinaryColor::Off).unwrap();
+        > = Renderer::with_height(H, BinaryColor::Off).unwrap();
         let corners = [vertices[t[0]], vertices[t[1]], vertices[t[2]]];
         renderer
             .push_polygon_vertices(&corners, BinaryColor::On)

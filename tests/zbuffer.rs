@@ -23,6 +23,7 @@ const CAPS: Capacities = Capacities {
     corners: 256,
     active_polygons: 32,
     pooled_edges: 64,
+    mesh_vertices: 0,
 };
 
 fn scanline<D: DepthFormat>(scene: &[Vec<ScreenVertex>]) -> Rows

@@ -47,6 +47,7 @@ const HOST_CAPACITIES: Capacities = Capacities {
     corners: 262_144,
     active_polygons: 16_384,
     pooled_edges: 16_384,
+    mesh_vertices: 0,
 };
 
 fn main() {

@@ -23,11 +23,11 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use zline::Shading;
-use zline::host::{HostMesh, QuantizedHostMesh, ScanVecs, TableVecs, host_renderer};
+use zline::bounding_sphere;
+use zline::host::{HostMesh, HostRenderer, QuantizedHostMesh, host_renderer};
 use zline::limits::MAX_FACE_CORNERS;
-use zline::{Capacities, Crc32Sink, Depth16, FrameStats, Renderer, RowSink};
+use zline::{Capacities, Crc32Sink, Depth16, FrameStats, RowSink};
 use zline::{Mesh, StaticMesh};
-use zline::{VertexCache, bounding_sphere};
 use zline_lab::rust_source::quantized_mesh_source;
 use zline_lab::shapes;
 
@@ -39,6 +39,7 @@ const HOST_CAPACITIES: Capacities = Capacities {
     corners: 262_144,
     active_polygons: 16_384,
     pooled_edges: 16_384,
+    mesh_vertices: 65_536,
 };
 
 /// LCD size in pixels (ST7789 240x240 module).
@@ -209,10 +210,9 @@ fn measure_views(mesh: &HostMesh, origin: &str) -> Result<String, String> {
     let quantized = quantized
         .mesh()
         .map_err(|e| format!("{origin}: invalid quantized mesh: {e:?}"))?;
-    let mut host: Renderer<TableVecs<frame::WireColor>, ScanVecs<frame::WireColor, Depth16>> =
+    let mut host: HostRenderer<frame::WireColor, Depth16> =
         host_renderer(&HOST_CAPACITIES, WIDTH, HEIGHT, frame::WIRE_BLACK)
             .map_err(|e| format!("host renderer: {e}"))?;
-    let mut cache: Box<VertexCache<65536>> = Box::default();
     // The firmware computes the sphere once at start-up, the same way.
     let sphere = bounding_sphere(&quantized).map_err(|e| format!("{origin}: {e}"))?;
     let shading = Shading::lambert();
@@ -222,7 +222,6 @@ fn measure_views(mesh: &HostMesh, origin: &str) -> Result<String, String> {
         let mut crc = WireCrc(Crc32Sink::new());
         let (_, s) = frame::render_frame(
             &mut host,
-            &mut cache,
             &quantized,
             &shading,
             sphere,
@@ -326,7 +325,8 @@ fn measure_views(mesh: &HostMesh, origin: &str) -> Result<String, String> {
         "/// The renderer's capacities, by name.\n\
          pub const CAPS: zline::Capacities = zline::Capacities {{\n    width: {WIDTH},\n    \
          vertices: {vertices},\n    polygons: {polygons},\n    corners: {corners},\n    \
-         active_polygons: {active_polygons},\n    pooled_edges: {pooled_edges},\n}};"
+         active_polygons: {active_polygons},\n    pooled_edges: {pooled_edges},\n    \
+         mesh_vertices: {mesh_vertices},\n}};"
     );
     Ok(s)
 }

@@ -53,6 +53,18 @@ pub fn parse_angle(name: &str, s: &str) -> Result<f32, String> {
         .ok_or_else(|| format!("{name}: expected degrees, got '{s}'"))
 }
 
+/// Whether `args` ask for help (`--help` or `-h`): then `usage` has been
+/// printed on standard output, and the tool should exit with success.
+pub fn help_requested(args: &[String], usage: &str) -> bool {
+    let asked = args.iter().any(|a| a == "--help" || a == "-h");
+    if asked {
+        // (A closed pipe, as with `| head`, is no failure.)
+        let _ =
+            std::io::Write::write_all(&mut std::io::stdout(), std::format!("{usage}\n").as_bytes());
+    }
+    asked
+}
+
 /// A frame size `WxH`, each side 1 to 4096.
 pub fn parse_size(s: &str) -> Result<(u16, u16), String> {
     let bad = || format!("--size: expected WxH with each side 1 to 4096, got '{s}'");

@@ -329,6 +329,7 @@ fn admission_check<D: DepthFormat>(polygons: &[Vec<ScreenVertex>], width: u16, h
             corners: n,
             active_polygons: 1,
             pooled_edges: 0,
+            mesh_vertices: 0,
         };
         for tight in [
             Capacities {
@@ -407,6 +408,7 @@ fn core_check<D: DepthFormat>(
         corners: 128,
         active_polygons: 12,
         pooled_edges: 96,
+        mesh_vertices: 0,
     };
     admission_check::<D>(polygons, width, height);
     let mut renderer = host_renderer::<u32, D>(&caps, width, height, 0).expect("frame size");

@@ -9,6 +9,7 @@
 //! | [`fuzz_checks`] | the properties the fuzzers check, replayed by `cargo test` |
 //! | [`shapes`] | procedural meshes (torus knot, icosphere, boxes, terrain) |
 //! | [`rust_source`] | a mesh as Rust statics for flash |
+//! | [`needs`] | the capacities a firmware needs for a mesh over the views it shows |
 //! | [`cli`] | the command-line helpers the tools share |
 //! | [`machine`] | the machine a measurement ran on |
 
@@ -16,5 +17,6 @@ pub mod cli;
 pub mod fuzz_checks;
 pub mod machine;
 pub mod methods;
+pub mod needs;
 pub mod rust_source;
 pub mod shapes;

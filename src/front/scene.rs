@@ -409,6 +409,60 @@ impl<const VM: usize> Default for VertexCache<VM> {
     }
 }
 
+/// Where [`draw_mesh`] remembers, for one draw, which vertex-table entry
+/// each mesh vertex went to: a [`VertexCache`], a `Vec<u16>` on a desktop
+/// (feature `std`, one entry per mesh vertex), or none ([`NoVertexCache`],
+/// for a [`Renderer`](crate::Renderer) that does not draw meshes). Its
+/// contents between draws do not matter: each draw resets the entries it
+/// uses.
+pub trait CacheStorage: cache_seal::Sealed {
+    /// An empty cache of this kind (for a `Vec`, of no entries).
+    #[doc(hidden)]
+    const EMPTY: Self;
+    /// The entries, one per mesh vertex.
+    #[doc(hidden)]
+    fn slots_mut(&mut self) -> &mut [u16];
+}
+
+/// No vertex cache: a [`Renderer`](crate::Renderer) with it draws screen
+/// polygons only ([`draw_mesh`] needs a cache).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct NoVertexCache;
+
+impl CacheStorage for NoVertexCache {
+    const EMPTY: Self = Self;
+
+    fn slots_mut(&mut self) -> &mut [u16] {
+        &mut []
+    }
+}
+
+impl<const VM: usize> CacheStorage for VertexCache<VM> {
+    const EMPTY: Self = Self::new();
+
+    fn slots_mut(&mut self) -> &mut [u16] {
+        &mut self.slots
+    }
+}
+
+#[cfg(feature = "std")]
+impl CacheStorage for std::vec::Vec<u16> {
+    const EMPTY: Self = std::vec::Vec::new();
+
+    fn slots_mut(&mut self) -> &mut [u16] {
+        self
+    }
+}
+
+/// Keeps [`CacheStorage`] to this crate's caches.
+mod cache_seal {
+    pub trait Sealed {}
+    impl Sealed for super::NoVertexCache {}
+    impl<const VM: usize> Sealed for super::VertexCache<VM> {}
+    #[cfg(feature = "std")]
+    impl Sealed for std::vec::Vec<u16> {}
+}
+
 /// Why [`draw_mesh`] stopped: the error, and the face it stopped at
 /// (`None` when it stopped before the first face). Faces before that face
 /// stay in the tables.
@@ -844,9 +898,9 @@ impl Frame {
 /// the tables, and the error names the face; of a failing face queued as
 /// triangles (a fan, or a convex quad's two), those queued before the one
 /// that did not fit stay too.
-pub fn draw_mesh<C, T, M, const VM: usize>(
+pub fn draw_mesh<C, T, M, K>(
     tables: &mut T,
-    cache: &mut VertexCache<VM>,
+    cache: &mut K,
     mesh: &M,
     model: &Mat4,
     camera: &Camera,
@@ -857,9 +911,10 @@ where
     C: Copy,
     T: PolygonTables<C> + ?Sized,
     M: Mesh,
+    K: CacheStorage,
 {
     let vertex_count = mesh.vertex_count();
-    let Some(slots) = cache.slots.get_mut(..vertex_count) else {
+    let Some(slots) = cache.slots_mut().get_mut(..vertex_count) else {
         return Err(DrawError {
             face: None,
             error: Error::VertexCacheTooSmall,
@@ -868,7 +923,7 @@ where
     slots.fill(EMPTY);
     draw_faces(
         tables,
-        cache,
+        slots,
         mesh,
         TransformEach,
         (model, camera, cull),
@@ -967,9 +1022,9 @@ pub(crate) fn project_vertices_with<M: Mesh>(
 /// projection made with another model or camera is not detected (its
 /// vertices are valid, only not this view's).
 #[allow(clippy::too_many_arguments)]
-pub fn draw_mesh_projected<C, T, M, const VM: usize>(
+pub fn draw_mesh_projected<C, T, M, K>(
     tables: &mut T,
-    cache: &mut VertexCache<VM>,
+    cache: &mut K,
     projected: &[ProjectedVertex],
     faces: Option<&[u32]>,
     mesh: &M,
@@ -982,6 +1037,7 @@ where
     C: Copy,
     T: PolygonTables<C> + ?Sized,
     M: Mesh,
+    K: CacheStorage,
 {
     let count = projected.len();
     draw_mesh_from(
@@ -997,9 +1053,9 @@ where
 
 /// [`draw_mesh_projected`] with the projection of the first `count`
 /// vertices in any [`VertexSource`].
-pub(crate) fn draw_mesh_from<C, T, M, P, const VM: usize>(
+pub(crate) fn draw_mesh_from<C, T, M, P, K>(
     tables: &mut T,
-    cache: &mut VertexCache<VM>,
+    cache: &mut K,
     (projected, count): (P, usize),
     faces: Option<&[u32]>,
     mesh: &M,
@@ -1010,10 +1066,11 @@ where
     C: Copy,
     T: PolygonTables<C> + ?Sized,
     M: Mesh,
+    K: CacheStorage,
     P: VertexSource,
 {
     let fail = |error| DrawError { face: None, error };
-    let Some(slots) = cache.slots.get_mut(..mesh.vertex_count()) else {
+    let Some(slots) = cache.slots_mut().get_mut(..mesh.vertex_count()) else {
         return Err(fail(Error::VertexCacheTooSmall));
     };
     if count > slots.len() {
@@ -1035,7 +1092,7 @@ where
     slots.fill(EMPTY);
     draw_faces(
         tables,
-        cache,
+        slots,
         mesh,
         projected,
         (model, camera, cull),
@@ -1063,9 +1120,9 @@ fn store_vertex<C, T: PolygonTables<C> + ?Sized>(
 /// and the first `projected.len()` vertices projected beforehand (see
 /// [`draw_mesh_projected`]).
 #[inline(always)]
-fn draw_faces<C, T, M, P, const VM: usize>(
+fn draw_faces<C, T, M, P>(
     tables: &mut T,
-    cache: &mut VertexCache<VM>,
+    slots: &mut [u16],
     mesh: &M,
     projected: P,
     (model, camera, cull): (&Mat4, &Camera, Cull),
@@ -1094,7 +1151,7 @@ where
     };
     let mut draw = Draw {
         tables,
-        cache,
+        slots,
         mesh,
         projected,
         positions,
@@ -1149,9 +1206,10 @@ impl VertexSource for &[ProjectedVertex] {
 }
 
 /// The state of one [`draw_mesh`].
-struct Draw<'a, T: ?Sized, M: ?Sized, S, P, const VM: usize> {
+struct Draw<'a, T: ?Sized, M: ?Sized, S, P> {
     tables: &'a mut T,
-    cache: &'a mut VertexCache<VM>,
+    /// Where each mesh vertex went in the vertex table this draw.
+    slots: &'a mut [u16],
     mesh: &'a M,
     /// The vertices projected beforehand ([`draw_mesh_projected`]).
     projected: P,
@@ -1170,7 +1228,7 @@ struct Draw<'a, T: ?Sized, M: ?Sized, S, P, const VM: usize> {
     planes: &'a [SharedPlane],
 }
 
-impl<C, T, M, S, P, const VM: usize> Draw<'_, T, M, S, P, VM>
+impl<C, T, M, S, P> Draw<'_, T, M, S, P>
 where
     C: Copy,
     T: PolygonTables<C> + ?Sized,
@@ -1272,7 +1330,7 @@ where
     #[inline(never)]
     fn stored_polygon(&mut self, face: usize, corners: &[u16]) -> Result<(), Error> {
         if let &[i0, i1, i2, i3] = corners {
-            let slots = &self.cache.slots;
+            let slots = &self.slots;
             let ids = [i0, i1, i2, i3].map(|index| slots[usize::from(index)]);
             if let Some(twice_area) = self.convex_quad(face, ids) {
                 return self.quad_as_triangles(face, corners, ids, twice_area);
@@ -1280,7 +1338,7 @@ where
         }
         let (frame, mesh, stats) = (self.frame, self.mesh, &mut *self.stats);
         let shade = &mut *self.shade;
-        let slots = &self.cache.slots;
+        let slots = &self.slots;
         let ids = corners.iter().map(|&index| slots[usize::from(index)]);
         let admission = self.tables.offer_polygon(ids, |outline| {
             shade_front_face(frame, mesh, face, corners, outline, stats, shade)
@@ -1444,13 +1502,13 @@ where
     #[inline]
     fn slot(&mut self, index: u16) -> Result<u16, Error> {
         let index = usize::from(index);
-        match self.cache.slots.get(index) {
+        match self.slots.get(index) {
             Some(&slot) if slot != EMPTY => return Ok(slot),
             _ if index >= self.mesh.vertex_count() => return Err(Error::MeshIndexOutOfRange),
             _ => {}
         }
         let slot = self.transform_vertex(index)?;
-        self.cache.slots[index] = slot;
+        self.slots[index] = slot;
         Ok(slot)
     }
 
@@ -1492,7 +1550,7 @@ where
         let mut outline = OutlineBuilder::default();
         let mut unprojectable = false;
         let tables = &*self.tables;
-        let slots = &self.cache.slots[..];
+        let slots = &self.slots[..];
         clip_face(
             frame,
             self.mesh,
@@ -1548,7 +1606,7 @@ where
         // Pass 2: the same corners, into the tables.
         self.tables.begin_polygon();
         let tables = &mut *self.tables;
-        let slots = &self.cache.slots[..];
+        let slots = &self.slots[..];
         let streamed = clip_face(
             frame,
             self.mesh,

@@ -36,10 +36,10 @@ use crate::raster::depth::DepthFormat;
 use crate::raster::fixed::first_sample_at_or_after;
 use crate::raster::scan::{FrameStats, scan};
 use crate::raster::vertex::{Outline, ScreenVertex};
-use crate::raster::{Admission, Capacities, PolygonTables, Renderer, Tables};
+use crate::raster::{Admission, Capacities, PolygonTables, Tables};
 use crate::sink::RowSink;
 
-use super::storage::{ScanVecs, TableVecs, host_renderer};
+use super::storage::{TableVecs, host_renderer};
 
 /// Tables that keep only the polygons covering a sample on one band of
 /// rows: every other polygon is declined ([`Admission::Declined`]) before
@@ -180,7 +180,7 @@ impl<C, T: PolygonTables<C>> PolygonTables<C> for BandTables<'_, T> {
 }
 
 /// Tables and a scanner in `Vec`s.
-type BandRenderer<C, D> = Renderer<TableVecs<C>, ScanVecs<C, D>>;
+type BandRenderer<C, D> = super::storage::HostRenderer<C, D>;
 
 /// One band: its rows, its renderer, and the work it found on each of its
 /// rows in the last frame.
@@ -247,6 +247,7 @@ pub struct BandTiming {
 ///     corners: 8192,
 ///     active_polygons: 2048,
 ///     pooled_edges: 256,
+///     mesh_vertices: 0,
 /// };
 /// let mut renderer = BandedRenderer::<u32, Depth16>::new(&caps, width, height, 0, 2)?;
 /// let model = reference_model(&mesh, 30.0, 20.0)?;

@@ -94,6 +94,7 @@ impl HostMesh {
             corners,
             active_polygons: polygons.min(1 << 16),
             pooled_edges: pooled,
+            mesh_vertices: self.positions.len(),
         }
     }
 

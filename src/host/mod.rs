@@ -13,4 +13,4 @@ pub use bands::{
 };
 pub use host_mesh::HostMesh;
 pub use quantize::QuantizedHostMesh;
-pub use storage::{ScanVecs, TableVecs, host_renderer};
+pub use storage::{HostRenderer, ScanVecs, TableVecs, host_renderer};

@@ -6,11 +6,13 @@ use std::vec;
 use std::vec::Vec;
 
 use crate::error::Error;
+use crate::host::HostMesh;
 use crate::raster::depth::DepthFormat;
 use crate::raster::scan::{ScanParts, ScanStorage};
 use crate::raster::tables::{PolygonEntry, TableParts, TablePartsRef, TableStorage};
 use crate::raster::vertex::ScreenVertex;
-use crate::raster::{ActiveEdge, ActivePolygon, Capacities, EdgeEntry, Renderer};
+use crate::raster::{ActiveEdge, ActivePolygon, Capacities, EdgeEntry};
+use crate::renderer::Renderer;
 
 /// Table storage in `Vec`s.
 #[derive(Debug, Clone)]
@@ -98,19 +100,61 @@ impl<C: Copy, D: DepthFormat> ScanStorage for ScanVecs<C, D> {
     }
 }
 
-/// A renderer over `Vec` storage with capacities `caps` for frames `width`
-/// x `height` (`width` at most `caps.width`), clearing to `background`.
+/// A [`Renderer`] in `Vec`s: tables, scanner and vertex cache.
+pub type HostRenderer<C, D> = Renderer<TableVecs<C>, ScanVecs<C, D>, Vec<u16>>;
+
+/// A renderer over `Vec` storage with capacities `caps` (a vertex cache of
+/// `caps.mesh_vertices`) for frames `width` x `height` (`width` at most
+/// `caps.width`), clearing to `background`.
 pub fn host_renderer<C: Copy, D: DepthFormat>(
     caps: &Capacities,
     width: u16,
     height: u16,
     background: C,
-) -> Result<Renderer<TableVecs<C>, ScanVecs<C, D>>, Error> {
+) -> Result<HostRenderer<C, D>, Error> {
     Renderer::from_storage(
-        TableVecs::new(caps, background),
-        ScanVecs::new(caps, background),
+        (
+            TableVecs::new(caps, background),
+            ScanVecs::new(caps, background),
+            vec![0; caps.mesh_vertices],
+        ),
         width,
         height,
         background,
     )
+}
+
+impl<C: Copy, D: DepthFormat> HostRenderer<C, D> {
+    /// A renderer for frames `width` x `height` of `mesh`, from any view,
+    /// culled or not: storage sized from the mesh
+    /// ([`HostMesh::capacities`]), clearing to `background`. No frame of
+    /// it can overflow a table, short of the core's own limits (see
+    /// there).
+    ///
+    /// ```
+    /// use embedded_graphics_core::pixelcolor::Rgb565;
+    /// use zline::host::{HostMesh, HostRenderer};
+    /// use zline::{Camera, Cull, Depth16, FnSink, Shading, reference_model};
+    ///
+    /// let mesh = HostMesh::from_obj(b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")?;
+    /// let mut renderer = HostRenderer::<Rgb565, Depth16>::for_mesh(&mesh, 64, 48, Rgb565::new(0, 0, 0))?;
+    /// let model = reference_model(&mesh, 0.0, 0.0)?;
+    /// let shading = Shading::lambert();
+    /// renderer.draw_mesh(&mesh, &model, &Camera::reference(64, 48), Cull::Back, |f| shading.color(f).into())?;
+    /// let mut lit = 0;
+    /// renderer.render(&mut FnSink(|_: u16, row: &[Rgb565], _: &[u16]| {
+    ///     lit += row.iter().filter(|&&c| c != Rgb565::new(0, 0, 0)).count();
+    ///     Ok::<(), ()>(())
+    /// }))?;
+    /// assert!(lit > 100);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn for_mesh(
+        mesh: &HostMesh,
+        width: u16,
+        height: u16,
+        background: C,
+    ) -> Result<Self, Error> {
+        host_renderer(&mesh.capacities(width), width, height, background)
+    }
 }

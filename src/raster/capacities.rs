@@ -1,14 +1,13 @@
-//! Capacities by name, and the [`Renderer`]: tables and a scanner in one
-//! value, for the common case of one scanner per frame.
-//!
-//! Fixed-capacity storage takes its capacities as const parameters; name
-//! them through a [`Capacities`] constant so nobody counts positions:
+//! Capacities by name: one value sizes a renderer's every array, and
+//! [`renderer_type!`](crate::renderer_type) spells out the storage types
+//! from it.
 //!
 //! ```
 //! use embedded_graphics_core::pixelcolor::Rgb565;
-//! use zline::{Capacities, Renderer, ScanArrays, TableArrays};
-//! use zline::Depth16;
+//! use zline::{Capacities, Depth16};
 //!
+//! // As `needs` prints it for a mesh and a frame (or
+//! // `Capacities::worst_case(&counts, 240)`).
 //! const CAPS: Capacities = Capacities {
 //!     width: 240,
 //!     vertices: 600,
@@ -16,27 +15,29 @@
 //!     corners: 3000,
 //!     active_polygons: 256,
 //!     pooled_edges: 0,
+//!     mesh_vertices: 500,
 //! };
-//! type Tables = TableArrays<Rgb565, { CAPS.vertices }, { CAPS.polygons }, { CAPS.corners }>;
-//! type Rows = ScanArrays<Rgb565, Depth16, { CAPS.width }, { CAPS.active_polygons }, { CAPS.pooled_edges }>;
+//! type Zr = zline::renderer_type!(Rgb565, Depth16, CAPS);
 //! // Built at compile time; in firmware, in a `static` cell.
-//! static RENDERER: Renderer<Tables, Rows> = Renderer::new_in_static(240, 240, Rgb565::new(0, 0, 0));
-//! assert!(CAPS.ram_bytes::<Rgb565, Depth16>() <= core::mem::size_of::<Renderer<Tables, Rows>>());
+//! static RENDERER: Zr = Zr::new_in_static(240, 240, Rgb565::new(0, 0, 0));
+//! assert!(CAPS.ram_bytes::<Rgb565, Depth16>() <= core::mem::size_of::<Zr>());
 //! ```
 
 use core::mem::size_of;
 
-use crate::error::{Error, RenderError};
-use crate::raster::PolygonTables;
+use crate::limits::MAX_POLYGONS;
 use crate::raster::active::ActivePolygon;
 use crate::raster::depth::DepthFormat;
 use crate::raster::edge::{ActiveEdge, EdgeEntry};
-use crate::raster::scan::{FrameStats, ScanArrays, ScanStorage, Scanner, scan};
-use crate::raster::tables::{Admission, PolygonEntry, TableArrays, TableStorage, Tables};
-use crate::raster::vertex::{Outline, ScreenVertex};
-use crate::sink::RowSink;
+use crate::raster::scan::FrameStats;
+use crate::raster::tables::PolygonEntry;
+use crate::raster::vertex::ScreenVertex;
 
-/// How much the tables and a scanner hold, by name.
+/// How much a renderer holds, by name: its tables, its scanner and its
+/// vertex cache. The storage types follow from one such value
+/// ([`renderer_type!`](crate::renderer_type)); a renderer too small for a
+/// frame refuses it with the [`Error`](crate::Error) naming what did not
+/// fit.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct Capacities {
     /// Row capacity: the widest frame, in pixels (the scanner's rows).
@@ -54,31 +55,84 @@ pub struct Capacities {
     /// Active edges beyond each polygon's first two (zero for triangles and
     /// convex polygons).
     pub pooled_edges: usize,
+    /// Vertices of the largest mesh drawn with
+    /// [`Renderer::draw_mesh`](crate::Renderer::draw_mesh): its vertex
+    /// cache (2 bytes a vertex). Zero for a renderer of screen polygons
+    /// only.
+    pub mesh_vertices: usize,
 }
 
 impl Capacities {
     /// The capacities a frame of `width` pixels with these counts needs
-    /// (take the [`FrameStats::max`] over every frame to be shown). They
-    /// also fit a scanner of any band of the frame's rows, and each band
-    /// of a banded renderer: a band holds no more polygons, corners or
-    /// vertices than the frame, and needs no more active polygons or
+    /// (take the [`FrameStats::max`] over every frame to be shown), with
+    /// no vertex cache: set [`Self::mesh_vertices`] to the mesh's vertex
+    /// count to draw it with [`Renderer::draw_mesh`](crate::Renderer::draw_mesh).
+    ///
+    /// They also fit a scanner of any band of the frame's rows, and each
+    /// band of a banded renderer: a band holds no more polygons, corners
+    /// or vertices than the frame, and needs no more active polygons or
     /// pooled edges on any row than one scan of the frame.
-    pub fn from_stats(stats: &FrameStats, width: usize) -> Self {
-        let n = |count: u32| count as usize;
+    pub const fn from_stats(stats: &FrameStats, width: usize) -> Self {
         Self {
             width,
-            vertices: n(stats.vertices),
-            polygons: n(stats.polygons),
-            corners: n(stats.corners),
-            active_polygons: n(stats.peak_active_polygons),
-            pooled_edges: n(stats.peak_pooled_edges),
+            vertices: stats.vertices as usize,
+            polygons: stats.polygons as usize,
+            corners: stats.corners as usize,
+            active_polygons: stats.peak_active_polygons as usize,
+            pooled_edges: stats.peak_pooled_edges as usize,
+            mesh_vertices: 0,
         }
     }
 
-    /// Bytes of the arrays of tables and a scanner with these capacities,
-    /// colour `C` and depth `D`: the three rows (colour, depth, tie-break
-    /// key), the vertex, polygon, corner
-    /// and edge tables, and the active tables.
+    /// Capacities that hold a mesh of these counts from **any** view,
+    /// culled or not, in frames `width` pixels wide: every face at its
+    /// worst, clipped by all six of the front end's planes. For a mesh of
+    /// triangles only (`corners == 3 · faces`): 9 corners a face, each
+    /// possibly a vertex of its own, and no pooled edge. For any other: up
+    /// to 12 corners per corner (a face that is not planar is its fan of
+    /// triangles, 9 corners each; a polygon clipped by Sutherland and
+    /// Hodgman grows by at most half a plane, six times over). A face with
+    /// a shared plane takes three corners more per polygon. Every polygon
+    /// may be active on one row.
+    ///
+    /// An upper bound, and far more than most views need (a 1,024-triangle
+    /// mesh gets 9,216 corners): where RAM is short, size from the views a
+    /// firmware shows instead (`needs`). Counts beyond the core's limits
+    /// are capped at them (65,536 vertices,
+    /// [`MAX_POLYGONS`](crate::limits::MAX_POLYGONS) polygons, 65,536
+    /// active polygons).
+    pub const fn worst_case(mesh: &MeshCounts, width: usize) -> Self {
+        let (faces, corners) = (mesh.faces, mesh.corners);
+        let triangles_only = corners == 3 * faces;
+        let clipped = if triangles_only {
+            9 * faces
+        } else {
+            12 * corners
+        };
+        // A face of n corners: at most n - 2 triangles (its fan, or a
+        // convex quad's two), or one polygon.
+        let fan = corners.saturating_sub(2 * faces);
+        let polygons = min(if fan > faces { fan } else { faces }, MAX_POLYGONS);
+        let shared = if mesh.shared_plane_faces > 0 {
+            3 * polygons
+        } else {
+            0
+        };
+        Self {
+            width,
+            vertices: min(mesh.vertices + clipped, 1 << 16),
+            polygons,
+            corners: clipped + shared,
+            active_polygons: min(polygons, 1 << 16),
+            pooled_edges: if triangles_only { 0 } else { clipped },
+            mesh_vertices: mesh.vertices,
+        }
+    }
+
+    /// Bytes of the arrays of a renderer with these capacities, colour
+    /// `C` and depth `D`: the three rows (colour, depth, tie-break key),
+    /// the vertex, polygon, corner and edge tables, the active tables and
+    /// the vertex cache.
     pub fn ram_bytes<C, D: DepthFormat>(&self) -> usize {
         self.width * (size_of::<C>() + size_of::<D::Value>() + size_of::<u32>())
             + self.vertices * size_of::<ScreenVertex>()
@@ -86,6 +140,7 @@ impl Capacities {
             + self.corners * (size_of::<u16>() + size_of::<EdgeEntry>())
             + self.active_polygons * (size_of::<ActivePolygon<C>>() + size_of::<u16>())
             + self.pooled_edges * size_of::<ActiveEdge>()
+            + self.mesh_vertices * size_of::<u16>()
     }
 }
 
@@ -98,222 +153,61 @@ impl FrameStats {
     }
 }
 
-/// Tables and a scanner in one value: build a frame's scene with the
-/// `push_*` methods (or [`crate::front::scene::draw_mesh`]), then
-/// [`Self::render`] it; [`Self::clear`] before the next frame.
-#[derive(Clone)]
-pub struct Renderer<T: TableStorage, S: ScanStorage<Color = T::Color>> {
-    /// The scene-sized tables.
-    pub tables: Tables<T>,
-    /// The row-sized scanner.
-    pub scanner: Scanner<S>,
+/// The [`Renderer`](crate::Renderer) type in fixed arrays for capacities
+/// `$caps` (a [`Capacities`] constant), colour `$color` and depth format
+/// `$depth`: every capacity in its place, so none is typed twice. With
+/// `mesh_vertices: 0` it has no vertex cache and draws screen polygons
+/// only.
+///
+/// ```
+/// use embedded_graphics_core::pixelcolor::BinaryColor;
+/// use zline::{Capacities, Depth16};
+///
+/// const CAPS: Capacities = Capacities {
+///     width: 16,
+///     vertices: 8,
+///     polygons: 2,
+///     corners: 8,
+///     active_polygons: 2,
+///     pooled_edges: 0,
+///     mesh_vertices: 0,
+/// };
+/// type Zr = zline::renderer_type!(BinaryColor, Depth16, CAPS);
+/// let renderer = Zr::new(16, 16, BinaryColor::Off).unwrap();
+/// assert_eq!(renderer.width(), 16);
+/// ```
+#[macro_export]
+macro_rules! renderer_type {
+    ($color:ty, $depth:ty, $caps:expr $(,)?) => {
+        $crate::Renderer<
+            $crate::TableArrays<$color, { $caps.vertices }, { $caps.polygons }, { $caps.corners }>,
+            $crate::ScanArrays<
+                $color,
+                $depth,
+                { $caps.width },
+                { $caps.active_polygons },
+                { $caps.pooled_edges },
+            >,
+            $crate::VertexCache<{ $caps.mesh_vertices }>,
+        >
+    };
 }
 
-impl<T, S> core::fmt::Debug for Renderer<T, S>
-where
-    T: TableStorage + core::fmt::Debug,
-    S: ScanStorage<Color = T::Color> + core::fmt::Debug,
-    T::Color: core::fmt::Debug,
-{
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        f.debug_struct("Renderer")
-            .field("tables", &self.tables)
-            .field("scanner", &self.scanner)
-            .finish()
-    }
+/// The smaller of `a` and `b`, in a `const fn`.
+const fn min(a: usize, b: usize) -> usize {
+    if a < b { a } else { b }
 }
 
-impl<T: TableStorage, S: ScanStorage<Color = T::Color>> Renderer<T, S> {
-    /// A renderer over the given storage for frames `width` x `height`,
-    /// clearing to `background`. `width` must fit the scanner's rows.
-    pub fn from_storage(
-        tables: T,
-        scanner: S,
-        width: u16,
-        height: u16,
-        background: T::Color,
-    ) -> Result<Self, Error> {
-        let mut scanner = Scanner::new(scanner, background);
-        if usize::from(width) > scanner.row_capacity() {
-            return Err(Error::BadFrameSize);
-        }
-        Ok(Self {
-            tables: Tables::new(tables, width, height)?,
-            scanner,
-        })
-    }
-
-    /// Frame width in pixels.
-    pub fn width(&self) -> u16 {
-        self.tables.width()
-    }
-
-    /// Frame height in rows.
-    pub fn height(&self) -> u16 {
-        self.tables.height()
-    }
-
-    /// Colour of pixels no polygon covers.
-    pub fn set_background(&mut self, background: T::Color) {
-        self.scanner.set_background(background);
-    }
-
-    /// Empties the tables for the next frame.
-    pub fn clear(&mut self) {
-        self.tables.clear();
-    }
-
-    /// Number of vertices in the vertex table.
-    pub fn vertex_count(&self) -> usize {
-        self.tables.vertex_count()
-    }
-
-    /// Number of polygons in the polygon table.
-    pub fn polygon_count(&self) -> usize {
-        self.tables.polygon_count()
-    }
-
-    /// Vertex `index` of the vertex table.
-    pub fn vertex(&self, index: u16) -> Option<ScreenVertex> {
-        self.tables.vertex(index)
-    }
-
-    /// See [`Tables::push_vertex`].
-    pub fn push_vertex(&mut self, vertex: ScreenVertex) -> Result<u16, Error> {
-        self.tables.push_vertex(vertex)
-    }
-
-    /// See [`Tables::push_polygon`].
-    pub fn push_polygon(&mut self, corners: &[u16], color: T::Color) -> Result<Admission, Error> {
-        self.tables.push_polygon(corners, color)
-    }
-
-    /// See [`Tables::push_polygon_vertices`].
-    pub fn push_polygon_vertices(
-        &mut self,
-        corners: &[ScreenVertex],
-        color: T::Color,
-    ) -> Result<Admission, Error> {
-        self.tables.push_polygon_vertices(corners, color)
-    }
-
-    /// Gives the polygon queued by the call just before a plane shared
-    /// with other polygons; see [`Tables::share_plane`].
-    pub fn share_plane(&mut self, plane: [u16; 3]) -> Result<bool, Error> {
-        self.tables.share_plane(plane)
-    }
-
-    /// Prepares the tables and scans every row into `sink`, one call per
-    /// row. The tables are kept, so the same scene can be rendered again.
-    pub fn render<K>(&mut self, sink: &mut K) -> Result<FrameStats, RenderError<K::Error>>
-    where
-        K: RowSink<T::Color, <S::Depth as DepthFormat>::Value>,
-    {
-        let height = self.tables.height();
-        let prepared = self.tables.prepare();
-        scan(&prepared, &mut self.scanner, 0..height, sink)
-    }
-}
-
-impl<
-    C: Copy,
-    D: DepthFormat,
-    const V: usize,
-    const P: usize,
-    const E: usize,
-    const W: usize,
-    const AP: usize,
-    const AE: usize,
-> Renderer<TableArrays<C, V, P, E>, ScanArrays<C, D, W, AP, AE>>
-{
-    /// A renderer in fixed arrays for frames `width` (at most `W`) by
-    /// `height`, clearing to `background`.
-    pub fn with_size(width: u16, height: u16, background: C) -> Result<Self, Error> {
-        Self::from_storage(
-            TableArrays::new(background),
-            ScanArrays::new(background),
-            width,
-            height,
-            background,
-        )
-    }
-
-    /// A renderer in fixed arrays for frames `W` wide and `height` tall.
-    pub fn new(height: u16, background: C) -> Result<Self, Error> {
-        let width = u16::try_from(W).map_err(|_| Error::BadFrameSize)?;
-        Self::with_size(width, height, background)
-    }
-
-    /// As [`Self::with_size`], `const`, for statics (built at compile time,
-    /// never copied through the stack); an invalid size stops the build.
-    pub const fn new_in_static(width: u16, height: u16, background: C) -> Self {
-        if width as usize > W {
-            panic!("zline: the frame is wider than the scanner's rows");
-        }
-        Self {
-            tables: Tables::new_in_static(TableArrays::new(background), width, height),
-            scanner: Scanner::new(ScanArrays::new(background), background),
-        }
-    }
-}
-
-impl<T: TableStorage, S: ScanStorage<Color = T::Color>> PolygonTables<T::Color> for Renderer<T, S> {
-    fn frame_width(&self) -> u16 {
-        self.tables.width()
-    }
-
-    fn frame_height(&self) -> u16 {
-        self.tables.height()
-    }
-
-    fn add_vertex(&mut self, vertex: ScreenVertex) -> Result<u16, Error> {
-        self.tables.push_vertex(vertex)
-    }
-
-    fn get_vertex(&self, index: u16) -> Option<ScreenVertex> {
-        self.tables.vertex(index)
-    }
-
-    fn offer_polygon<I>(
-        &mut self,
-        corners: I,
-        decide: impl FnOnce(&Outline) -> Option<T::Color>,
-    ) -> Result<Admission, Error>
-    where
-        I: IntoIterator<Item = u16>,
-        I::IntoIter: Clone,
-    {
-        self.tables.offer_polygon(corners, decide)
-    }
-
-    fn offer_triangle(
-        &mut self,
-        corners: [u16; 3],
-        decide: impl FnOnce(&Outline) -> Option<T::Color>,
-    ) -> Result<Admission, Error> {
-        self.tables.offer_triangle(corners, decide)
-    }
-
-    fn share_plane(&mut self, plane: [u16; 3]) -> Result<bool, Error> {
-        self.tables.share_plane(plane)
-    }
-
-    fn begin_polygon(&mut self) {
-        PolygonTables::begin_polygon(&mut self.tables);
-    }
-
-    fn discard_polygon(&mut self) {
-        PolygonTables::discard_polygon(&mut self.tables);
-    }
-
-    fn add_corner(&mut self, vertex: u16) -> Result<(), Error> {
-        PolygonTables::add_corner(&mut self.tables, vertex)
-    }
-
-    fn finish_polygon(
-        &mut self,
-        decide: impl FnOnce(&Outline) -> Option<T::Color>,
-    ) -> Result<Admission, Error> {
-        PolygonTables::finish_polygon(&mut self.tables, decide)
-    }
+/// A mesh's counts, for [`Capacities::worst_case`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct MeshCounts {
+    /// Vertex positions.
+    pub vertices: usize,
+    /// Faces.
+    pub faces: usize,
+    /// Corners of all faces together.
+    pub corners: usize,
+    /// Faces that share a plane with others
+    /// ([`SharedPlane`](crate::SharedPlane)).
+    pub shared_plane_faces: usize,
 }

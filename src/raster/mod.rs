@@ -36,7 +36,7 @@ pub(crate) mod vertex;
 pub mod zbuffer;
 
 pub use active::ActivePolygon;
-pub use capacities::{Capacities, Renderer};
+pub use capacities::{Capacities, MeshCounts};
 pub use depth::{Depth16, Depth24, DepthFormat};
 pub use edge::{ActiveEdge, EdgeEntry};
 pub use scan::{FrameStats, ScanArrays, ScanParts, ScanStorage, Scanner, scan};
@@ -60,7 +60,7 @@ use crate::error::Error;
 pub(crate) const BRANCH_FREE: bool = !cfg!(target_arch = "arm");
 
 /// What scene building needs from a renderer: its frame, its vertex table
-/// and its polygon table. [`Renderer`] implements it for every
+/// and its polygon table. [`Renderer`](crate::Renderer) implements it for every
 /// configuration, so [`draw_mesh`](crate::draw_mesh) needs none of the capacities.
 ///
 /// A polygon enters in one of two ways, neither needing a buffer per
@@ -79,7 +79,7 @@ pub trait PolygonTables<C> {
     fn frame_width(&self) -> u16;
     /// Frame height in pixels.
     fn frame_height(&self) -> u16;
-    /// Adds a vertex; see [`Renderer::push_vertex`].
+    /// Adds a vertex; see [`Renderer::push_vertex`](crate::Renderer::push_vertex).
     fn add_vertex(&mut self, vertex: ScreenVertex) -> Result<u16, Error>;
     /// A vertex added before.
     fn get_vertex(&self, index: u16) -> Option<ScreenVertex>;

@@ -319,5 +319,6 @@ pub fn small_caps(width: u16) -> zline::Capacities {
         corners: 256,
         active_polygons: 32,
         pooled_edges: 64,
+        mesh_vertices: 0,
     }
 }

@@ -8,7 +8,7 @@ use embedded_graphics_core::prelude::IntoStorage;
 use zline::Mesh;
 use zline::Shading;
 use zline::Vec3;
-use zline::{Camera, Cull, DrawStats, VertexCache, draw_mesh, reference_model_around};
+use zline::{CacheStorage, Camera, Cull, DrawStats, reference_model_around};
 use zline::{DepthFormat, FrameStats, RenderError, Renderer, RowSink};
 use zline::{ScanStorage, TableStorage};
 
@@ -32,9 +32,8 @@ pub fn wire(c: Rgb565) -> WireColor {
 /// culled, and sends the frame to `sink` row by row, in wire order
 /// ([`WireColor`]).
 #[allow(clippy::too_many_arguments)]
-pub fn render_frame<T, S, K, M, const VM: usize>(
-    renderer: &mut Renderer<T, S>,
-    cache: &mut VertexCache<VM>,
+pub fn render_frame<T, S, C, K, M>(
+    renderer: &mut Renderer<T, S, C>,
     mesh: &M,
     shading: &Shading,
     (centre, radius): (Vec3, f32),
@@ -44,13 +43,14 @@ pub fn render_frame<T, S, K, M, const VM: usize>(
 where
     T: TableStorage<Color = WireColor>,
     S: ScanStorage<Color = WireColor>,
+    C: CacheStorage,
     K: RowSink<WireColor, <S::Depth as DepthFormat>::Value>,
     M: Mesh,
 {
     renderer.clear();
     let model = reference_model_around(centre, radius, yaw, pitch);
     let camera = Camera::reference(renderer.width(), renderer.height());
-    let draw = draw_mesh(renderer, cache, mesh, &model, &camera, Cull::Back, |f| {
+    let draw = renderer.draw_mesh(mesh, &model, &camera, Cull::Back, |f| {
         wire(Rgb565::from(shading.color(f)))
     })?;
     let frame = renderer.render(sink)?;

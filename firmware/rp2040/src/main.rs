@@ -31,9 +31,8 @@ use rp2040_hal as hal;
 use static_cell::ConstStaticCell;
 use zline::Shading;
 use zline::Vec3;
-use zline::{Depth16, FrameStats, RenderError, Renderer};
-use zline::{ScanArrays, TableArrays};
-use zline::{VertexCache, bounding_sphere};
+use zline::bounding_sphere;
+use zline::{Depth16, FrameStats, RenderError};
 
 use frame::{WIRE_BLACK, WireColor};
 use lcd::LcdRows;
@@ -65,22 +64,14 @@ pub static BOOT2_FIRMWARE: [u8; 256] = rp2040_boot2::BOOT_LOADER_W25Q080;
 
 use sizes::CAPS;
 
-/// The scene-sized tables, sized by `build.rs` for this mesh.
-type Tables = TableArrays<WireColor, { CAPS.vertices }, { CAPS.polygons }, { CAPS.corners }>;
-/// One row of depth and colour, and the active tables.
-type Rows =
-    ScanArrays<WireColor, Depth16, { CAPS.width }, { CAPS.active_polygons }, { CAPS.pooled_edges }>;
-/// The renderer: tables and scanner.
-type Zr = Renderer<Tables, Rows>;
-/// Where each mesh vertex went in the vertex table: 2 bytes a vertex.
-type Cache = VertexCache<{ sizes::MESH_VERTICES }>;
+/// The renderer (tables, one row of depth and colour, the active tables
+/// and the vertex cache), sized by `build.rs` for this mesh.
+type Zr = zline::renderer_type!(WireColor, Depth16, CAPS);
 
 /// The renderer, built at compile time in its static (`new_in_static` is
 /// `const`): it never passes through the stack.
 static RENDERER: ConstStaticCell<Zr> =
     ConstStaticCell::new(Zr::new_in_static(sizes::WIDTH, sizes::HEIGHT, WIRE_BLACK));
-/// The vertex cache, likewise.
-static CACHE: ConstStaticCell<Cache> = ConstStaticCell::new(Cache::new());
 
 /// Frames sent whole to the LCD.
 #[used]
@@ -151,7 +142,6 @@ fn main() -> ! {
 fn run() -> Result<core::convert::Infallible, Fault> {
     let (mut rows, timer) = board::init()?;
     let renderer = RENDERER.take();
-    let cache = CACHE.take();
     // Start-up is over: note its stack use, then measure the loop alone.
     stack::STARTUP_HIGH_WATER_BYTES.store(stack::measure(), Ordering::Relaxed);
     stack::paint();
@@ -182,7 +172,7 @@ fn run() -> Result<core::convert::Infallible, Fault> {
         // The same yaw angles build.rs sized the tables for.
         let yaw = step as f32 * sizes::YAW_STEP_DEG;
         step = (step + 1) % sizes::YAW_STEPS;
-        match draw_frame(renderer, cache, &mut rows, (&shading, sphere), yaw) {
+        match draw_frame(renderer, &mut rows, (&shading, sphere), yaw) {
             Ok(stats) => {
                 FRAMES.store(FRAMES.load(Ordering::Relaxed) + 1, Ordering::Relaxed);
                 POLYGONS.store(stats.polygons, Ordering::Relaxed);
@@ -206,14 +196,12 @@ fn run() -> Result<core::convert::Infallible, Fault> {
 /// next one starts from empty tables.
 fn draw_frame(
     renderer: &mut Zr,
-    cache: &mut Cache,
     rows: &mut LcdRows,
     (shading, sphere): (&Shading, (Vec3, f32)),
     yaw: f32,
 ) -> Result<FrameStats, FrameError> {
     frame::render_frame(
         renderer,
-        cache,
         &MESH,
         shading,
         sphere,

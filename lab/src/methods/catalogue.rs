@@ -580,7 +580,7 @@ fn draw_with<const V: usize, const P: usize, const E: usize, const AP: usize, co
     let (w, h) = SIZE;
     let mut renderer: std::boxed::Box<
         Renderer<TableArrays<u32, V, P, E>, ScanArrays<u32, Depth16, 160, AP, 8>>,
-    > = match Renderer::new(h, u32::MAX) {
+    > = match Renderer::with_height(h, u32::MAX) {
         Ok(r) => std::boxed::Box::new(r),
         Err(e) => return Some(e.to_string()),
     };
@@ -589,7 +589,7 @@ fn draw_with<const V: usize, const P: usize, const E: usize, const AP: usize, co
     let camera = ReferenceCamera::STANDARD.camera(w, h);
     if let Err(e) = draw_mesh(
         &mut *renderer,
-        &mut cache,
+        &mut *cache,
         mesh,
         &model,
         &camera,
@@ -630,7 +630,7 @@ pub fn capacity_errors() -> Vec<(&'static str, String)> {
         let drawn = model.map(|m| {
             zline::draw_mesh(
                 &mut *tables,
-                &mut cache,
+                &mut *cache,
                 &mesh,
                 &m,
                 &camera,

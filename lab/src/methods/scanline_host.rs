@@ -12,13 +12,13 @@ use super::reference::BACKGROUND;
 use zline::Capacities;
 use zline::DepthFormat;
 use zline::FnSink;
+use zline::FrameStats;
 use zline::Mat4;
 use zline::Mesh;
 use zline::Shading;
-use zline::host::{ScanVecs, TableVecs, host_renderer};
+use zline::host::host_renderer;
 use zline::{Camera, Cull, DrawError, DrawStats, VertexCache, draw_mesh};
 use zline::{Error, RenderError};
-use zline::{FrameStats, Renderer};
 
 /// What the host renderer stores per pixel: the face and its colour.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -30,7 +30,7 @@ pub struct HostPixel {
 }
 
 /// The core with capacities for any mesh in `../shared/meshes`.
-pub type HostRenderer<D> = Renderer<TableVecs<HostPixel>, ScanVecs<HostPixel, D>>;
+pub type HostRenderer<D> = zline::host::HostRenderer<HostPixel, D>;
 
 /// Capacities for any mesh the host tools load: 65,536 vertices, 262,144
 /// polygons, 786,432 corners, 32,768 polygons and 65,536 pooled edges
@@ -42,6 +42,7 @@ pub const HOST_CAPACITIES: Capacities = Capacities {
     corners: 786_432,
     active_polygons: 32_768,
     pooled_edges: 65_536,
+    mesh_vertices: 0,
 };
 
 /// A finished frame: face id and colour per pixel, row-major from the top.

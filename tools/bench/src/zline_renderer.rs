@@ -3,9 +3,9 @@
 
 use zline::Mat4 as ZMat4;
 use zline::Shading;
-use zline::host::{BandedRenderer, ScanVecs, TableVecs, host_renderer};
+use zline::host::{BandedRenderer, host_renderer};
 use zline::{Camera, Cull as ZCull, FaceInfo, VertexCache, draw_mesh, reference_model};
-use zline::{Depth16, FrameBufferSink, Renderer as ZRenderer};
+use zline::{Depth16, FrameBufferSink};
 use zline_lab::methods::HostScanline;
 
 use crate::framebuffer::Frame565;
@@ -30,7 +30,7 @@ use crate::view::{Cull, Scene, View};
 /// host-sized render of the same view.
 pub struct ZlineRenderer<'a> {
     scene: &'a Scene,
-    renderer: ZRenderer<TableVecs<u16>, ScanVecs<u16, Depth16>>,
+    renderer: zline::host::HostRenderer<u16, Depth16>,
     cache: Box<VertexCache<65536>>,
     frame: Frame565,
     model: ZMat4,

@@ -15,9 +15,9 @@ use embedded_graphics::primitives::Rectangle;
 use embedded_graphics_simulator::SimulatorDisplay;
 use zline::Shading;
 use zline::host::HostMesh;
-use zline::host::{ScanVecs, TableVecs, host_renderer};
+use zline::host::host_renderer;
 use zline::{Camera, Cull, VertexCache, draw_mesh, reference_model};
-use zline::{Depth16, Depth24, DepthFormat, DrawTargetSink, RenderError, Renderer};
+use zline::{Depth16, Depth24, DepthFormat, DrawTargetSink, RenderError};
 use zline::{Mat4, Vec3};
 use zline_lab::methods::{BACKGROUND, MethodRenderer, ReferenceFrame, ReferenceView};
 
@@ -27,7 +27,7 @@ pub const MAX_MESH_VERTICES: usize = 65_536;
 /// The core with host-sized capacities: rows up to 4096 pixels, 65,536
 /// table vertices, 262,144 polygons, 786,432 corners, 32,768 active
 /// polygons, 65,536 pooled edges, 32 corners per polygon.
-type WindowRenderer<D> = Renderer<TableVecs<Rgb888>, ScanVecs<Rgb888, D>>;
+type WindowRenderer<D> = zline::host::HostRenderer<Rgb888, D>;
 
 /// Which method draws the frame: the core straight to the window, or any
 /// of the comparison methods ([`zline_lab::methods::Method`]).
