@@ -23,9 +23,9 @@ use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use zline::Mesh;
 use zline::QuantizedMesh;
 use zline::VertexCache;
+use zline::host::host_renderer;
 use zline::host::{HostMesh, QuantizedHostMesh};
-use zline::host::{ScanVecs, TableVecs, host_renderer};
-use zline::{Capacities, Crc32Sink, Depth16, Depth24, DepthFormat, FrameStats, Renderer};
+use zline::{Capacities, Crc32Sink, Depth16, Depth24, DepthFormat, FrameStats};
 use zline_lab::rust_source::quantized_mesh_source;
 use zline_lab::shapes;
 
@@ -37,7 +37,7 @@ const SCENES: [(&str, f32, f32); 4] = [
     ("boxes", 30.0, 20.0),
 ];
 
-type HostRenderer<D> = Renderer<TableVecs<Rgb565>, ScanVecs<Rgb565, D>>;
+type HostRenderer<D> = zline::host::HostRenderer<Rgb565, D>;
 
 /// Room for every scene on the host, where the capacities are measured.
 const HOST_CAPACITIES: Capacities = Capacities {

@@ -18,8 +18,8 @@ pub const SIZE: u16 = 240;
 /// Draws `mesh`, whose bounding sphere is `(centre, radius)` (computed once
 /// per mesh), in the reference view at `yaw`/`pitch` (Lambert, back faces
 /// culled) and sends the frame to `sink`.
-pub fn render_frame<T, S, K, M, const VM: usize>(
-    renderer: &mut Renderer<T, S>,
+pub fn render_frame<T, S, C, K, M, const VM: usize>(
+    renderer: &mut Renderer<T, S, C>,
     cache: &mut VertexCache<VM>,
     mesh: &M,
     (centre, radius): (Vec3, f32),
