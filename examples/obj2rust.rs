@@ -28,6 +28,8 @@
 use std::io::Write as _;
 use std::process::ExitCode;
 
+use zline_lab::cli::help_requested;
+
 use zline::host::HostMesh;
 use zline_lab::rust_source::quantized_mesh_source;
 use zline_lab::rust_source::static_mesh_source;
@@ -58,8 +60,15 @@ fn run(args: &[String]) -> Result<(), String> {
         .map_err(|e| format!("cannot write the output: {e}"))
 }
 
+const USAGE: &str = "usage: obj2rust [--quantized] MODEL.obj NAME > name.rs
+Writes Rust source for MODEL.obj as a StaticMesh static named NAME (with --quantized, a
+QuantizedMesh: i16 positions and unit face normals, drawn with integers only).";
+
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
+    if help_requested(&args, USAGE) {
+        return ExitCode::SUCCESS;
+    }
     match run(&args) {
         Ok(()) => ExitCode::SUCCESS,
         Err(message) => {

@@ -45,7 +45,7 @@ use zline::{Camera, Cull, reference_model};
 use zline::{Depth16, Depth24, DepthFormat};
 use zline_lab::cli::load_model;
 use zline_lab::cli::parse_size;
-use zline_lab::cli::run_tool;
+use zline_lab::cli::{help_requested, run_tool};
 use zline_lab::methods::{BACKGROUND, Method, MethodRenderer, ReferenceView};
 
 /// Parsed command line.
@@ -292,11 +292,29 @@ fn run(args: &[String]) -> Result<(), String> {
             usize::from(o.width) * usize::from(o.height) * 4
         );
     }
+    if o.out.is_none() && o.ids.is_none() && !o.stats {
+        // Asked for nothing to keep: say what was done.
+        let covered = out.faces.iter().filter(|&&f| f != BACKGROUND).count();
+        println!(
+            "render: drew {} at {}x{} with {} ({} frame{}, median {:.2} ms, {covered} pixels covered); \
+             nothing written: add --out FILE.png, --ids FILE.bin or --stats",
+            o.model.display(),
+            o.width,
+            o.height,
+            o.method.name(),
+            out.times_ms.len(),
+            if out.times_ms.len() == 1 { "" } else { "s" },
+            median(&mut out.times_ms),
+        );
+    }
     Ok(())
 }
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
+    if help_requested(&args, USAGE) {
+        return ExitCode::SUCCESS;
+    }
     run_tool("render", USAGE, move || run(&args))
 }
 

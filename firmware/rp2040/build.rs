@@ -112,7 +112,14 @@ fn run() -> Result<(), String> {
     println!("cargo:rerun-if-changed=src/frame.rs");
     let (mesh, origin) = match env::var_os("ZLINE_MESH").filter(|p| !p.is_empty()) {
         Some(path) => {
+            // A relative path is taken from the directory the command was
+            // run in (the shell's PWD; cargo runs build scripts in the
+            // package's own directory), as every other path of the tools.
             let path = PathBuf::from(path);
+            let path = match env::var_os("PWD") {
+                Some(pwd) if path.is_relative() => PathBuf::from(pwd).join(path),
+                _ => path,
+            };
             println!("cargo:rerun-if-changed={}", path.display());
             (load_obj(&path)?, path.display().to_string())
         }

@@ -13,7 +13,7 @@ checks what it sends the LCD:
 * the firmware's own `FRAME_US` agrees with the measured period, and
   `FAULT` is 0.
 
-usage: emu_check.py [--elf PATH] [--frames N] [--budget CYCLES]
+usage: emu_check.py [--elf PATH] [--frames N] [--budget CYCLES (default 5000000)]
                     [--emu DIR] [--out DIR]
 Exits 1 on any failure, after printing what differed."""
 
@@ -61,7 +61,9 @@ def main() -> int:
     p = argparse.ArgumentParser()
     p.add_argument("--elf", default="firmware/rp2040/target/thumbv6m-none-eabi/release/zline-rp2040")
     p.add_argument("--frames", type=int, default=4, help="firmware frames to check after the start-up clear")
-    p.add_argument("--budget", type=int, required=True, help="most cycles a frame period may take")
+    p.add_argument("--budget", type=int, default=5_000_000,
+                   help="most cycles a frame period may take (default 5,000,000: the torus knot's "
+                        "budget the README states; a bigger mesh needs its own)")
     p.add_argument("--emu", default="../shared/rp2040-emu")
     p.add_argument("--out", default="target/rp2040-emu")
     a = p.parse_args()

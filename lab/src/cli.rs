@@ -21,12 +21,27 @@ pub fn load_model(spec: &str) -> Result<HostMesh, String> {
         })?,
         None => {
             let bytes = std::fs::read(spec).map_err(|e| format!("{spec}: {e}"))?;
+            if bytes.contains(&0) {
+                return Err(format!(
+                    "{spec}: a binary file, not a Wavefront OBJ mesh (text: `v x y z` and `f a b c` lines)"
+                ));
+            }
             HostMesh::from_obj(&bytes).map_err(|e| format!("{spec}: {e}"))?
         }
     };
-    if mesh.positions.is_empty() {
-        return Err(format!("{spec}: no vertices"));
+    if mesh.positions.is_empty() && mesh.face_starts.is_empty() {
+        return Err(format!(
+            "{spec}: not a Wavefront OBJ mesh: no `v x y z` (vertex) or `f a b c` (face) lines"
+        ));
     }
+    if mesh.face_starts.is_empty() {
+        return Err(format!(
+            "{spec}: an OBJ file with no faces (`f` lines): nothing to draw"
+        ));
+    }
+    // Its size must normalise for the reference view: said here, with the
+    // file's name.
+    zline::bounding_sphere(&mesh).map_err(|e| format!("{spec}: {e}"))?;
     Ok(mesh)
 }
 

@@ -2,7 +2,7 @@
 //! `README.md` (columns `file | v | vt | vn | f | tris | ...`):
 //!
 //! ```sh
-//! cargo run --release --example mesh_counts -- ../shared/meshes
+//! cargo run --release -p zline-lab --bin mesh_counts -- ../shared/meshes
 //! ```
 //!
 //! Every listed file is counted with [`zline::obj::count`] and loaded into
@@ -13,6 +13,8 @@
 
 use std::path::Path;
 use std::process::ExitCode;
+
+use zline_lab::cli::help_requested;
 
 use zline::Mesh;
 use zline::obj::{ObjCounts, ObjMesh, count};
@@ -155,7 +157,15 @@ fn run(dir: &Path) -> Result<bool, String> {
     Ok(ok == rows.len())
 }
 
+const USAGE: &str = "usage: mesh_counts [MESH_DIR]
+Counts every mesh listed in MESH_DIR/README.md (default ../shared/meshes) with the OBJ reader and
+checks v, vt, vn, f and triangle counts against the table; exits non-zero on a mismatch.";
+
 fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    if help_requested(&args, USAGE) {
+        return ExitCode::SUCCESS;
+    }
     let dir = std::env::args()
         .nth(1)
         .unwrap_or_else(|| "../shared/meshes".into());

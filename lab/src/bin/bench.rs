@@ -5,7 +5,7 @@
 //! its ratio to the first, and its memory, as a Markdown table.
 //!
 //! ```sh
-//! cargo run --release --example bench -- [--size WxH] [--rounds N] [--cull none|back]
+//! cargo run --release -p zline-lab --bin bench -- [--size WxH] [--rounds N] [--cull none|back]
 //!     [--method LIST] MESH.obj...
 //! ```
 //!
@@ -24,9 +24,9 @@ use std::time::Instant;
 use zline::Shading;
 use zline::{Camera, Cull, reference_model};
 use zline::{Depth16, Depth24};
-use zline_lab::cli::load_model;
 use zline_lab::cli::parse_size;
 use zline_lab::cli::run_tool;
+use zline_lab::cli::{help_requested, load_model};
 use zline_lab::methods::{Method, MethodRenderer, ReferenceView};
 
 fn median(mut v: Vec<f64>) -> f64 {
@@ -147,7 +147,14 @@ fn run(args: &[String]) -> Result<(), String> {
     Ok(())
 }
 
+const USAGE: &str = "usage: bench [--size WxH] [--rounds N] [--cull none|back] [--method LIST] MESH.obj... (or shape:NAME)
+Speed of the hidden-surface methods side by side, in interleaved rounds: median frame time, ratio to
+the first, memory. LIST: comma-separated scanline, zbuffer, bands:K, interval, painter, reference.";
+
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    run_tool("bench", "", move || run(&args))
+    if help_requested(&args, USAGE) {
+        return ExitCode::SUCCESS;
+    }
+    run_tool("bench", USAGE, move || run(&args))
 }

@@ -5,7 +5,7 @@
 //! its faces) and its scan, and the frame's wall-clock time. Medians over the frames, after a few untimed ones.
 //!
 //! ```sh
-//! cargo run --release --example bands -- MODEL.obj [--size WxH] [--cull none|back] [--threads N] [--frames N]
+//! cargo run --release -p zline-lab --bin bands -- MODEL.obj [--size WxH] [--cull none|back] [--threads N] [--frames N]
 //! ```
 //!
 //! The frame is the peers bench's (reference view, each face's Lambert
@@ -23,9 +23,9 @@ use zline::Shading;
 use zline::host::{BandedRenderer, HostMesh, SharedSteps, host_renderer};
 use zline::{Camera, Cull, FaceInfo, VertexCache, draw_mesh, reference_model};
 use zline::{Depth16, FnSink};
-use zline_lab::cli::load_model;
 use zline_lab::cli::parse_size;
 use zline_lab::cli::run_tool;
+use zline_lab::cli::{help_requested, load_model};
 
 /// Untimed frames before the timed ones.
 const WARM_UP: usize = 5;
@@ -279,11 +279,15 @@ fn options(args: &[String]) -> Result<Options, String> {
     Ok(o)
 }
 
+const USAGE: &str =
+    "usage: bands MODEL.obj [--size WxH] [--cull none|back] [--threads N] [--frames N]
+Where a frame drawn in bands on threads spends its time, next to one renderer on one thread; fails
+if the banded frame differs from the single renderer's.";
+
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    run_tool(
-        "bands",
-        "usage: bands MODEL.obj [--size WxH] [--cull none|back] [--threads N] [--frames N]",
-        move || run(&args),
-    )
+    if help_requested(&args, USAGE) {
+        return ExitCode::SUCCESS;
+    }
+    run_tool("bands", USAGE, move || run(&args))
 }

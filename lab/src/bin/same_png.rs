@@ -1,7 +1,7 @@
 //! Checks that two PNG files hold the same picture.
 //!
 //! ```sh
-//! cargo run --release --example same_png -- a.png b.png
+//! cargo run --release -p zline-lab --bin same_png -- a.png b.png
 //! ```
 //!
 //! Both files are decoded to RGB 8-bit. Exits 0 when they have the same
@@ -10,6 +10,8 @@
 //! cannot be read or decoded, or on a bad command line.
 
 use std::process::ExitCode;
+
+use zline_lab::cli::help_requested;
 
 use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::prelude::*;
@@ -22,8 +24,14 @@ fn load(path: &str) -> Result<SimulatorDisplay<Rgb888>, String> {
     SimulatorDisplay::<Rgb888>::load_png(path).map_err(|e| format!("{path}: {e}"))
 }
 
+const USAGE: &str = "usage: same_png A.png B.png
+Whether two PNG frames are equal pixel for pixel; lists the first pixels that differ.";
+
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
+    if help_requested(&args, USAGE) {
+        return ExitCode::SUCCESS;
+    }
     let [a_path, b_path] = args.as_slice() else {
         eprintln!("usage: same_png A.png B.png");
         return ExitCode::from(2);

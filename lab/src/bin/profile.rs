@@ -49,9 +49,9 @@ use zline::Shading;
 use zline::host::{HostMesh, host_renderer};
 use zline::{Camera, Cull, VertexCache, draw_mesh, reference_model};
 use zline::{Depth16, FnSink};
-use zline_lab::cli::load_model;
 use zline_lab::cli::parse_size;
 use zline_lab::cli::run_tool;
+use zline_lab::cli::{help_requested, load_model};
 
 /// Copies one finished row into the frame buffer (the sink stage).
 #[inline(never)]
@@ -308,11 +308,16 @@ fn run(args: &[String]) -> Result<(), String> {
     frames(&mesh, size, cull, count, live_shading)
 }
 
+const USAGE: &str =
+    "usage: profile MODEL.obj [--size WxH] [--cull none|back] [--frames N] [--lambert]
+       profile --report CALLGRIND.OUT | profile --perf-report PERF.DATA
+Draws frames for valgrind's callgrind or perf to profile (build with --features profile), or reports
+each stage's share of a profile.";
+
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    run_tool(
-        "profile",
-        "usage: profile MODEL.obj [--size WxH] [--cull none|back] [--frames N] | profile --report CALLGRIND.OUT | profile --perf-report PERF.DATA",
-        move || run(&args),
-    )
+    if help_requested(&args, USAGE) {
+        return ExitCode::SUCCESS;
+    }
+    run_tool("profile", USAGE, move || run(&args))
 }

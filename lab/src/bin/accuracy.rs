@@ -2,7 +2,7 @@
 //! mesh in a folder at three views, for both depth formats.
 //!
 //! ```sh
-//! cargo run --release --example accuracy -- ../shared/meshes [--size WxH] [--cull none|back]
+//! cargo run --release -p zline-lab --bin accuracy -- ../shared/meshes [--size WxH] [--cull none|back]
 //! ```
 //!
 //! For each mesh, view and format it prints: pixels, mismatches (face id
@@ -28,9 +28,9 @@ use zline::Shading;
 use zline::host::{HostMesh, QuantizedHostMesh};
 use zline::{Camera, Cull, reference_model};
 use zline::{Depth16, Depth24, DepthFormat};
-use zline_lab::cli::obj_files;
 use zline_lab::cli::parse_size;
 use zline_lab::cli::run_tool;
+use zline_lab::cli::{help_requested, obj_files};
 use zline_lab::methods::{
     Comparison, Method, MethodRenderer, ReferenceFrame, ReferenceView, compare,
 };
@@ -231,9 +231,16 @@ fn run(args: &[String]) -> Result<bool, String> {
     Ok(ok)
 }
 
+const USAGE: &str = "usage: accuracy MESH_DIR [--size WxH] [--cull none|back]
+Every method against the float64 reference on every mesh of MESH_DIR at three views, both depth
+formats; prints Markdown tables and exits non-zero on a hard mismatch of any method but the painter.";
+
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    run_tool("accuracy", "", move || match run(&args)? {
+    if help_requested(&args, USAGE) {
+        return ExitCode::SUCCESS;
+    }
+    run_tool("accuracy", USAGE, move || match run(&args)? {
         true => Ok(()),
         false => Err("hard mismatches".into()),
     })

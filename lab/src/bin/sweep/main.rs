@@ -3,8 +3,8 @@
 //!
 //! ```sh
 //! cargo bench-peers                                  # optional: the peers' points
-//! cargo run --release --example sweep                # writes docs/charts
-//! cargo run --release --example sweep -- --quick     # CI's short run, to target/sweep-quick
+//! cargo run --release -p zline-lab --bin sweep                # writes docs/charts
+//! cargo run --release -p zline-lab --bin sweep -- --quick     # CI's short run, to target/sweep-quick
 //! ```
 //!
 //! Options: `--out DIR`, `--meshes DIR` (`../shared/meshes`), `--rounds N`
@@ -34,8 +34,8 @@ use std::process::ExitCode;
 use chart::{Panel, Point, Series};
 use measure::{Config, Sample, Scene};
 use plotters::chart::SeriesLabelPosition;
-use zline_lab::cli::load_model;
 use zline_lab::cli::run_tool;
+use zline_lab::cli::{help_requested, load_model};
 use zline_lab::methods::Method;
 
 struct Options {
@@ -548,7 +548,7 @@ fn run(args: &[String]) -> Result<(), String> {
     std::fs::create_dir_all(&o.out).map_err(|e| format!("{}: {e}", o.out.display()))?;
     let machine = machine();
     let command = format!(
-        "cargo run --release --example sweep --{}",
+        "cargo run --release -p zline-lab --bin sweep --{}",
         args.iter().map(|a| format!(" {a}")).collect::<String>()
     );
     println!("machine: {machine}");
@@ -586,7 +586,14 @@ fn run(args: &[String]) -> Result<(), String> {
     Ok(())
 }
 
+const USAGE: &str = "usage: sweep [--quick] [--out DIR] [--meshes DIR] [--rounds N] [--peers FILE]
+The hidden-surface methods charted side by side (speed against accuracy, polygons, resolution;
+memory against resolution): SVG charts and CSVs in DIR (docs/charts; target/sweep-quick with --quick).";
+
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    run_tool("sweep", "", move || run(&args))
+    if help_requested(&args, USAGE) {
+        return ExitCode::SUCCESS;
+    }
+    run_tool("sweep", USAGE, move || run(&args))
 }

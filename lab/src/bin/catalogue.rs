@@ -4,7 +4,7 @@
 //! by the painter where it breaks) as PNG.
 //!
 //! ```sh
-//! cargo run --release --example catalogue [-- --gallery docs/catalogue]
+//! cargo run --release -p zline-lab --bin catalogue [-- --gallery docs/catalogue]
 //! ```
 //!
 //! A cell is `correct` (no hard mismatch; pixels excused at edges or as
@@ -18,7 +18,7 @@ use std::process::ExitCode;
 use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::prelude::*;
 use embedded_graphics_simulator::{OutputSettings, SimulatorDisplay};
-use zline_lab::cli::run_tool;
+use zline_lab::cli::{help_requested, run_tool};
 use zline_lab::methods::catalogue::{self, Expect, METHODS, label};
 use zline_lab::methods::{Method, MethodFrame};
 
@@ -116,9 +116,17 @@ fn run(args: &[String]) -> Result<bool, String> {
     Ok(as_expected)
 }
 
+const USAGE: &str = "usage: catalogue [--gallery DIR]
+Every method on every case of the adversarial catalogue against the float64 reference, as a
+Markdown table; exits non-zero when a method does other than the case expects. --gallery writes
+each case's frames as PNG into DIR.";
+
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    run_tool("catalogue", "", move || match run(&args)? {
+    if help_requested(&args, USAGE) {
+        return ExitCode::SUCCESS;
+    }
+    run_tool("catalogue", USAGE, move || match run(&args)? {
         true => Ok(()),
         false => Err("a method did other than the catalogue expects".into()),
     })
