@@ -3,7 +3,7 @@
 //! size of each item, as the Markdown tables in the README:
 //!
 //! ```sh
-//! cargo run --example memory
+//! cargo run --example renderer_memory
 //! ```
 
 use core::mem::size_of;

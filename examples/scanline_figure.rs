@@ -3,7 +3,7 @@
 //! Each row is printed the moment the renderer finishes it.
 //!
 //! ```sh
-//! cargo run --example ascii
+//! cargo run --example scanline_figure
 //! ```
 
 use zline::{Depth16, FnSink, Renderer, ScreenVertex};

@@ -2,10 +2,10 @@
 //! callgrind (instructions, not seconds: the same on every run).
 //!
 //! ```sh
-//! cargo build --release --features profile --example profile
+//! cargo build --release -p zline-lab --features profile --bin profile
 //! valgrind --tool=callgrind --callgrind-out-file=cg.out \
-//!     target/release/examples/profile ../shared/meshes/stanford-bunny.obj --size 800x600 --frames 4
-//! cargo run --release --features profile --example profile -- --report cg.out
+//!     target/release/profile ../shared/meshes/stanford-bunny.obj --size 800x600 --frames 4
+//! cargo run --release -p zline-lab --features profile --bin profile -- --report cg.out
 //! ```
 //!
 //! The frame is the peers bench's: the reference view, each face's Lambert
@@ -36,8 +36,8 @@
 //!
 //! ```sh
 //! perf record -e cpu-clock -F 5000 -o perf.data \
-//!     target/release/examples/profile ../shared/meshes/stanford-bunny.obj --size 800x600 --frames 400
-//! cargo run --release --features profile --example profile -- --perf-report perf.data
+//!     target/release/profile ../shared/meshes/stanford-bunny.obj --size 800x600 --frames 400
+//! cargo run --release -p zline-lab --features profile --bin profile -- --perf-report perf.data
 //! ```
 
 use std::process::ExitCode;

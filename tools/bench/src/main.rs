@@ -12,7 +12,7 @@
 //! float64 `ReferenceFrame`, and reports progress on stderr.
 //!
 //! ```sh
-//! cargo run --release --manifest-path tools/bench/Cargo.toml -- --quick ../shared/meshes
+//! cargo run --release -p zline-bench -- --quick ../shared/meshes
 //! ```
 
 mod cli;

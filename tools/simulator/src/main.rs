@@ -2,11 +2,12 @@
 //! SDL2) showing a mesh drawn by zline, row by row through
 //! `zline::DrawTargetSink`.
 //!
-//! Start it from the repository root (the `simulator` example builds and
-//! runs this crate, so the root crate never needs SDL2):
+//! Start it from the repository root (a workspace member of its own, so
+//! the root crate never needs SDL2 and the window builds only what it
+//! needs):
 //!
 //! ```sh
-//! cargo run --release --example simulator [-- MODEL] [options]
+//! cargo run --release -p zline-simulator [-- MODEL] [options]
 //! ```
 //!
 //! `MODEL` is an OBJ file or `shape:NAME` for a built-in mesh (`torus-knot`,

@@ -3,8 +3,8 @@
 //!
 //! ```sh
 //! cargo bench-peers                                  # optional: the peers' points
-//! cargo run --release -p zline-lab --bin sweep                # writes docs/charts
-//! cargo run --release -p zline-lab --bin sweep -- --quick     # CI's short run, to target/sweep-quick
+//! cargo run --release -p zline-lab --features charts --bin sweep                # writes docs/charts
+//! cargo run --release -p zline-lab --features charts --bin sweep -- --quick     # CI's short run, to target/sweep-quick
 //! ```
 //!
 //! Options: `--out DIR`, `--meshes DIR` (`../shared/meshes`), `--rounds N`
@@ -548,7 +548,7 @@ fn run(args: &[String]) -> Result<(), String> {
     std::fs::create_dir_all(&o.out).map_err(|e| format!("{}: {e}", o.out.display()))?;
     let machine = machine();
     let command = format!(
-        "cargo run --release -p zline-lab --bin sweep --{}",
+        "cargo run --release -p zline-lab --features charts --bin sweep --{}",
         args.iter().map(|a| format!(" {a}")).collect::<String>()
     );
     println!("machine: {machine}");
