@@ -12,7 +12,8 @@ use crate::front::scene::{
 };
 use crate::raster::PolygonTables;
 use crate::raster::depth::DepthFormat;
-use crate::raster::scan::{FrameStats, ScanArrays, ScanStorage, Scanner, scan};
+use crate::raster::scan::{ScanArrays, ScanStorage, Scanner, scan};
+use crate::raster::stats::FrameStats;
 use crate::raster::tables::{Admission, TableArrays, TableStorage, Tables};
 use crate::raster::vertex::{Outline, ScreenVertex};
 use crate::sink::RowSink;

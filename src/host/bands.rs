@@ -34,7 +34,8 @@ use crate::front::scene::{
 };
 use crate::raster::depth::DepthFormat;
 use crate::raster::fixed::first_sample_at_or_after;
-use crate::raster::scan::{FrameStats, scan};
+use crate::raster::scan::scan;
+use crate::raster::stats::FrameStats;
 use crate::raster::vertex::{Outline, ScreenVertex};
 use crate::raster::{Admission, Capacities, PolygonTables, Tables};
 use crate::sink::RowSink;

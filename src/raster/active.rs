@@ -209,14 +209,15 @@ impl<C: Copy> ActivePolygon<C> {
     /// Steps a triangle's two edges to `next_row`, with no test of their
     /// own end rows: while the triangle goes on (it ends at its `end_row`,
     /// and is not stepped then), an edge ends before it only at the switch
-    /// row, where [`switch_triangle`](crate::raster::scan) replaces the
-    /// upper short edge with the lower one right after this step. The
-    /// long edge and the lower short edge end with the triangle, and the
-    /// upper short edge does too when there is no switch (the middle corner
-    /// lies at or below the last row). The one extra step of an edge that
-    /// has ended stays in range: inside the guard band `|step| < 2^22`
-    /// pixels and `|x| <= 2^13 + 1`, so the crossing stays below 2^23 in
-    /// magnitude, and it is never used.
+    /// row, where
+    /// [`switch_triangle`](crate::raster::stepping::switch_triangle)
+    /// replaces the upper short edge with the lower one right after this
+    /// step. The long edge and the lower short edge end with the triangle,
+    /// and the upper short edge does too when there is no switch (the
+    /// middle corner lies at or below the last row). The one extra step of
+    /// an edge that has ended stays in range: inside the guard band
+    /// `|step| < 2^22` pixels and `|x| <= 2^13 + 1`, so the crossing stays
+    /// below 2^23 in magnitude, and it is never used.
     #[inline]
     pub(crate) fn advance_triangle(&mut self, next_row: u16) {
         for edge in &mut self.pair {

@@ -29,7 +29,7 @@ use crate::limits::MAX_POLYGONS;
 use crate::raster::active::ActivePolygon;
 use crate::raster::depth::DepthFormat;
 use crate::raster::edge::{ActiveEdge, EdgeEntry};
-use crate::raster::scan::FrameStats;
+use crate::raster::stats::FrameStats;
 use crate::raster::tables::PolygonEntry;
 use crate::raster::vertex::ScreenVertex;
 

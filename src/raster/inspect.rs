@@ -10,9 +10,9 @@ use core::ops::Range;
 
 use crate::raster::active::SpanDepth;
 use crate::raster::edge::ActiveEdge;
+use crate::raster::entry_geometry::{entry_corners, for_each_edge, shared_depth, shared_plane_of};
 use crate::raster::fixed::first_sample_at_or_after;
 use crate::raster::plane::{Plane, TrianglePlane};
-use crate::raster::scan::{entry_corners, for_each_edge, shared_depth, shared_plane_of};
 use crate::raster::tables::{PolygonEntry, Prepared};
 use crate::raster::vertex::ScreenVertex;
 

@@ -9,7 +9,13 @@
 //! * [`tables`]: the scene-sized tables (vertices, polygons, corners, edge
 //!   table), sorted by first row in O(n).
 //! * [`scan`](mod@scan): the row-sized scanner (active polygon table, active edge
-//!   pool, the depth row and the colour row) and [`scan()`](scan::scan).
+//!   pool, the depth row and the colour row) and [`scan()`](scan::scan),
+//!   the driver of the row loop; [`stats`]: the counts it reports.
+//! * `activation`, `stepping`, `span`: the scan's three jobs: polygons
+//!   and edges entering the active tables; each active polygon stepped
+//!   from row to row; its spans depth-tested and written into the row.
+//!   `entry_geometry`: a queued polygon's corners, edges and plane, as
+//!   they all read them (internal).
 //! * [`capacities`]: the capacities, named, and the [`Renderer`] bundle of
 //!   tables and scanner.
 //! * [`zbuffer`]: the z-buffer methods it is compared with (a full-frame
@@ -21,16 +27,21 @@
 //!
 //! Only one row of depth and one of colour exist: nothing is frame-sized.
 
+pub(crate) mod activation;
 pub(crate) mod active;
 pub(crate) mod capacities;
 pub(crate) mod depth;
 pub(crate) mod edge;
+pub(crate) mod entry_geometry;
 pub(crate) mod fixed;
 pub mod inspect;
 pub(crate) mod lanes;
 pub(crate) mod plane;
 pub(crate) mod scan;
 pub(crate) mod slots;
+pub(crate) mod span;
+pub(crate) mod stats;
+pub(crate) mod stepping;
 pub(crate) mod tables;
 pub(crate) mod vertex;
 pub mod zbuffer;
@@ -39,7 +50,8 @@ pub use active::ActivePolygon;
 pub use capacities::{Capacities, MeshCounts};
 pub use depth::{Depth16, Depth24, DepthFormat};
 pub use edge::{ActiveEdge, EdgeEntry};
-pub use scan::{FrameStats, ScanArrays, ScanParts, ScanStorage, Scanner, scan};
+pub use scan::{ScanArrays, ScanParts, ScanStorage, Scanner, scan};
+pub use stats::FrameStats;
 pub use tables::{
     Admission, PolygonEntry, Prepared, TableArrays, TableParts, TablePartsRef, TableStorage, Tables,
 };

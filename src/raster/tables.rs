@@ -10,8 +10,8 @@
 //!
 //! Triangles, nearly every polygon of a mesh, need no ET entry: a triangle
 //! switches from its upper to its lower short edge by itself (see
-//! `scan.rs`). The ET holds, for polygons of four or more corners, the rows
-//! below their first row where further edges start.
+//! `stepping.rs`). The ET holds, for polygons of four or more corners, the
+//! rows below their first row where further edges start.
 //!
 //! All logic is written once against capacity-erased views of the storage
 //! ([`TableStorage`]), so it compiles once per colour type.

@@ -23,8 +23,10 @@ use crate::error::{Error, RenderError};
 use crate::raster::active::{ActivePolygon, EdgePool};
 use crate::raster::depth::DepthFormat;
 use crate::raster::edge::ActiveEdge;
-use crate::raster::scan::{FrameStats, PixelWrite, RowBuffers, ScanState, fill_and_step};
 use crate::raster::slots::{OrderedSlots, Slots};
+use crate::raster::span::{PixelWrite, RowBuffers};
+use crate::raster::stats::FrameStats;
+use crate::raster::stepping::{ScanState, fill_and_step};
 use crate::raster::tables::Prepared;
 use crate::sink::RowSink;
 

@@ -154,11 +154,11 @@ fn report(path: &str) -> Result<(), String> {
     let prepare = cost(&["Tables", "prepare"]);
     let activation = cost(&["ScanState", "activate_polygon"]);
     let edges = cost(&["ScanState", "activate_edges"]);
-    let fill_in_range = cost(&["scan::RowBuffers<C,D>::fill_in_range"]);
+    let fill_in_range = cost(&["span::RowBuffers<C,D>::fill_in_range"]);
     let fill = rows
         .iter()
         .filter(|(_, name)| {
-            name.contains("scan::RowBuffers<C,D>::fill") && !name.contains("fill_in_range")
+            name.contains("span::RowBuffers<C,D>::fill") && !name.contains("fill_in_range")
         })
         .map(|(c, _)| *c)
         .max()
@@ -239,7 +239,7 @@ fn perf_report(path: &str) -> Result<(), String> {
         (
             "polygon/edge activation (one-row triangles drawn there)",
             &[
-                "ScanState<C>::activate_",
+                "ScanState<C>>::activate_",
                 "value_at_pixel",
                 "RowBuffers<C,D>::fill ",
             ],

@@ -1,0 +1,390 @@
+//! Span filling: the row being built (depth, colour and tie-break key per
+//! pixel, [`RowBuffers`]) and the loops that depth-test and write a span
+//! of a polygon into it, by the scanline's rule or the other methods'
+//! ([`PixelWrite`]).
+
+use crate::arith::wide::mul_i64_small;
+use crate::raster::BRANCH_FREE;
+use crate::raster::depth::DepthFormat;
+use crate::raster::lanes::{LANES, block, fill_block};
+use crate::raster::plane::Plane;
+
+/// The row being built: depth, colour and tie-break key per pixel.
+pub(crate) struct RowBuffers<'a, C, D: DepthFormat> {
+    pub depth: &'a mut [D::Value],
+    pub color: &'a mut [C],
+    pub key: &'a mut [u32],
+    /// How a covered pixel is written: the scanline's test, or the other
+    /// methods' ([`crate::raster::zbuffer`]).
+    pub write: PixelWrite,
+}
+
+impl<C: Copy, D: DepthFormat> RowBuffers<'_, C, D> {
+    /// Fills pixels `[start, end)` (clamped to the row) of a triangle that
+    /// stays in range (see [`IN_RANGE`](crate::raster::depth::IN_RANGE)): depths from the accumulator,
+    /// placed at the first pixel from the row's column-0 value
+    /// ([`DepthFormat::accumulator_at`]), with no range check, no rounding
+    /// and no call per span, on a host in branch-free blocks
+    /// ([`crate::raster::lanes`]); whether any pixel was in the row. (With
+    /// the `profile` feature it is kept out of line: the profile's "spans"
+    /// stage.)
+    #[cfg_attr(feature = "profile", inline(never))]
+    #[cfg_attr(not(feature = "profile"), inline(always))]
+    pub(super) fn fill_in_range(
+        &mut self,
+        start: i32,
+        end: i32,
+        key: u32,
+        color: C,
+        accumulator_at: impl FnOnce(i32) -> (D::Accum, D::Accum),
+    ) -> bool {
+        let width = self.depth.len() as i32;
+        let (start, end) = (start.max(0), end.min(width));
+        if start >= end {
+            return false;
+        }
+        let (first, last) = (start as usize, end as usize);
+        let (mut acc, step) = accumulator_at(start);
+        if self.write != PixelWrite::NearerOrFirstAdded {
+            // The other methods' rules, out of line: the scanline's span
+            // loop stays as it was.
+            let (depths, colors) = (&mut self.depth[first..last], &mut self.color[first..last]);
+            other_rule_in_range::<C, D>(depths, colors, color, (acc, step), self.write);
+            return true;
+        }
+        let mut first = first;
+        if BRANCH_FREE {
+            // Blocks while the row holds one from `first` (see `lanes`);
+            // the scalar loop below finishes a span near the row's end.
+            while let Some((depths, keys, colors)) = block(self.depth, self.key, self.color, first)
+            {
+                fill_block::<C, D>(
+                    depths,
+                    keys,
+                    colors,
+                    last - first,
+                    (key, color),
+                    (acc, step),
+                );
+                first += LANES;
+                if first >= last {
+                    return true;
+                }
+                // Stepped here, not returned by the block: LLVM folds
+                // these into one `acc + LANES·step` apart from the lanes'
+                // chain, and a returned accumulator measured 10 % slower
+                // in the peers bench.
+                for _ in 0..LANES {
+                    acc = D::advance(acc, step);
+                }
+            }
+        }
+        let (depths, keys, colors) = (
+            &mut self.depth[first..last],
+            &mut self.key[first..last],
+            &mut self.color[first..last],
+        );
+        for ((stored, stored_key), pixel) in depths.iter_mut().zip(keys).zip(colors) {
+            let depth = D::value(acc);
+            if depth < *stored || (depth == *stored && depth != D::CLEAR && key < *stored_key) {
+                *stored = depth;
+                *stored_key = key;
+                *pixel = color;
+            }
+            acc = D::advance(acc, step);
+        }
+        true
+    }
+
+    /// Fills pixels `[start, end)` (clamped to the row) of a polygon with a
+    /// shared plane: depths from `row_value + dz_dx · x`, each rounded on
+    /// its own ([`SpanDepth::Shared`](crate::raster::active::SpanDepth::Shared)); whether any pixel was in the row.
+    /// Out of line: shared planes are rare, and the other fills stay as
+    /// they are.
+    #[inline(never)]
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn fill_shared(
+        &mut self,
+        start: i32,
+        end: i32,
+        key: u32,
+        color: C,
+        row_value: i64,
+        dz_dx: i64,
+    ) -> bool {
+        let width = self.depth.len() as i32;
+        let (start, end) = (start.clamp(0, width), end.clamp(0, width));
+        if start >= end {
+            return false;
+        }
+        let range = start as usize..end as usize;
+        let slices = (
+            &mut self.depth[range.clone()],
+            &mut self.color[range.clone()],
+            &mut self.key[range],
+        );
+        // |dz_dx| < 2^40, start < 2^12, |row_value| < 2^57: no overflow.
+        let value = row_value + mul_i64_small(dz_dx, start);
+        let pixel = (key, color);
+        match self.write {
+            PixelWrite::NearerOrFirstAdded => {
+                round_each_pixel::<C, D, NEARER_OR_FIRST_ADDED>(slices, value, dz_dx, pixel)
+            }
+            PixelWrite::Nearer => round_each_pixel::<C, D, NEARER>(slices, value, dz_dx, pixel),
+            PixelWrite::Overwrite => {
+                round_each_pixel::<C, D, OVERWRITE>(slices, value, dz_dx, pixel)
+            }
+        }
+        true
+    }
+
+    /// Fills pixels `[start, end)` (clamped to the row) of a polygon with
+    /// `key` and `color`, depths from `source`; whether any pixel was in
+    /// the row. (With the `profile` feature it is kept out of line: the
+    /// profile's "spans" stage.)
+    #[cfg_attr(feature = "profile", inline(never))]
+    pub(super) fn fill(
+        &mut self,
+        start: i32,
+        end: i32,
+        key: u32,
+        color: C,
+        source: &SpanSource,
+    ) -> bool {
+        let width = self.depth.len() as i32;
+        let (start, end) = (start.clamp(0, width), end.clamp(0, width));
+        if start >= end {
+            return false;
+        }
+        let range = start as usize..end as usize;
+        let (depths, colors, keys) = (
+            &mut self.depth[range.clone()],
+            &mut self.color[range.clone()],
+            &mut self.key[range],
+        );
+        if self.write == PixelWrite::NearerOrFirstAdded {
+            fill_span::<C, D, NEARER_OR_FIRST_ADDED>(
+                depths,
+                colors,
+                keys,
+                start,
+                (key, color),
+                source,
+            );
+        } else {
+            // The other methods' rules, out of line: one copy of the span
+            // loops per rule, so no pixel tests it, and the scanline's
+            // stays as it was.
+            other_rule_span::<C, D>(
+                depths,
+                colors,
+                keys,
+                start,
+                (key, color),
+                source,
+                self.write,
+            );
+        }
+        true
+    }
+}
+
+/// How a covered pixel is written.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum PixelWrite {
+    /// Where nearer, or equally near and added earlier (the key row): the
+    /// scanline z-buffer, whatever order its polygons are scanned in.
+    NearerOrFirstAdded,
+    /// Where strictly nearer: the z-buffer, drawing in the order polygons
+    /// were added, so the first drawn keeps a tie.
+    Nearer,
+    /// Always: the painter's pass.
+    Overwrite,
+}
+
+/// [`RowBuffers::fill_in_range`] for [`PixelWrite::Nearer`] and
+/// [`PixelWrite::Overwrite`] (the z-buffer and the painter's pass).
+#[inline(never)]
+fn other_rule_in_range<C: Copy, D: DepthFormat>(
+    depths: &mut [D::Value],
+    colors: &mut [C],
+    color: C,
+    (mut acc, step): (D::Accum, D::Accum),
+    write: PixelWrite,
+) {
+    if write == PixelWrite::Overwrite {
+        for (stored, pixel) in depths.iter_mut().zip(colors) {
+            (*stored, *pixel) = (D::value(acc), color);
+            acc = D::advance(acc, step);
+        }
+    } else {
+        for (stored, pixel) in depths.iter_mut().zip(colors) {
+            let depth = D::value(acc);
+            if depth < *stored {
+                (*stored, *pixel) = (depth, color);
+            }
+            acc = D::advance(acc, step);
+        }
+    }
+}
+
+/// `fill_span` for [`PixelWrite::Nearer`] and [`PixelWrite::Overwrite`].
+#[inline(never)]
+fn other_rule_span<C: Copy, D: DepthFormat>(
+    depths: &mut [D::Value],
+    colors: &mut [C],
+    keys: &mut [u32],
+    x0: i32,
+    pixel: (u32, C),
+    source: &SpanSource,
+    write: PixelWrite,
+) {
+    if write == PixelWrite::Overwrite {
+        fill_span::<C, D, OVERWRITE>(depths, colors, keys, x0, pixel, source);
+    } else {
+        fill_span::<C, D, NEARER>(depths, colors, keys, x0, pixel, source);
+    }
+}
+
+/// [`PixelWrite`]s as `fill_span`'s constant parameter.
+const NEARER_OR_FIRST_ADDED: u8 = 0;
+const NEARER: u8 = 1;
+const OVERWRITE: u8 = 2;
+
+/// Spans of at most this many pixels round each pixel's plane value; longer
+/// ones step the depth format's accumulator.
+const SHORT_SPAN: u32 = 4;
+
+/// Where a span's depths come from.
+pub(super) enum SpanSource {
+    /// From the row's plane value at column 0 and the gradient; with the
+    /// accumulator step when the polygon is known to stay in range.
+    Stepped {
+        dz_dx: i64,
+        row_value: i64,
+        accumulator: Option<i64>,
+    },
+    /// Exactly from the plane, at each pixel of the row.
+    Exact(Plane, u16),
+}
+
+/// The span loop of [`RowBuffers::fill_shared`]: each pixel's plane
+/// value, from `value` stepping by `dz_dx`, rounded on its own, so the
+/// stored depth never depends on where the span starts.
+///
+/// Its write rule is `fill_span`'s, written out again on purpose: routing
+/// both loops through one helper changed the Cortex-M0+ code of the hot
+/// span loop (boxes, z24: 4,320,920 to 4,453,920 instructions under
+/// `cargo qemu`).
+#[inline]
+fn round_each_pixel<C: Copy, D: DepthFormat, const MODE: u8>(
+    (depths, colors, keys): (&mut [D::Value], &mut [C], &mut [u32]),
+    mut value: i64,
+    dz_dx: i64,
+    (key, color): (u32, C),
+) {
+    let pixels = depths
+        .iter_mut()
+        .zip(keys.iter_mut())
+        .zip(colors.iter_mut());
+    for ((stored, stored_key), pixel) in pixels {
+        let depth = D::quantize(value);
+        let wins = match MODE {
+            NEARER_OR_FIRST_ADDED => {
+                depth < *stored || (depth == *stored && depth != D::CLEAR && key < *stored_key)
+            }
+            NEARER => depth < *stored,
+            _ => true,
+        };
+        if wins {
+            (*stored, *stored_key, *pixel) = (depth, key, color);
+        }
+        value += dz_dx;
+    }
+}
+
+/// Depth-tests and writes one span: pixels `x0 .. x0 + depths.len()`. A
+/// pixel is written when its depth is nearer than the row holds, or equal
+/// with a smaller key (the polygon added first).
+#[inline(always)]
+fn fill_span<C: Copy, D: DepthFormat, const MODE: u8>(
+    depths: &mut [D::Value],
+    colors: &mut [C],
+    keys: &mut [u32],
+    x0: i32,
+    (key, color): (u32, C),
+    source: &SpanSource,
+) {
+    let write = |depth: D::Value, stored: &mut D::Value, stored_key: &mut u32, pixel: &mut C| {
+        let wins = match MODE {
+            NEARER_OR_FIRST_ADDED => {
+                depth < *stored || (depth == *stored && depth != D::CLEAR && key < *stored_key)
+            }
+            NEARER => depth < *stored,
+            _ => true,
+        };
+        if wins {
+            *stored = depth;
+            *stored_key = key;
+            *pixel = color;
+        }
+    };
+    let len = depths.len() as u32;
+    let pixels = depths
+        .iter_mut()
+        .zip(keys.iter_mut())
+        .zip(colors.iter_mut());
+    match *source {
+        SpanSource::Stepped {
+            dz_dx,
+            row_value,
+            accumulator: Some(step),
+        } => {
+            // In range (checked once per polygon): the accumulator, with
+            // no range check and no rounding per pixel, placed at the plane
+            // value of the span's first pixel (|dz_dx| < 2^40, x0 < 2^12).
+            let start = row_value + dz_dx * i64::from(x0);
+            let (mut acc, step) = D::accumulator_at(start, dz_dx, step, 0);
+            for ((stored, stored_key), pixel) in pixels {
+                write(D::value(acc), stored, stored_key, pixel);
+                acc = D::advance(acc, step);
+            }
+        }
+        SpanSource::Stepped {
+            dz_dx, row_value, ..
+        } => {
+            // Re-evaluated from the plane at every span start: the error
+            // is the gradient's rounding times the distance from the
+            // polygon's anchor column (see `Plane::row_start`), never drift
+            // from earlier spans. |dz_dx| < 2^40 (steeper polygons are
+            // `Exact`), x0 < 2^12 and |row_value| < 2^57: no overflow.
+            let start = row_value + dz_dx * i64::from(x0);
+            if len <= SHORT_SPAN {
+                // A few pixels: rounding each plane value costs less than
+                // setting up the accumulator.
+                let mut value = start;
+                for ((stored, stored_key), pixel) in pixels {
+                    write(D::quantize(value), stored, stored_key, pixel);
+                    value += dz_dx;
+                }
+            } else if let Some((mut acc, step)) = D::span(start, dz_dx, len) {
+                for ((stored, stored_key), pixel) in pixels {
+                    write(D::value(acc), stored, stored_key, pixel);
+                    acc = D::advance(acc, step);
+                }
+            } else {
+                let mut value = start;
+                for ((stored, stored_key), pixel) in pixels {
+                    write(D::quantize(value), stored, stored_key, pixel);
+                    value = value.saturating_add(dz_dx);
+                }
+            }
+        }
+        SpanSource::Exact(plane, row) => {
+            for (k, ((stored, stored_key), pixel)) in pixels.enumerate() {
+                let value = plane.value_at_pixel(x0 + k as i32, i32::from(row));
+                write(D::quantize(value), stored, stored_key, pixel);
+            }
+        }
+    }
+}
