@@ -21,13 +21,15 @@ pub(crate) struct RowBuffers<'a, C, D: DepthFormat> {
 
 impl<C: Copy, D: DepthFormat> RowBuffers<'_, C, D> {
     /// Fills pixels `[start, end)` (clamped to the row) of a triangle that
-    /// stays in range (see [`IN_RANGE`](crate::raster::depth::IN_RANGE)): depths from the accumulator,
+    /// stays in range (see [`IN_RANGE`]): depths from the accumulator,
     /// placed at the first pixel from the row's column-0 value
     /// ([`DepthFormat::accumulator_at`]), with no range check, no rounding
     /// and no call per span, on a host in branch-free blocks
     /// ([`crate::raster::lanes`]); whether any pixel was in the row. (With
     /// the `profile` feature it is kept out of line: the profile's "spans"
     /// stage.)
+    ///
+    /// [`IN_RANGE`]: crate::raster::depth::IN_RANGE
     #[cfg_attr(feature = "profile", inline(never))]
     #[cfg_attr(not(feature = "profile"), inline(always))]
     pub(super) fn fill_in_range(
@@ -98,9 +100,11 @@ impl<C: Copy, D: DepthFormat> RowBuffers<'_, C, D> {
 
     /// Fills pixels `[start, end)` (clamped to the row) of a polygon with a
     /// shared plane: depths from `row_value + dz_dx · x`, each rounded on
-    /// its own ([`SpanDepth::Shared`](crate::raster::active::SpanDepth::Shared)); whether any pixel was in the row.
+    /// its own ([`SpanDepth::Shared`]); whether any pixel was in the row.
     /// Out of line: shared planes are rare, and the other fills stay as
     /// they are.
+    ///
+    /// [`SpanDepth::Shared`]: crate::raster::active::SpanDepth::Shared
     #[inline(never)]
     #[allow(clippy::too_many_arguments)]
     pub(super) fn fill_shared(
