@@ -150,7 +150,7 @@ fn report(path: &str) -> Result<(), String> {
     let transform = cost(&["Draw", "transform_vertex"]);
     let clip = cost(&["Draw", "clipped_part"]);
     let shade = cost(&["shade_front_face"]);
-    let draw = cost(&["scene::draw_mesh"]);
+    let draw = cost(&["scene::faces::draw_mesh"]);
     let prepare = cost(&["Tables", "prepare"]);
     let activation = cost(&["ScanState", "activate_polygon"]);
     let edges = cost(&["ScanState", "activate_edges"]);
@@ -230,7 +230,12 @@ fn perf_report(path: &str) -> Result<(), String> {
         ("shade (back-face test, colour)", &["shade_front_face"]),
         (
             "table building (per face: corners, outline, sample test)",
-            &["offer_triangle", "::part ", "scene::draw_mesh ", "face_of"],
+            &[
+                "offer_triangle",
+                "::part ",
+                "scene::faces::draw_mesh ",
+                "face_of",
+            ],
         ),
         (
             "sorting (bucket sort, edge table)",

@@ -1,0 +1,14 @@
+//! Which faces a draw culls before they reach the tables ([`Cull`]): the
+//! caller's choice, carried by the draw's constants to the face offering.
+
+/// Which faces to cull before they reach the tables.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Cull {
+    /// Draw both sides (for meshes with inconsistent winding).
+    #[default]
+    None,
+    /// Cull faces whose corners run clockwise on screen: their back is
+    /// turned to the viewer when the mesh winds its faces counter-clockwise
+    /// seen from outside (the OBJ convention).
+    Back,
+}

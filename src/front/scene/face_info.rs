@@ -1,0 +1,171 @@
+//! What a shading closure knows about a face ([`FaceInfo`]): its index and
+//! side at once, its normal and view depth computed only when asked for.
+
+use crate::front::fixed_point::FixedFrame;
+use crate::front::geometry::{Mat4, Vec3, newell_normal};
+use crate::front::mesh::Mesh;
+use crate::front::scene::transform::Frame;
+use crate::limits::NORMAL_SCALE;
+
+/// What a shading closure knows about a face. The face's index and side
+/// are at hand; its normal and depth are computed only when asked for
+/// ([`Self::normal`], [`Self::view_depth`]), so a shader that colours by
+/// face id pays nothing for them.
+#[derive(Clone, Copy)]
+pub struct FaceInfo<'a> {
+    /// Index of the face in the mesh.
+    pub face: u32,
+    /// Whether the face's front (counter-clockwise side) faces the viewer.
+    pub front: bool,
+    geometry: FaceGeometry<'a>,
+}
+
+/// Where a [`FaceInfo`]'s normal and depth come from.
+#[derive(Clone, Copy)]
+enum FaceGeometry<'a> {
+    /// From the mesh, on demand.
+    Mesh {
+        mesh: &'a dyn Mesh,
+        corners: &'a [u16],
+        model_view: &'a Mat4,
+    },
+    /// Given.
+    Known { normal: Vec3, view_depth: f32 },
+    /// From a quantized mesh: the stored normal, rotated in integers.
+    Quantized {
+        mesh: &'a dyn Mesh,
+        corners: &'a [u16],
+        model_view: &'a Mat4,
+        normal: [i16; 3],
+        frame: &'a FixedFrame,
+    },
+}
+
+impl core::fmt::Debug for FaceInfo<'_> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("FaceInfo")
+            .field("face", &self.face)
+            .field("front", &self.front)
+            .field("normal", &self.normal())
+            .field("view_depth", &self.view_depth())
+            .finish()
+    }
+}
+
+impl FaceInfo<'static> {
+    /// A face whose normal (unit, view space) and view depth are known.
+    pub const fn new(face: u32, front: bool, normal: Vec3, view_depth: f32) -> Self {
+        Self {
+            face,
+            front,
+            geometry: FaceGeometry::Known { normal, view_depth },
+        }
+    }
+}
+
+impl FaceInfo<'_> {
+    /// Unit normal from the face's winding (Newell's, from its corners), in
+    /// view space. For a quantized mesh it is [`Self::normal_q15`] as a
+    /// `f32` vector.
+    pub fn normal(&self) -> Vec3 {
+        match self.geometry {
+            FaceGeometry::Mesh {
+                mesh,
+                corners,
+                model_view,
+            } => mesh_normal(mesh, corners, model_view),
+            FaceGeometry::Known { normal, .. } => normal,
+            FaceGeometry::Quantized {
+                mesh,
+                corners,
+                model_view,
+                normal,
+                frame,
+            } => match frame.view_normal(normal) {
+                Some(n) => normal_vector_i32(n),
+                None => mesh_normal(mesh, corners, model_view),
+            },
+        }
+    }
+
+    /// The unit normal in view space in integers, units of `1/32767`, when
+    /// the face comes from a [quantized mesh](crate::QuantizedMesh):
+    /// its stored normal rotated by the model-view rotation, the same on
+    /// every target and with no floating point. `None` for other faces.
+    pub fn normal_q15(&self) -> Option<[i32; 3]> {
+        match self.geometry {
+            FaceGeometry::Quantized { normal, frame, .. } => frame.view_normal(normal),
+            _ => None,
+        }
+    }
+
+    /// View-space distance of the face's centroid along the view axis.
+    pub fn view_depth(&self) -> f32 {
+        match self.geometry {
+            FaceGeometry::Mesh {
+                mesh,
+                corners,
+                model_view,
+            }
+            | FaceGeometry::Quantized {
+                mesh,
+                corners,
+                model_view,
+                ..
+            } => {
+                let mut sum = Vec3::default();
+                for &i in corners {
+                    sum = sum + Vec3::from_array(mesh.position(usize::from(i)));
+                }
+                let centroid = sum * (1.0 / corners.len().max(1) as f32);
+                let row = model_view.m[2];
+                -(row[0] * centroid.x + row[1] * centroid.y + row[2] * centroid.z + row[3])
+            }
+            FaceGeometry::Known { view_depth, .. } => view_depth,
+        }
+    }
+}
+
+/// The view-space unit normal of a face from its corners (Newell's).
+fn mesh_normal(mesh: &dyn Mesh, corners: &[u16], model_view: &Mat4) -> Vec3 {
+    let n = newell_normal(corners.iter().map(|&i| mesh.position(usize::from(i))));
+    model_view.transform_vector(n).normalized()
+}
+
+/// An integer normal in units of `1/32767` as a `f32` vector.
+fn normal_vector_i32(n: [i32; 3]) -> Vec3 {
+    let s = 1.0 / NORMAL_SCALE as f32;
+    Vec3::new(n[0] as f32 * s, n[1] as f32 * s, n[2] as f32 * s)
+}
+
+impl Frame {
+    /// What the shader may ask about a face.
+    pub(super) fn face_info<'a, M: Mesh>(
+        &'a self,
+        mesh: &'a M,
+        face: usize,
+        corners: &'a [u16],
+        front: bool,
+    ) -> FaceInfo<'a> {
+        let model_view = &self.model_view;
+        let geometry = match (&self.fixed, mesh.quantized()) {
+            (Some(frame), Some(q)) => FaceGeometry::Quantized {
+                mesh,
+                corners,
+                model_view,
+                normal: q.normals.get(face).copied().unwrap_or_default(),
+                frame,
+            },
+            _ => FaceGeometry::Mesh {
+                mesh,
+                corners,
+                model_view,
+            },
+        };
+        FaceInfo {
+            face: face as u32,
+            front,
+            geometry,
+        }
+    }
+}

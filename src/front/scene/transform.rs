@@ -1,0 +1,390 @@
+//! Matrices applied to vertices: a draw's constants ([`Frame`]: the
+//! product of the model, view and projection, the clipping band, the
+//! integer front end when it takes the mesh), each mesh vertex to clip
+//! space and onto the screen in `f32` or in integers, the `f64` transform
+//! that clipping starts from, and [`project_vertices`], the same step on
+//! its own.
+
+use core::cell::OnceCell;
+
+use crate::error::Error;
+use crate::front::clip::ClipPoint;
+use crate::front::fixed_point::FixedFrame;
+use crate::front::geometry::{Mat4, Vec3, Vec4};
+use crate::front::mesh::{Mesh, QuantizedView};
+use crate::front::scene::camera::Camera;
+use crate::front::scene::cull::Cull;
+use crate::limits::CLIP_BAND_PX;
+use crate::raster::vertex::ScreenVertex;
+
+/// The `f32` front end's error on a vertex's distance to the near or far
+/// plane, per unit of the sum of the absolute terms of its transform
+/// (`2^-20`): the `f32` product of the three matrices and the transform
+/// err by a few units of `2^-24` of those terms on `z` and on `w`. A vertex
+/// nearer to one of those planes than that may lie on either side of it;
+/// it goes to the `f64` clipper, which decides. (With far 10^6 times near,
+/// a vertex a millionth of the far distance beyond the far plane passed
+/// the `f32` test, and a face grazing the far plane kept it: a corner 200
+/// pixels off.)
+const NEAR_FAR_ERROR: f32 = 1.0 / (1u32 << 20) as f32;
+
+/// The `f64` state of a frame for faces that need clipping.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Clip64 {
+    /// `projection · view · model`.
+    mvp: [[f64; 4]; 4],
+    /// `|projection| · |view| · |model|` (entrywise absolute values): a
+    /// corner's transform terms, whose sum bounds the arithmetic's error.
+    pub(super) mvp_abs: [[f64; 4]; 4],
+    /// The smallest clip-space `w` in the view frustum (with the guard
+    /// band): below it no cut corner can lie.
+    pub(super) w_near: f64,
+}
+
+impl Clip64 {
+    fn new([projection, view, model]: &[Mat4; 3]) -> Self {
+        let abs = |m: &Mat4| m.m.map(|row| row.map(|v| f64::from(v).abs()));
+        let mvp = mul64(&to64(projection), &mul64(&to64(view), &to64(model)));
+        let mvp_abs = mul64(&abs(projection), &mul64(&abs(view), &abs(model)));
+        Self {
+            mvp,
+            mvp_abs,
+            w_near: 0.0,
+        }
+    }
+}
+
+/// The smallest clip-space `w` of a point of view space inside the
+/// frustum `|x|, |y| <= g·w`, `|z| <= w` of `projection` (`0` when it cannot
+/// be found: a singular projection).
+///
+/// The frustum is a cone in clip space, and view space the hyperplane
+/// `r · c = 1` where `r` is the last row of the projection's inverse; the
+/// cone's edges `k = (±gx, ±gy, ±1, 1)` meet it at `w = 1 / (r · k)` where
+/// `r · k > 0`, and the smallest of those is the frustum's smallest `w`.
+fn frustum_w_near(projection: &Mat4, (gx, gy): (f64, f64)) -> f64 {
+    // r solves projection^T · r = e_3 (Gaussian elimination, partial
+    // pivoting).
+    let mut a = [[0.0f64; 5]; 4];
+    for (i, row) in a.iter_mut().enumerate() {
+        for (j, cell) in row.iter_mut().take(4).enumerate() {
+            *cell = f64::from(projection.m[j][i]);
+        }
+        row[4] = if i == 3 { 1.0 } else { 0.0 };
+    }
+    for col in 0..4 {
+        let Some(pivot) = (col..4).max_by(|&p, &q| a[p][col].abs().total_cmp(&a[q][col].abs()))
+        else {
+            return 0.0;
+        };
+        // (A zero or NaN pivot: singular, or not finite.)
+        let usable = a[pivot][col].abs() > 0.0;
+        if !usable {
+            return 0.0;
+        }
+        a.swap(col, pivot);
+        let pivot_row = a[col];
+        for (k, row) in a.iter_mut().enumerate() {
+            if k != col {
+                let f = row[col] / pivot_row[col];
+                for (x, p) in row[col..].iter_mut().zip(&pivot_row[col..]) {
+                    *x -= f * p;
+                }
+            }
+        }
+    }
+    let r: [f64; 4] = core::array::from_fn(|i| a[i][4] / a[i][i]);
+    let mut largest = 0.0f64;
+    for sx in [-gx, gx] {
+        for sy in [-gy, gy] {
+            for sz in [-1.0, 1.0] {
+                largest = largest.max(r[0] * sx + r[1] * sy + r[2] * sz + r[3]);
+            }
+        }
+    }
+    let w = 1.0 / largest;
+    if w.is_finite() && w > 0.0 { w } else { 0.0 }
+}
+
+/// Per-draw constants.
+pub(super) struct Frame {
+    mvp: Mat4,
+    /// The same product and the frustum's nearest `w` in `f64`, for faces
+    /// that need clipping: made the first time one does (on a core without
+    /// an FPU it is hundreds of soft-float operations, every frame).
+    clip64: OnceCell<Clip64>,
+    /// What `mvp64` is the product of: projection, view and model.
+    factors: [Mat4; 3],
+    pub(super) model_view: Mat4,
+    pub(super) width: f32,
+    pub(super) height: f32,
+    /// Guard band half-widths in NDC units, x and y.
+    pub(super) guard: (f32, f32),
+    /// The sum of the absolute terms of the `z` and `w` rows of
+    /// `|projection| · |view| · |model|`: per unit of a position's largest
+    /// coordinate, and the constant (see [`Frame::inside_guard`]).
+    near_far_terms: (f32, f32),
+    pub(super) cull: Cull,
+    /// The integer front end, for a quantized mesh whose matrices fit it.
+    pub(super) fixed: Option<FixedFrame>,
+}
+
+/// `a · b` in `f64`.
+fn mul64(a: &[[f64; 4]; 4], b: &[[f64; 4]; 4]) -> [[f64; 4]; 4] {
+    let mut r = [[0.0f64; 4]; 4];
+    for (i, row) in r.iter_mut().enumerate() {
+        for (j, cell) in row.iter_mut().enumerate() {
+            *cell = (0..4).map(|k| a[i][k] * b[k][j]).sum();
+        }
+    }
+    r
+}
+
+fn to64(m: &Mat4) -> [[f64; 4]; 4] {
+    m.m.map(|row| row.map(f64::from))
+}
+
+impl Frame {
+    pub(super) fn new(
+        model: &Mat4,
+        camera: &Camera,
+        cull: Cull,
+        quantized: Option<&QuantizedView>,
+    ) -> Self {
+        let model_view = camera.view.mul(model);
+        let (width, height) = (f32::from(camera.width), f32::from(camera.height));
+        let mvp = camera.projection.mul(&model_view);
+        let fixed = quantized.and_then(|q| {
+            FixedFrame::new(
+                &mvp,
+                &model_view,
+                q.centre,
+                q.radius,
+                camera.width,
+                camera.height,
+            )
+        });
+        // Only the f32 front end uses them: the integer one takes every
+        // vertex when it takes the mesh (and on a core without an FPU the
+        // two products cost about 10,000 instructions a draw).
+        let near_far_terms = if fixed.is_some() {
+            (0.0, 0.0)
+        } else {
+            let abs = |m: &Mat4| Mat4 {
+                m: m.m.map(|row| row.map(f32::abs)),
+            };
+            let terms = abs(&camera.projection).mul(&abs(&camera.view).mul(&abs(model)));
+            let [z, w] = [terms.m[2], terms.m[3]];
+            (z[0] + z[1] + z[2] + w[0] + w[1] + w[2], z[3] + w[3])
+        };
+        Self {
+            mvp,
+            near_far_terms,
+            clip64: OnceCell::new(),
+            factors: [camera.projection, camera.view, *model],
+            model_view,
+            fixed,
+            width,
+            height,
+            guard: (
+                2.0 * CLIP_BAND_PX / width - 1.0,
+                2.0 * CLIP_BAND_PX / height - 1.0,
+            ),
+            cull,
+        }
+    }
+
+    /// Whether the clip-space point `p` of a position whose largest
+    /// coordinate is `extent` lies inside the guard-band planes, and
+    /// inside the near and far planes by more than the `f32` transform's
+    /// error ([`NEAR_FAR_ERROR`]): nearer to one of those, it is the `f64`
+    /// clipper's to decide. (Outside the guard band by a rounding, a point
+    /// is still far inside the core's.)
+    fn inside_guard(&self, p: Vec4, extent: f32) -> bool {
+        let (gx, gy) = self.guard;
+        let (per_unit, constant) = self.near_far_terms;
+        let margin = (per_unit * extent + constant) * NEAR_FAR_ERROR;
+        p.z + p.w > margin && p.w - p.z > margin && p.x.abs() <= gx * p.w && p.y.abs() <= gy * p.w
+    }
+
+    /// Transforms mesh vertex `index` to clip space and classifies it: a
+    /// vertex inside the near, far and clipping-band planes is projected
+    /// and given to `screen`; for the others, `needs_clip` or `non_finite`
+    /// (what [`ProjectedVertex`] names). With the integer front end
+    /// (`positions`), a point outside the band is clipped in `f64` like any
+    /// other, and none is non-finite. (The outcomes are the caller's: an
+    /// enum returned and matched cost 0.25 % of an RP2040 frame.)
+    #[inline(always)]
+    pub(super) fn vertex<M: Mesh + ?Sized, R>(
+        &self,
+        mesh: &M,
+        positions: Option<&[[i16; 3]]>,
+        index: usize,
+        screen: impl FnOnce(ScreenVertex) -> Result<R, Error>,
+        (needs_clip, non_finite): (R, R),
+    ) -> Result<R, Error> {
+        if let (Some(fixed), Some(positions)) = (&self.fixed, positions) {
+            let q = positions.get(index).ok_or(Error::MeshIndexOutOfRange)?;
+            let c = fixed.clip(*q);
+            let stored = if fixed.inside(&c) {
+                fixed.project(&c)
+            } else {
+                None
+            };
+            return match stored {
+                Some(v) => screen(v),
+                None => Ok(needs_clip),
+            };
+        }
+        let position = mesh.position(index);
+        let p = self.mvp.transform_point(Vec3::from_array(position));
+        let extent = position[0]
+            .abs()
+            .max(position[1].abs())
+            .max(position[2].abs());
+        let stored = if !p.is_finite() {
+            None
+        } else if self.inside_guard(p, extent) {
+            self.project(p)
+        } else {
+            None
+        };
+        match stored {
+            Some(v) => screen(v),
+            None if self.clip_position64(mesh, index).is_finite() => Ok(needs_clip),
+            None => Ok(non_finite),
+        }
+    }
+
+    /// The frame's `f64` state for clipping, made on first use.
+    pub(super) fn clip64(&self) -> &Clip64 {
+        self.clip64.get_or_init(|| {
+            let mut clip = Clip64::new(&self.factors);
+            let (gx, gy) = self.guard;
+            clip.w_near = frustum_w_near(&self.factors[0], (f64::from(gx), f64::from(gy)));
+            clip
+        })
+    }
+
+    /// Clip-space position in `f64`.
+    pub(super) fn clip_position64<M: Mesh + ?Sized>(&self, mesh: &M, index: usize) -> ClipPoint {
+        let p = mesh.position(index).map(f64::from);
+        let row = |r: [f64; 4]| r[0] * p[0] + r[1] * p[1] + r[2] * p[2] + r[3];
+        let m = &self.clip64().mvp;
+        ClipPoint::new(row(m[0]), row(m[1]), row(m[2]), row(m[3]))
+    }
+
+    /// Screen vertex of a clip-space point inside the near, far and guard
+    /// planes.
+    fn project(&self, p: Vec4) -> Option<ScreenVertex> {
+        let inv_w = 1.0 / p.w;
+        let x = (p.x * inv_w + 1.0) * 0.5 * self.width;
+        let y = (1.0 - p.y * inv_w) * 0.5 * self.height;
+        let z = ((p.z * inv_w + 1.0) * 0.5).clamp(0.0, 1.0);
+        ScreenVertex::from_f32(x, y, z).ok()
+    }
+}
+
+/// Where one mesh vertex lands in a frame ([`project_vertices`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ProjectedVertex {
+    /// Inside the near, far and clipping-band planes: its screen vertex.
+    Screen(ScreenVertex),
+    /// Outside one of those planes: the faces using it are clipped.
+    NeedsClip,
+    /// Not finite even in `f64`: the faces using it are skipped.
+    NonFinite,
+}
+
+/// Transforms and projects mesh vertices `first..first + out.len()` as
+/// [`draw_mesh`] does (step 1), for [`draw_mesh_projected`]. Independent
+/// ranges can be projected on different threads (or cores) and the
+/// results put side by side.
+///
+/// [`draw_mesh`]: crate::draw_mesh
+/// [`draw_mesh_projected`]: crate::draw_mesh_projected
+pub fn project_vertices<M: Mesh>(
+    mesh: &M,
+    model: &Mat4,
+    camera: &Camera,
+    first: usize,
+    out: &mut [ProjectedVertex],
+) -> Result<(), Error> {
+    let mut out = out.iter_mut();
+    project_vertices_with(
+        mesh,
+        model,
+        camera,
+        first..first + out.len(),
+        |_, vertex| {
+            if let Some(slot) = out.next() {
+                *slot = vertex;
+            }
+        },
+    )
+}
+
+/// [`project_vertices`] for the vertices in `indices`, each handed to
+/// `store` with its index (for storage other than a slice, such as the
+/// host's banded renderer's, shared by its threads).
+pub(crate) fn project_vertices_with<M: Mesh>(
+    mesh: &M,
+    model: &Mat4,
+    camera: &Camera,
+    indices: core::ops::Range<usize>,
+    mut store: impl FnMut(usize, ProjectedVertex),
+) -> Result<(), Error> {
+    let quantized = mesh.quantized();
+    let frame = Frame::new(model, camera, Cull::None, quantized.as_ref());
+    let positions = quantized
+        .filter(|_| frame.fixed.is_some())
+        .map(|q| q.positions);
+    for index in indices {
+        if index >= mesh.vertex_count() {
+            return Err(Error::MeshIndexOutOfRange);
+        }
+        let fates = (ProjectedVertex::NeedsClip, ProjectedVertex::NonFinite);
+        let vertex = frame.vertex(
+            mesh,
+            positions,
+            index,
+            |v| Ok(ProjectedVertex::Screen(v)),
+            fates,
+        )?;
+        store(index, vertex);
+    }
+    Ok(())
+}
+
+/// Where a [`Draw`] finds a vertex on its first use, before transforming
+/// it itself: nowhere in [`draw_mesh`], in the projection given to
+/// [`draw_mesh_projected`]. (A type, so that `draw_mesh` pays nothing for
+/// it.)
+///
+/// [`Draw`]: super::faces
+/// [`draw_mesh`]: crate::draw_mesh
+/// [`draw_mesh_projected`]: crate::draw_mesh_projected
+pub(crate) trait VertexSource: Copy {
+    /// Vertex `index`, if it was projected beforehand.
+    fn projected(self, index: usize) -> Option<ProjectedVertex>;
+}
+
+/// [`draw_mesh`]'s source: every vertex is transformed on its first use.
+///
+/// [`draw_mesh`]: crate::draw_mesh
+#[derive(Debug, Clone, Copy)]
+pub(super) struct TransformEach;
+
+impl VertexSource for TransformEach {
+    #[inline(always)]
+    fn projected(self, _: usize) -> Option<ProjectedVertex> {
+        None
+    }
+}
+
+impl VertexSource for &[ProjectedVertex] {
+    #[inline(always)]
+    fn projected(self, index: usize) -> Option<ProjectedVertex> {
+        self.get(index).copied()
+    }
+}
