@@ -15,7 +15,7 @@ use crate::raster::fixed::first_sample_at_or_after;
 use crate::raster::plane::{Plane, TrianglePlane};
 use crate::raster::span::{RowBuffers, SpanSource};
 use crate::raster::stepping::ScanState;
-use crate::raster::tables::{PolygonEntry, entry_corner_ids};
+use crate::raster::tables::entry::{PolygonEntry, entry_corner_ids};
 use crate::raster::vertex::{ScreenVertex, TriangleTest};
 
 impl<C: Copy> ScanState<'_, '_, C> {

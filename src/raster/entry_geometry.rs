@@ -6,7 +6,7 @@
 
 use crate::raster::active::SpanDepth;
 use crate::raster::plane::Plane;
-use crate::raster::tables::{PolygonEntry, entry_corner_ids};
+use crate::raster::tables::entry::{PolygonEntry, entry_corner_ids};
 use crate::raster::vertex::ScreenVertex;
 
 /// The plane of a polygon that shares one

@@ -239,7 +239,7 @@ fn perf_report(path: &str) -> Result<(), String> {
         ),
         (
             "sorting (bucket sort, edge table)",
-            &["Tables<S>::prepare", "radix_sort_by_row"],
+            &["Tables<S>>::prepare", "radix_sort_by_row"],
         ),
         (
             "polygon/edge activation (one-row triangles drawn there)",
