@@ -31,9 +31,9 @@ use rp2040_hal::pac::{self, interrupt};
 use static_cell::ConstStaticCell;
 use zline::{LentRow, RowSink};
 
-use crate::board::{LcdCs, LcdDc, LcdSpi, OFFSET};
 use crate::frame::{WIRE_BLACK, WireColor};
 use crate::sizes::{HEIGHT, ROW_BUFFERS, ROWS_PER_BUFFER, WIDTH};
+use crate::wiring::{LcdCs, LcdDc, LcdSpi, OFFSET};
 
 /// Bytes of one row on the wire.
 pub const ROW_BYTES: usize = 2 * WIDTH as usize;
