@@ -15,7 +15,7 @@
 //!
 //! | you want to | use |
 //! |---|---|
-//! | draw a mesh | [`Renderer`] (tables and a scanner, sized by [`Capacities`]), [`draw_mesh`] with a [`Camera`] and a model matrix ([`reference_model`], [`Mat4`]), then [`Renderer::render`] into a [`RowSink`] |
+//! | draw a mesh | [`Renderer`] (tables and a scanner, sized by one [`Capacities`] value through [`renderer_type!`]; on a desktop `HostRenderer::for_mesh`, sized from the mesh), [`draw_mesh`] with a [`Camera`] and a model matrix ([`reference_model`], [`Mat4`]), then [`Renderer::render`] into a [`RowSink`] |
 //! | give a mesh | [`StaticMesh`] (slices, for flash), [`QuantizedMesh`] (`i16` positions, drawn by the integer front end), the OBJ reader's [`obj::ObjMesh`], or your own [`Mesh`]; on a desktop [`host::HostMesh`] |
 //! | colour faces | a closure over [`FaceInfo`], or [`Shading`] (flat, [`Lambert`], depth grey, face id) |
 //! | send rows | [`DrawTargetSink`] (any embedded-graphics `DrawTarget`), [`FnSink`] (a closure), [`FrameBufferSink`] (a frame in memory, drawn in place), [`Crc32Sink`] (a checksum) |
@@ -31,12 +31,16 @@
 //! ```
 //! use embedded_graphics::mock_display::MockDisplay;
 //! use embedded_graphics::pixelcolor::BinaryColor;
-//! use zline::{Depth16, DrawTargetSink, Renderer, ScanArrays, ScreenVertex, TableArrays};
+//! use zline::{Capacities, Depth16, DrawTargetSink, ScreenVertex};
 //!
-//! // A 16x16 frame. Tables: 8 vertices, 2 polygons, 8 corners. Scanner:
-//! // rows of 16 pixels, 2 active polygons, no pooled edges (triangles need
-//! // none).
-//! type Zr = Renderer<TableArrays<BinaryColor, 8, 2, 8>, ScanArrays<BinaryColor, Depth16, 16, 2, 0>>;
+//! // A 16x16 frame; room for 8 vertices, 2 polygons of 8 corners in all,
+//! // 2 polygons on one row, no pooled edges (triangles need none) and no
+//! // mesh (screen polygons only).
+//! const CAPS: Capacities = Capacities {
+//!     width: 16, vertices: 8, polygons: 2, corners: 8,
+//!     active_polygons: 2, pooled_edges: 0, mesh_vertices: 0,
+//! };
+//! type Zr = zline::renderer_type!(BinaryColor, Depth16, CAPS);
 //! let mut renderer = Zr::new(16, 16, BinaryColor::Off).unwrap();
 //! let v = |x: f32, y: f32, z: f32| ScreenVertex::from_f32(x, y, z).unwrap();
 //! renderer
@@ -47,6 +51,19 @@
 //! assert_eq!(stats.polygons, 1);
 //! assert_eq!(display.get_pixel(embedded_graphics::prelude::Point::new(8, 8)), Some(BinaryColor::On));
 //! ```
+#![cfg_attr(feature = "std", doc = "[`host::HostMesh`]: host::HostMesh")]
+#![cfg_attr(
+    feature = "std",
+    doc = "[`host::BandedRenderer`]: host::BandedRenderer"
+)]
+#![cfg_attr(
+    not(feature = "std"),
+    doc = "[`host::HostMesh`]: https://docs.rs/zline/latest/zline/host/struct.HostMesh.html"
+)]
+#![cfg_attr(
+    not(feature = "std"),
+    doc = "[`host::BandedRenderer`]: https://docs.rs/zline/latest/zline/host/struct.BandedRenderer.html"
+)]
 #![no_std]
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]

@@ -25,7 +25,7 @@ use crate::sink::RowSink;
 ///
 /// In fixed arrays its type comes from one [`Capacities`](crate::Capacities)
 /// value, [`renderer_type!`](crate::renderer_type); on a desktop,
-/// `Renderer::for_mesh` (in [`host`](crate::host)) sizes it from the mesh.
+/// `Renderer::for_mesh` (in `zline::host`, feature `std`) sizes it from the mesh.
 #[derive(Clone)]
 pub struct Renderer<T: TableStorage, S: ScanStorage<Color = T::Color>, K = NoVertexCache> {
     /// The scene-sized tables.

@@ -20,10 +20,11 @@
 //!   tables and scanner.
 //! * [`zbuffer`]: the z-buffer methods it is compared with (a full-frame
 //!   or banded depth buffer, and the painter's pass), on the same tables.
-//! * `plane`, `edge`, `active`, `lanes`, `wide`: the plane set-up, the
+//! * `plane`, `edge`, `active`, `lanes`, `slots`: the plane set-up, the
 //!   exact edge DDA, the active tables, the branch-free span blocks for
-//!   hosts, exact wide products for cores without a long multiply
-//!   (internal).
+//!   hosts, and the capacity-erased lists every table is written on
+//!   (internal). The exact wide products they share with the front end
+//!   live below both, in `crate::arith`.
 //!
 //! Only one row of depth and one of colour exist: nothing is frame-sized.
 
@@ -64,7 +65,7 @@ use crate::error::Error;
 /// miss, and the edge steps, the short spans' ends, the depth test, the
 /// corner sort and the quotients' signs go either way about half the
 /// time: branch-free, the peers bench's frames took a third less time
-/// while running more instructions (README, "Speed against peers"). A
+/// while running more instructions (docs/results/speed.md). A
 /// Cortex-M0+ predicts nothing, and there the branching code is as short
 /// or shorter (`cargo qemu`: branch-free edge steps took 0.3 % more
 /// instructions with 16-bit depth), so it keeps it. Each branch-free form
