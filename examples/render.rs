@@ -22,8 +22,8 @@
 //! * `--ids FILE.bin`: W·H little-endian u32, row-major from the top: the
 //!   visible face id (0-based index among the `f` lines), or 0xFFFFFFFF
 //! * `--stats`: `key=value` lines: timing over repeated frames, the
-//!   method's memory and counts, what the front end did (listed in the
-//!   README)
+//!   method's memory and counts, what the front end did (listed in
+//!   `docs/guide/render-tool.md`)
 //! * `--frames N` [15]: timed frames after 3 warm-up frames
 //!
 //! The view: positions normalised to the unit sphere about their bounding

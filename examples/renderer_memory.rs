@@ -1,6 +1,6 @@
 //! Prints `core::mem::size_of` of the renderer for typical configurations,
 //! split into the scene-sized tables and the row-sized scanner, and the
-//! size of each item, as the Markdown tables in the README:
+//! size of each item, as the Markdown tables in `docs/results/memory.md`:
 //!
 //! ```sh
 //! cargo run --example renderer_memory

@@ -88,7 +88,7 @@ fn coplanar_faces_without_a_shared_plane_z_fight() {
     // The same faces with their planes computed from each face's own
     // rounded corners: z24 resolves the rounding and the winner changes
     // from frame to frame. This is what the shared plane fixes; if it
-    // stops failing, the README's account of it is out of date.
+    // stops failing, `docs/results/catalogue.md`'s account of it is out of date.
     let losses = catalogue::coplanar_losses(Method::Scanline, true, false).unwrap();
     let frames = losses.iter().filter(|&&(lost, _)| lost > 0).count();
     assert!(frames >= 5, "{losses:?}");

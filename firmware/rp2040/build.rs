@@ -150,7 +150,7 @@ fn load_obj(path: &Path) -> Result<HostMesh, String> {
         let resolved = env::current_dir()
             .map(|d| d.join(path).display().to_string())
             .unwrap_or_default();
-        format!("ZLINE_MESH={shown}: {e} (read as {resolved}: a relative path starts at the firmware crate; prefer an absolute path)")
+        format!("ZLINE_MESH={shown}: {e} (read as {resolved}: a relative path starts at the directory the command was run in)")
     })?;
     HostMesh::from_obj(&bytes).map_err(|e| format!("ZLINE_MESH={shown}: {e}"))
 }

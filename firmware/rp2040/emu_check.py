@@ -58,14 +58,20 @@ def elf_symbol_words(elf: bytes, name: str) -> list[int]:
 
 
 def main() -> int:
-    p = argparse.ArgumentParser()
-    p.add_argument("--elf", default="firmware/rp2040/target/thumbv6m-none-eabi/release/zline-rp2040")
+    p = argparse.ArgumentParser(
+        description="Runs the RP2040 firmware on the emulated RP2040 (rp2040js), checks every "
+                    "frame's CRC against the host's and each frame period against a budget. "
+                    "Paths resolve from the directory the command is run in.")
+    p.add_argument("--elf", default="firmware/rp2040/target/thumbv6m-none-eabi/release/zline-rp2040",
+                   help="the firmware to run (default: what `cargo fw-rp2040` builds)")
     p.add_argument("--frames", type=int, default=4, help="firmware frames to check after the start-up clear")
     p.add_argument("--budget", type=int, default=5_000_000,
                    help="most cycles a frame period may take (default 5,000,000: the torus knot's "
-                        "budget the README states; a bigger mesh needs its own)")
-    p.add_argument("--emu", default="../shared/rp2040-emu")
-    p.add_argument("--out", default="target/rp2040-emu")
+                        "budget, docs/results/mcu.md; a bigger mesh needs its own)")
+    p.add_argument("--emu", default="../shared/rp2040-emu",
+                   help="the rp2040js emulator's folder, with its node_modules (npm ci --prefix DIR)")
+    p.add_argument("--out", default="target/rp2040-emu",
+                   help="where the decoded frames and the emulator's log go")
     a = p.parse_args()
 
     expected = elf_symbol_words(Path(a.elf).read_bytes(), "EXPECTED_CRCS")

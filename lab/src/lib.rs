@@ -20,3 +20,13 @@ pub mod methods;
 pub mod needs;
 pub mod rust_source;
 pub mod shapes;
+
+/// The book's code (`docs/`), compiled as doctests: every `rust` block of
+/// these pages builds and runs with `cargo test -p zline-lab --doc`.
+#[cfg(doctest)]
+mod book {
+    #[doc = include_str!("../../docs/guide/drawing.md")]
+    struct Drawing;
+    #[doc = include_str!("../../docs/guide/capacities.md")]
+    struct Capacities;
+}

@@ -1,6 +1,6 @@
 //! The adversarial catalogue (`zline_lab::methods::catalogue`): every case by
-//! every method against the float64 reference, as a Markdown table (the
-//! README's), and the gallery: each case's frame by the scanline core (and
+//! every method against the float64 reference, as a Markdown table (the one in
+//! `docs/results/catalogue.md`), and the gallery: each case's frame by the scanline core (and
 //! by the painter where it breaks) as PNG.
 //!
 //! ```sh
