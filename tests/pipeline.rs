@@ -78,6 +78,75 @@ fn planarity_bits_change_no_pixel() {
     assert_eq!(ids(&untested, &model), with_bits);
 }
 
+/// Lambert colours (packed `0x00RRGGBB`) of `mesh` in the reference view.
+fn lambert_colors(mesh: &HostMesh, model: &Mat4) -> Vec<u32> {
+    let mut renderer = Box::new(Big::new(W, H, 0).unwrap());
+    let mut cache: Box<VertexCache<4096>> = Box::new(VertexCache::new());
+    let camera = Camera::reference(W, H);
+    let light = zline::Shading::lambert();
+    draw_mesh(
+        &mut *renderer,
+        &mut *cache,
+        mesh,
+        model,
+        &camera,
+        Cull::None,
+        |f| {
+            use embedded_graphics::prelude::RgbColor;
+            let c = light.color(f);
+            (u32::from(c.r()) << 16) | (u32::from(c.g()) << 8) | u32::from(c.b())
+        },
+    )
+    .unwrap();
+    capture(&mut *renderer).0.colors
+}
+
+/// Stored face normals (`HostMesh::face_normals`) only save reading the
+/// corners: every pixel's Lambert colour is the same as with each normal
+/// computed per frame, on planar faces and on the triangles of a bent
+/// face's fan, each of which keeps its own normal.
+#[test]
+fn stored_face_normals_change_no_colour() {
+    let mut obj = String::new();
+    for k in 0..12 {
+        let (x, lift) = (k as f32 * 0.4 - 2.4, if k % 2 == 0 { 0.3 } else { 0.0 });
+        // Tilted differently quad by quad; the even ones bent.
+        let (tx, ty) = (0.25 * (k % 4) as f32, -0.2 * (k % 3) as f32);
+        for (dx, dy, z) in [
+            (0.0, 0.0, 0.0),
+            (0.5, 0.0, tx),
+            (0.5, 1.0, tx + ty + lift),
+            (0.0, 1.0, ty),
+        ] {
+            obj += &format!("v {} {} {}\n", x + dx, dy - 0.5 * (k % 3) as f32, z);
+        }
+        let v = 4 * k + 1;
+        obj += &format!("f {} {} {} {}\n", v, v + 1, v + 2, v + 3);
+    }
+    let mesh = HostMesh::from_obj(obj.as_bytes()).unwrap();
+    assert_eq!(mesh.face_normals.len(), mesh.face_count());
+    assert_eq!(
+        (0..mesh.face_count())
+            .filter(|&f| !mesh.face_is_planar(f))
+            .count(),
+        6
+    );
+    let model = reference_model(&mesh, 30.0, 20.0).unwrap();
+    let stored = lambert_colors(&mesh, &model);
+    let computed = HostMesh {
+        face_normals: Vec::new(),
+        ..mesh.clone()
+    };
+    let per_frame = lambert_colors(&computed, &model);
+    assert!(per_frame.iter().filter(|&&c| c != 0).count() > 500);
+    // More than a handful of colours: the fans' triangles differ.
+    let mut distinct = per_frame.clone();
+    distinct.sort_unstable();
+    distinct.dedup();
+    assert!(distinct.len() > 12, "{} colours", distinct.len());
+    assert_eq!(stored, per_frame);
+}
+
 fn knot() -> HostMesh {
     shapes::torus_knot(2, 3, 48, 8, 0.45)
 }

@@ -7,11 +7,11 @@ use std::string::{String, ToString};
 use std::vec::Vec;
 
 use zline::host::{HostMesh, QuantizedHostMesh};
-use zline::{SharedPlane, planar_face_bits};
+use zline::{SharedPlane, face_normals, planar_face_bits};
 
 /// Rust source defining `pub static NAME: zline::StaticMesh<'static>`
-/// and its three arrays (`NAME_POSITIONS`, `NAME_CORNERS`,
-/// `NAME_FACE_STARTS`). The mesh goes through the `const`
+/// and its arrays (`NAME_POSITIONS`, `NAME_CORNERS`, `NAME_FACE_STARTS`;
+/// the precomputed planarity bits, shared planes and face normals). The mesh goes through the `const`
 /// `StaticMesh::new`, so a broken one fails at compile time. Floats are
 /// written so they read back bit for bit. `origin` names the source in a
 /// comment. `Err` when `name` is not a Rust identifier.
@@ -63,6 +63,17 @@ pub fn static_mesh_source(mesh: &HostMesh, name: &str, origin: &str) -> Result<S
         rows(&planar, 8, |b| format!("0x{b:08X}"))
     );
     shared_planes_source(&mut out, name, shared_planes);
+    let normals: Vec<[f32; 3]> = face_normals(mesh).collect();
+    let _ = writeln!(
+        out,
+        "// Each face's normal (Newell's, model space), so shading need not read its corners.\n\
+         static {name}_NORMALS: [[f32; 3]; {}] = [\n{}];\n",
+        normals.len(),
+        rows(&normals, 1, |n| format!(
+            "[{:?}, {:?}, {:?}]",
+            n[0], n[1], n[2]
+        ))
+    );
     let _ = writeln!(
         out,
         "/// Mesh from {origin}, checked at compile time.\n\
@@ -70,7 +81,9 @@ pub fn static_mesh_source(mesh: &HostMesh, name: &str, origin: &str) -> Result<S
          &{name}_POSITIONS,\n    &{name}_CORNERS,\n    &{name}_FACE_STARTS,\n) {{\n    \
          Ok(mesh) => match mesh.with_planar_faces(&{name}_PLANAR) {{\n        \
          Ok(mesh) => match mesh.with_shared_planes(&{name}_SHARED) {{\n            \
-         Ok(mesh) => mesh,\n            Err(_) => panic!(\"{name}: invalid shared planes\"),\n        }},\n        \
+         Ok(mesh) => match mesh.with_face_normals(&{name}_NORMALS) {{\n                \
+         Ok(mesh) => mesh,\n                Err(_) => panic!(\"{name}: invalid face normals\"),\n            }},\n            \
+         Err(_) => panic!(\"{name}: invalid shared planes\"),\n        }},\n        \
          Err(_) => panic!(\"{name}: invalid planarity bits\"),\n    }},\n    \
          Err(_) => panic!(\"{name}: invalid mesh\"),\n}};"
     );

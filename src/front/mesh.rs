@@ -9,6 +9,7 @@
 //! from `face_starts[f]` up to `face_starts[f + 1]` (or the end of
 //! `corners` for the last face), each corner a 0-based vertex index.
 
+use crate::front::geometry::newell_normal;
 use crate::limits::POSITION_SCALE;
 
 /// A polygon mesh: positions and faces of 3 or more corners.
@@ -43,6 +44,18 @@ pub trait Mesh {
     /// (the default) when the mesh has none or does not know.
     fn shared_planes(&self) -> &[SharedPlane] {
         &[]
+    }
+
+    /// Face `index`'s normal in model space as
+    /// [`newell_normal`](crate::newell_normal) gives it from the face's
+    /// corners (not normalised), when the mesh stores it: then a shading
+    /// that asks for the face's normal
+    /// ([`FaceInfo::normal`](crate::FaceInfo::normal)) gets the same
+    /// vector without reading the corners. `None` (the default) when it is
+    /// not stored; it is then computed each frame.
+    fn face_normal(&self, index: usize) -> Option<[f32; 3]> {
+        let _ = index;
+        None
     }
 }
 
@@ -121,6 +134,8 @@ pub struct StaticMesh<'a> {
     planar: &'a [u32],
     /// Faces with a shared plane, sorted by face.
     shared: &'a [SharedPlane],
+    /// Newell's normal of each face; empty when not precomputed.
+    normals: &'a [[f32; 3]],
 }
 
 impl<'a> StaticMesh<'a> {
@@ -176,6 +191,7 @@ impl<'a> StaticMesh<'a> {
             face_starts,
             planar: &[],
             shared: &[],
+            normals: &[],
         })
     }
 
@@ -199,6 +215,17 @@ impl<'a> StaticMesh<'a> {
             planar: bits,
             ..self
         })
+    }
+
+    /// The same mesh with each face's normal precomputed: `normals[f]` is
+    /// [`newell_normal`](crate::newell_normal) of face `f`'s corners, as
+    /// [`face_normals`] writes them. `Err` when there is not one for every
+    /// face.
+    pub const fn with_face_normals(self, normals: &'a [[f32; 3]]) -> Result<Self, MeshError> {
+        if normals.len() != self.face_starts.len() {
+            return Err(MeshError::BadNormals { face: None });
+        }
+        Ok(Self { normals, ..self })
     }
 
     /// All positions.
@@ -271,6 +298,11 @@ pub trait MeshArrays {
     fn shared_planes(&self) -> &[SharedPlane] {
         &[]
     }
+    /// Each face's normal ([`Mesh::face_normal`]); empty when not known in
+    /// advance.
+    fn face_normals(&self) -> &[[f32; 3]] {
+        &[]
+    }
 }
 
 impl<T: MeshArrays + ?Sized> Mesh for T {
@@ -300,6 +332,10 @@ impl<T: MeshArrays + ?Sized> Mesh for T {
     fn shared_planes(&self) -> &[SharedPlane] {
         MeshArrays::shared_planes(self)
     }
+
+    fn face_normal(&self, index: usize) -> Option<[f32; 3]> {
+        self.face_normals().get(index).copied()
+    }
 }
 
 impl MeshArrays for StaticMesh<'_> {
@@ -322,6 +358,20 @@ impl MeshArrays for StaticMesh<'_> {
     fn shared_planes(&self) -> &[SharedPlane] {
         self.shared
     }
+
+    fn face_normals(&self) -> &[[f32; 3]] {
+        self.normals
+    }
+}
+
+/// Each face's normal for [`StaticMesh::with_face_normals`] (and
+/// [`Mesh::face_normal`]): [`newell_normal`] of its corners, in model
+/// space, not normalised.
+pub fn face_normals<M: Mesh + ?Sized>(mesh: &M) -> impl Iterator<Item = [f32; 3]> + '_ {
+    (0..mesh.face_count()).map(move |f| {
+        let n = newell_normal(mesh.face(f).iter().map(|&i| mesh.position(usize::from(i))));
+        [n.x, n.y, n.z]
+    })
 }
 
 /// Planarity bits for [`StaticMesh::with_planar_faces`]: one bit per face.
@@ -436,6 +486,23 @@ mod tests {
     use super::*;
 
     const P: [[f32; 3]; 4] = [[0.0; 3], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
+
+    /// One normal per face or none: the stored ones are what
+    /// `face_normals` computes, and a mesh without them has none.
+    #[test]
+    fn face_normals_are_one_per_face() {
+        let mesh = StaticMesh::new(&P, &[0, 1, 2, 0, 2, 3], &[0, 3]).unwrap();
+        assert_eq!(mesh.face_normal(0), None);
+        let normals: [[f32; 3]; 2] = [[0.0, 0.0, 1.0], [0.0, 0.0, 1.0]];
+        assert_eq!(face_normals(&mesh).collect::<std::vec::Vec<_>>(), normals);
+        assert_eq!(
+            mesh.with_face_normals(&normals[..1]).err(),
+            Some(MeshError::BadNormals { face: None })
+        );
+        let with = mesh.with_face_normals(&normals).unwrap();
+        assert_eq!(with.face_normal(1), Some([0.0, 0.0, 1.0]));
+        assert_eq!(with.face_normal(2), None);
+    }
 
     #[test]
     fn validates() {

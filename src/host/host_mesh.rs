@@ -2,7 +2,7 @@
 
 use std::vec::Vec;
 
-use crate::front::mesh::{Mesh, MeshArrays, SharedPlane, planar_face_bits};
+use crate::front::mesh::{Mesh, MeshArrays, SharedPlane, face_normals, planar_face_bits};
 use crate::front::obj::{ObjError, ObjReader, Statement};
 use crate::limits::MAX_FACE_CORNERS;
 use crate::limits::{MAX_POLYGON_CORNERS, MAX_POLYGONS};
@@ -27,6 +27,11 @@ pub struct HostMesh {
     /// Faces past its end are tested each frame. [`Self::from_obj`] finds
     /// them.
     pub planar_faces: Vec<u32>,
+    /// Each face's normal ([`Mesh::face_normal`](crate::Mesh::face_normal):
+    /// Newell's, model space, not normalised), so that shading reads it
+    /// instead of the corners; empty or short, the faces past its end
+    /// compute theirs each frame. [`Self::from_obj`] computes them.
+    pub face_normals: Vec<[f32; 3]>,
 }
 
 impl HostMesh {
@@ -119,12 +124,14 @@ impl HostMesh {
 
     /// The mesh with what its faces' geometry tells the pipeline found
     /// again: which faces are planar ([`Self::planar_faces`], so that no
-    /// frame tests them) and which share a plane with overlapping coplanar
-    /// faces ([`crate::host::coplanar::shared_planes`]). Call it after
-    /// changing positions or faces: stale planarity bits would draw a
-    /// face that is no longer planar as one polygon.
+    /// frame tests them), their normals ([`Self::face_normals`]) and which
+    /// share a plane with overlapping coplanar faces
+    /// ([`crate::host::coplanar::shared_planes`]). Call it after changing
+    /// positions or faces: stale planarity bits would draw a face that is
+    /// no longer planar as one polygon, stale normals would shade it wrong.
     pub fn with_face_analysis(mut self) -> Self {
         self.planar_faces = planar_face_bits(&self).collect();
+        self.face_normals = face_normals(&self).collect();
         self.shared_planes = crate::host::coplanar::shared_planes(&self);
         self
     }
@@ -161,6 +168,10 @@ impl MeshArrays for HostMesh {
 
     fn shared_planes(&self) -> &[SharedPlane] {
         &self.shared_planes
+    }
+
+    fn face_normals(&self) -> &[[f32; 3]] {
+        &self.face_normals
     }
 }
 

@@ -23,11 +23,14 @@ pub struct FaceInfo<'a> {
 /// Where a [`FaceInfo`]'s normal and depth come from.
 #[derive(Clone, Copy)]
 enum FaceGeometry<'a> {
-    /// From the mesh, on demand.
+    /// From the mesh, on demand; the normal the mesh stores for face
+    /// `face` ([`Mesh::face_normal`]) when `corners` are all of its
+    /// corners (a triangle of a bent face's fan has its own normal).
     Mesh {
         mesh: &'a dyn Mesh,
         corners: &'a [u16],
         model_view: &'a Mat4,
+        face: usize,
     },
     /// Given.
     Known { normal: Vec3, view_depth: f32 },
@@ -73,7 +76,13 @@ impl FaceInfo<'_> {
                 mesh,
                 corners,
                 model_view,
-            } => mesh_normal(mesh, corners, model_view),
+                face,
+            } => match mesh.face_normal(face) {
+                Some(n) if corners.len() == mesh.face(face).len() => {
+                    view_normal(Vec3::from_array(n), model_view)
+                }
+                _ => mesh_normal(mesh, corners, model_view),
+            },
             FaceGeometry::Known { normal, .. } => normal,
             FaceGeometry::Quantized {
                 mesh,
@@ -106,6 +115,7 @@ impl FaceInfo<'_> {
                 mesh,
                 corners,
                 model_view,
+                ..
             }
             | FaceGeometry::Quantized {
                 mesh,
@@ -129,6 +139,11 @@ impl FaceInfo<'_> {
 /// The view-space unit normal of a face from its corners (Newell's).
 fn mesh_normal(mesh: &dyn Mesh, corners: &[u16], model_view: &Mat4) -> Vec3 {
     let n = newell_normal(corners.iter().map(|&i| mesh.position(usize::from(i))));
+    view_normal(n, model_view)
+}
+
+/// A model-space normal `n` (any length) as a unit normal in view space.
+fn view_normal(n: Vec3, model_view: &Mat4) -> Vec3 {
     model_view.transform_vector(n).normalized()
 }
 
@@ -160,6 +175,7 @@ impl Frame {
                 mesh,
                 corners,
                 model_view,
+                face,
             },
         };
         FaceInfo {
