@@ -11,10 +11,15 @@ usage: zline-bench [--sizes WxH,...] [--cull none,back] [--rounds N] [--quick]
                    [--threads N]
                    MESH.obj|MESH_DIR...
 
-Times zline, euc 0.5 and embedded-3dgfx 0.7 drawing the same reference view
-of each mesh (a directory means every .obj in it, sorted), in interleaved
-rounds, by per-thread CPU time, and compares each frame's face ids with
-zline's float64 reference.
+Times zline (z24 and z16, rows in place and through a plain DrawTarget),
+embedded-3dgfx 0.7 (its frame driver lit and unlit, and its rasteriser fed
+once-transformed shared vertices) and euc 0.5 drawing the same reference view
+of each mesh (a directory means every .obj in it, sorted) with flat Lambert
+shading computed inside every timed frame, in interleaved rounds, by
+per-thread CPU time, and compares each frame's face ids with zline's float64
+reference (wrong pixels as a share of the object's pixels). Ratio: a row's
+median over zline z24's (a drawtarget row: over zline in place, same depth).
+Build it with `cargo bench-peers` (profile peers: fat LTO, one codegen unit).
 
   --sizes LIST   frame sizes [240x240,320x240,800x600]
   --cull LIST    none, back or both [none,back]
@@ -27,8 +32,8 @@ zline's float64 reference.
   --dump DIR     also write every renderer's last frame, and the reference's,
                  as PNG images
   --threads N    also time zline drawing in N bands on N threads, by the wall
-                 clock (`zline-N-threads`; its frame must equal zline's);
-                 1 leaves it out [2]";
+                 clock (`zline z24 N threads`; its frame must equal
+                 zline z24's); 1 leaves it out [2]";
 
 /// Most rounds `--rounds` accepts.
 pub const MAX_ROUNDS: usize = 100_000;

@@ -1,18 +1,37 @@
 //! `zline-bench`: zline against two peer rasterisers, embedded-3dgfx 0.7
 //! and euc 0.5, drawing the same reference view (see [`view`]) of real
-//! meshes, side by side.
+//! meshes, side by side, each as its users write it, shading included.
 //!
 //! For each mesh × size × cull it builds every renderer once, draws
 //! untimed warm-up frames with each (at least one, for at least a second in
-//! all), then times N interleaved rounds (each round
-//! draws one frame with every renderer, in an order that rotates from
-//! round to round) by per-thread CPU time, single-threaded. It writes
-//! the median and minimum to a CSV, prints them as a Markdown table with
-//! each renderer's share of pixels whose face differs from zline's
-//! float64 `ReferenceFrame`, and reports progress on stderr.
+//! all), then times N interleaved rounds (each round draws one frame with
+//! every renderer, in an order that rotates from round to round) by
+//! per-thread CPU time, single-threaded. Nothing that depends on the
+//! view's colours is prepared before timing: every renderer computes its
+//! faces' Lambert colours inside its timed frame. It writes the median
+//! and minimum to a CSV, prints them as a Markdown table with each
+//! renderer's share of wrong pixels (pixels whose face differs from
+//! zline's float64 `ReferenceFrame`, over the pixels the reference's
+//! object covers), and reports progress on stderr.
+//!
+//! Rows (one renderer name per row kind): `zline z24`, `zline z16` (drawn
+//! in place), `zline z24 drawtarget`, `zline z16 drawtarget` (through a
+//! plain `DrawTarget`), `embedded-3dgfx lit`, `embedded-3dgfx unlit`,
+//! `embedded-3dgfx raster shared`, `euc`, and with `--threads N > 1`
+//! `zline z24 N threads` (wall clock). Each row's timed region is printed
+//! with the table.
+//!
+//! Ratio ([`ratio_base`]): a row's median over the median of `zline z24`
+//! in the same mesh, size and cull, except a `drawtarget` row, whose base
+//! is zline in place with the same depth. Above 1.00, zline is faster.
+//!
+//! Build: `cargo bench-peers` builds with the root `Cargo.toml`'s
+//! `[profile.peers]` (release with fat LTO and one codegen unit for every
+//! crate); the report states the profile the binary was built with.
 //!
 //! ```sh
-//! cargo run --release -p zline-bench -- --quick ../shared/meshes
+//! cargo bench-peers --quick
+//! cargo run --profile peers -p zline-bench -- --quick ../shared/meshes
 //! ```
 
 mod cli;
@@ -29,15 +48,18 @@ use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
+use zline::{Depth16, Depth24};
 use zline_lab::methods::ReferenceFrame;
 
 use crate::cli::Options;
-use crate::peers::embedded_3dgfx::{Embedded3dgfxRenderer, MeshData};
+use crate::peers::embedded_3dgfx::{
+    Embedded3dgfxRasterRenderer, Embedded3dgfxRenderer, MeshData, Mode,
+};
 use crate::peers::euc::EucRenderer;
 use crate::renderer::Renderer;
 use crate::report::Row;
-use crate::view::{Scene, View};
-use crate::zline_renderer::{ZlineBandsRenderer, ZlineRenderer};
+use crate::view::{BACKGROUND, Scene, View};
+use crate::zline_renderer::{Output, ZlineBandsRenderer, ZlineRenderer};
 
 /// Stack for the worker thread: zline's host renderer is built on the
 /// stack (about 20 MB) before it moves to the heap.
@@ -78,18 +100,28 @@ fn run(args: &[String]) -> Result<(), String> {
         .collect::<Result<Vec<_>, _>>()?;
     report::prepare_output(&options.out)?;
     say(&format!(
-        "# zline vs embedded-3dgfx 0.7 and euc 0.5\n\n\
+        "# zline vs embedded-3dgfx 0.7 and euc 0.5, shading timed\n\n\
          - machine: {}\n\
          - date: {}\n\
-         - view: yaw {}°, pitch {}°; {} timed rounds per configuration; thread CPU time\n",
+         - build: {}\n\
+         - view: yaw {}°, pitch {}°; flat two-sided Lambert as zline's `Shading::lambert()`, \
+         computed inside every timed frame\n\
+         - timing: median (and min) of {} interleaved rounds per configuration after a second \
+         of warm-up, per-thread CPU time, single-threaded (the `threads` row: wall clock)\n\
+         - ratio: a row's median / the median of `zline z24` in the same configuration \
+         (a `drawtarget` row: / zline in place with its depth); above 1.00 zline is faster\n\
+         - wrong faces: pixels whose face differs from the float64 reference's, as a share of \
+         the pixels the reference's object covers (not of the frame)\n",
         report::machine(),
         zline_lab::machine::now_utc(),
+        report::build(),
         options.yaw,
         options.pitch,
         options.rounds
     ))?;
 
     let mut rows = Vec::new();
+    let mut timed: Vec<TimedRegion> = Vec::new();
     for (i, scene) in scenes.iter().enumerate() {
         eprintln!(
             "[{}/{}] {}: {} vertices, {} faces, {} triangles",
@@ -110,7 +142,13 @@ fn run(args: &[String]) -> Result<(), String> {
                     pitch_deg: options.pitch,
                     cull,
                 };
-                rows.extend(bench_view(scene, &e3d, &view, &options)?);
+                let (done, regions) = bench_view(scene, &e3d, &view, &options)?;
+                rows.extend(done);
+                for region in regions {
+                    if !timed.iter().any(|(name, _)| *name == region.0) {
+                        timed.push(region);
+                    }
+                }
             }
         }
     }
@@ -118,7 +156,9 @@ fn run(args: &[String]) -> Result<(), String> {
     report::write_csv(&options.out, &rows)?;
     let wrong_out = report::wrong_faces_path(&options.out);
     report::write_wrong_csv(&wrong_out, &rows)?;
+    say(&report::timed_regions(&timed))?;
     say(&report::markdown(&rows))?;
+    say(&report::checks(&rows))?;
     eprintln!(
         "wrote {} and {}",
         options.out.display(),
@@ -182,22 +222,58 @@ fn mesh_files(options: &Options) -> Result<Vec<PathBuf>, String> {
 /// Least untimed rendering per configuration before its timed rounds.
 const WARM_UP: std::time::Duration = std::time::Duration::from_millis(1000);
 
+/// A renderer's name and what its timed frame does.
+type TimedRegion = (String, String);
+
+/// The row a row's ratio divides by: zline in place with the same depth
+/// for a `drawtarget` row, `zline z24` for every other.
+pub fn ratio_base(renderer: &str) -> &'static str {
+    match renderer {
+        "zline z16 drawtarget" => "zline z16",
+        _ => "zline z24",
+    }
+}
+
+/// Rows whose frame must equal another row's, pixel for pixel.
+fn same_frame_as(renderer: &str) -> Option<&'static str> {
+    match renderer {
+        "zline z16 drawtarget" => Some("zline z16"),
+        "zline z24 drawtarget" => Some("zline z24"),
+        r if r.starts_with("zline z24 ") && r.ends_with(" threads") => Some("zline z24"),
+        _ => None,
+    }
+}
+
 /// Builds every renderer for one view, times them, and measures their
-/// face ids against the reference.
+/// face ids against the reference. Returns the rows and each renderer's
+/// (name, timed region).
 fn bench_view(
     scene: &Scene,
     e3d: &MeshData<'_>,
     view: &View,
     options: &Options,
-) -> Result<Vec<Row>, String> {
+) -> Result<(Vec<Row>, Vec<TimedRegion>), String> {
     let label = format!("{} {} {}", scene.name, view.size_label(), view.cull.name());
     eprintln!("  {label}: reference");
     let reference = ReferenceFrame::render(&scene.mesh, &view.reference());
 
     let mut renderers: Vec<Box<dyn Renderer + '_>> = vec![
-        Box::new(ZlineRenderer::new(scene, view)?),
+        Box::new(ZlineRenderer::<Depth24>::new(scene, view, Output::InPlace)?),
+        Box::new(ZlineRenderer::<Depth16>::new(scene, view, Output::InPlace)?),
+        Box::new(ZlineRenderer::<Depth24>::new(
+            scene,
+            view,
+            Output::DrawTarget,
+        )?),
+        Box::new(ZlineRenderer::<Depth16>::new(
+            scene,
+            view,
+            Output::DrawTarget,
+        )?),
+        Box::new(Embedded3dgfxRenderer::new(e3d, view, Mode::Lit)?),
+        Box::new(Embedded3dgfxRenderer::new(e3d, view, Mode::Unlit)?),
+        Box::new(Embedded3dgfxRasterRenderer::new(e3d, view)),
         Box::new(EucRenderer::new(scene, view)?),
-        Box::new(Embedded3dgfxRenderer::new(e3d, view)?),
     ];
     if options.threads > 1 && usize::from(view.height) >= options.threads {
         renderers.push(Box::new(ZlineBandsRenderer::new(
@@ -234,22 +310,35 @@ fn bench_view(
         }
     }
     let stats: Vec<(f64, f64)> = times.iter().map(|t| timing::median_min(t)).collect();
-    let zline_median = stats[0].0;
-    // The banded renderer must draw zline's frame, bit for bit.
-    for other in &renderers[3..] {
-        if other.rgb565() != renderers[0].rgb565() {
+    let names: Vec<String> = renderers.iter().map(|r| r.name().to_string()).collect();
+    let index = |name: &str| {
+        names
+            .iter()
+            .position(|r| r == name)
+            .ok_or_else(|| format!("{label}: no renderer {name}"))
+    };
+    // Rows drawn through another sink or on threads must draw the same
+    // frame as zline in place, pixel for pixel.
+    for other in &renderers {
+        if let Some(base) = same_frame_as(other.name())
+            && other.rgb565() != renderers[index(base)?].rgb565()
+        {
             return Err(format!(
-                "{label}: {} drew another frame than zline",
+                "{label}: {} drew another frame than {base}",
                 other.name()
             ));
         }
     }
 
+    let object_pixels = reference.ids.iter().filter(|&&id| id != BACKGROUND).count();
     let mut rows = Vec::with_capacity(n);
     let mut summary = Vec::with_capacity(n);
-    for (renderer, &(median_ms, min_ms)) in renderers.iter_mut().zip(&stats) {
+    for k in 0..n {
+        let (median_ms, min_ms) = stats[k];
+        let base = stats[index(ratio_base(&names[k]))?].0;
+        let renderer = &mut renderers[k];
         let wrong = match renderer.face_ids()? {
-            Some(ids) => Some(wrong_fraction(&ids, &reference.ids)?),
+            Some(ids) => Some(wrong_fraction(&ids, &reference.ids, object_pixels)?),
             None => None,
         };
         if let Some(dir) = &options.dump {
@@ -263,8 +352,9 @@ fn bench_view(
             renderer: renderer.name().into(),
             median_ms,
             min_ms,
-            ratio: median_ms / zline_median,
+            ratio: median_ms / base,
             wrong,
+            object_pixels,
         });
     }
     if let Some(dir) = &options.dump {
@@ -277,11 +367,18 @@ fn bench_view(
         dump(dir, &label, "reference", view, &frame)?;
     }
     eprintln!("  {label}: {}", summary.join(", "));
-    Ok(rows)
+    let regions = renderers
+        .iter()
+        .map(|r| (r.name().to_string(), r.timed_region()))
+        .collect();
+    Ok((rows, regions))
 }
 
-/// Share of pixels whose face id differs from the reference's.
-fn wrong_fraction(ids: &[u32], reference: &[u32]) -> Result<f64, String> {
+/// Pixels whose face id differs from the reference's (anywhere in the
+/// frame: a face drawn over the background counts too), over the pixels
+/// the reference's object covers (`object_pixels`; 1 when it covers
+/// none).
+fn wrong_fraction(ids: &[u32], reference: &[u32], object_pixels: usize) -> Result<f64, String> {
     if ids.len() != reference.len() || ids.is_empty() {
         return Err(format!(
             "face ids: {} pixels, reference {}",
@@ -290,10 +387,10 @@ fn wrong_fraction(ids: &[u32], reference: &[u32]) -> Result<f64, String> {
         ));
     }
     let wrong = ids.iter().zip(reference).filter(|(a, b)| a != b).count();
-    Ok(wrong as f64 / ids.len() as f64)
+    Ok(wrong as f64 / object_pixels.max(1) as f64)
 }
 
-/// Writes a frame as PNG, `DIR/LABEL-RENDERER.png`.
+/// Writes a frame as PNG, `DIR/LABEL-RENDERER.png` (spaces as `-`).
 fn dump(
     dir: &Path,
     label: &str,
@@ -302,7 +399,11 @@ fn dump(
     rgb565: &[u16],
 ) -> Result<(), String> {
     std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
-    let path = dir.join(format!("{}-{renderer}.png", label.replace(' ', "-")));
+    let path = dir.join(format!(
+        "{}-{}.png",
+        label.replace(' ', "-"),
+        renderer.replace(' ', "-")
+    ));
     let rgb: Vec<[u8; 3]> = rgb565.iter().map(|&p| framebuffer::rgb888(p)).collect();
     let bytes = png::encode(u32::from(view.width), u32::from(view.height), &rgb);
     std::fs::write(&path, bytes).map_err(|e| format!("{}: {e}", path.display()))

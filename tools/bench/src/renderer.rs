@@ -2,8 +2,12 @@
 
 /// One renderer, built for one mesh and one view.
 pub trait Renderer {
-    /// The name in the CSV and the table (`zline…`, `euc`, `embedded-3dgfx`).
+    /// The name in the CSV and the table: one name per row kind
+    /// (`zline z24`, `zline z16 drawtarget`, `embedded-3dgfx lit`, `euc`…).
     fn name(&self) -> &str;
+
+    /// What [`Self::render`] does, in one line for the report.
+    fn timed_region(&self) -> String;
 
     /// Whether the harness times [`Self::render`] by the wall clock (a
     /// renderer that works on several threads) rather than by the calling

@@ -15,12 +15,19 @@
 //!   surface wins.
 //! * Culling `none` or `back` (back: faces whose projected corners run
 //!   clockwise on screen, the OBJ counter-clockwise-front convention).
-//! * Output: a W×H Rgb565 frame cleared each frame, one colour per face
-//!   by [`Scene::triangle_colors`] (flat Lambert, zline's
-//!   `Shading::lambert()` rule; a face that is not planar is shaded per
-//!   fan triangle, as zline does), and, where the renderer can, a face id
-//!   per pixel
-//!   ([`BACKGROUND`] where none).
+//! * Output: a W×H Rgb565 frame, one colour per face: flat, two-sided
+//!   Lambert with zline's `Shading::lambert()` constants ([`LAMBERT_BASE`],
+//!   [`LAMBERT_LIGHT`], [`LAMBERT_AMBIENT`]), computed by every renderer
+//!   inside its timed frame (zline by `Shading::lambert()` itself, the
+//!   peers by [`lambert_rgb565`] of a normal turned to the viewer), and,
+//!   where the renderer can, a face id per pixel ([`BACKGROUND`] where
+//!   none).
+//!
+//! Nothing that depends on the view's colours is prepared before timing:
+//! what a renderer gets once per mesh is what its users keep with the
+//! mesh (positions, faces, and for the peers per-triangle unit normals in
+//! object space, [`Scene::triangle_normals`], as embedded-3dgfx's
+//! `Geometry::normals` and a vertex buffer's normals are).
 
 use std::path::Path;
 
@@ -44,11 +51,12 @@ pub const DEFAULT_YAW_DEG: f32 = 30.0;
 pub const DEFAULT_PITCH_DEG: f32 = 20.0;
 
 /// Lambert surface colour (zline's `Shading::lambert()`).
-const LAMBERT_BASE: [u8; 3] = [230, 220, 200];
-/// Direction towards the light in view space, before normalising.
-const LAMBERT_LIGHT: [f32; 3] = [-0.4, 0.5, 0.77];
-/// Ambient fraction.
-const LAMBERT_AMBIENT: f32 = 0.2;
+pub const LAMBERT_BASE: [u8; 3] = [230, 220, 200];
+/// Direction towards the light in view space, before normalising
+/// (zline's `Shading::lambert()`).
+pub const LAMBERT_LIGHT: [f32; 3] = [-0.4, 0.5, 0.77];
+/// Ambient fraction (zline's `Shading::lambert()`).
+pub const LAMBERT_AMBIENT: f32 = 0.2;
 
 /// A 4×4 matrix, row-major, applied to column vectors (`p' = M · p`).
 pub type Mat4 = [[f32; 4]; 4];
@@ -246,27 +254,20 @@ impl Scene {
         )
     }
 
-    /// One Rgb565 colour per fan triangle: flat, two-sided Lambert with
-    /// zline's `Shading::lambert()` constants (warm white, light from the
-    /// upper left behind the viewer, 20 % ambient) of the normal in view
-    /// space. The normal is the face's (Newell) normal, or, for a face that
-    /// is not planar (`zline::Mesh::face_is_planar`), the triangle's
-    /// own, as zline's pipeline and reference shade such faces.
-    pub fn triangle_colors(&self, view: &View) -> Vec<u16> {
-        let mv = mul(&view.view_matrix(), &self.model(view));
-        let eye: Vec<[f32; 3]> = self
-            .mesh
-            .positions
-            .iter()
-            .map(|p| {
-                let q = transform(&mv, p);
-                [q[0], q[1], q[2]]
-            })
-            .collect();
-        let face_colors: Vec<u16> = (0..self.face_count())
+    /// Unit normal of every fan triangle in object space, computed once
+    /// per mesh (what a peer's user keeps with the mesh: embedded-3dgfx's
+    /// `Geometry::normals`, a vertex buffer's normals). The normal is the
+    /// face's (Newell) normal, or, for a face that is not planar
+    /// (`zline::Mesh::face_is_planar`), the triangle's own, as zline's
+    /// pipeline and reference shade such faces. The model matrix is a
+    /// rotation times a uniform scale, so these turn into view space by
+    /// the rotation alone.
+    pub fn triangle_normals(&self) -> Vec<[f32; 3]> {
+        let p = &self.mesh.positions;
+        let face_normals: Vec<[f32; 3]> = (0..self.face_count())
             .map(|f| {
                 let corners = face_corners(&self.mesh, f).unwrap_or(&[]);
-                lambert(corners.iter().map(|&i| eye[usize::from(i)]))
+                newell(corners.iter().map(|&i| p[usize::from(i)]))
             })
             .collect();
         self.triangles
@@ -276,25 +277,48 @@ impl Scene {
                 let f = f as usize;
                 let triangle = face_corners(&self.mesh, f).is_some_and(|c| c.len() == 3);
                 if triangle || self.mesh.face_is_planar(f) {
-                    face_colors[f]
+                    face_normals[f]
                 } else {
-                    lambert(t.iter().map(|&i| eye[i as usize]))
+                    newell(t.iter().map(|&i| p[i as usize]))
                 }
             })
             .collect()
     }
 
-    /// Each face's colour as [`Self::triangle_colors`] gives it (for a face
-    /// that is not planar, its first triangle's).
+    /// The light direction and the eye in object space for `view`: with
+    /// the model `p_world = R·(p - c)/r`, `light = Rᵀ·l` and `eye = c +
+    /// r·Rᵀ·(0, 0, 3)`. A peer computes this once per frame (inside its
+    /// timed frame: a moving model changes it every frame), then a face's
+    /// Lambert term is one dot product of its object-space normal.
+    pub fn object_light(&self, view: &View) -> ObjectLight {
+        let r = view.rotation();
+        let back = |v: [f32; 3]| -> [f32; 3] {
+            [0, 1, 2].map(|j| (0..3).map(|i| r[i][j] * v[i]).sum::<f32>())
+        };
+        let light = back(light_direction());
+        let eye = back([0.0, 0.0, EYE_DISTANCE]);
+        ObjectLight {
+            light,
+            eye: [0, 1, 2].map(|a| self.centre[a] + self.radius * eye[a]),
+        }
+    }
+
+    /// Each face's Lambert colour (for a face that is not planar, its first
+    /// triangle's), for the reference frame's image dump only (untimed).
     pub fn face_colors(&self, view: &View) -> Vec<u16> {
+        let normals = self.triangle_normals();
+        let light = self.object_light(view);
         let mut colors = vec![0; self.face_count()];
-        for (&c, &f) in self
-            .triangle_colors(view)
+        for ((t, n), &f) in self
+            .triangles
             .iter()
+            .zip(&normals)
             .zip(&self.triangle_faces)
             .rev()
         {
-            colors[f as usize] = c;
+            let p = self.mesh.positions[t[0] as usize];
+            let d = dot(n, &light.light);
+            colors[f as usize] = lambert_rgb565(if light.front(n, &p) { d } else { -d });
         }
         colors
     }
@@ -305,6 +329,53 @@ impl Scene {
         let [r, g, b] = LAMBERT_BASE;
         rgb565(r, g, b)
     }
+}
+
+/// The light and the eye in object space ([`Scene::object_light`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ObjectLight {
+    /// Unit direction towards the light.
+    pub light: [f32; 3],
+    /// The eye.
+    pub eye: [f32; 3],
+}
+
+impl ObjectLight {
+    /// Whether the side of a plane through `p` with normal `n` that the
+    /// normal points to faces the eye.
+    #[inline(always)]
+    pub fn front(&self, n: &[f32; 3], p: &[f32; 3]) -> bool {
+        let to_eye = [0, 1, 2].map(|a| self.eye[a] - p[a]);
+        dot(n, &to_eye) > 0.0
+    }
+}
+
+/// The unit direction towards the light in view space
+/// ([`LAMBERT_LIGHT`] normalised).
+pub fn light_direction() -> [f32; 3] {
+    normalised(LAMBERT_LIGHT)
+}
+
+/// Flat Lambert with zline's `Shading::lambert()` rule as Rgb565: `d` is
+/// `n · l` for the unit normal `n` turned to the viewer (two-sided) and
+/// the unit light direction `l`; `k = ambient + (1 - ambient)·max(0, d)`,
+/// each channel `base·k` rounded, then packed (truncating) to Rgb565.
+#[inline(always)]
+pub fn lambert_rgb565(d: f32) -> u16 {
+    let k = LAMBERT_AMBIENT + (1.0 - LAMBERT_AMBIENT) * d.max(0.0);
+    let k = if k.is_finite() {
+        k.clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let [r, g, b] = LAMBERT_BASE.map(|v| (f32::from(v) * k + 0.5) as u8);
+    rgb565(r, g, b)
+}
+
+/// `a · b`.
+#[inline(always)]
+pub fn dot(a: &[f32; 3], b: &[f32; 3]) -> f32 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 /// Corners of face `f`.
@@ -322,35 +393,23 @@ pub fn rgb565(r: u8, g: u8, b: u8) -> u16 {
     (u16::from(r >> 3) << 11) | (u16::from(g >> 2) << 5) | u16::from(b >> 3)
 }
 
-/// Flat, two-sided Lambert of the polygon `corners` (view space), as
-/// Rgb565.
-fn lambert(corners: impl Iterator<Item = [f32; 3]>) -> u16 {
-    let pts: Vec<[f32; 3]> = corners.collect();
+/// Newell's unit normal of the polygon `corners` (counter-clockwise
+/// front); zero for a degenerate polygon.
+fn newell(corners: impl Iterator<Item = [f32; 3]>) -> [f32; 3] {
+    let mut pts: Vec<[f32; 3]> = corners.collect();
+    // Relative to the first corner, so that far-off meshes keep their bits.
+    let o = pts.first().copied().unwrap_or_default();
+    for p in &mut pts {
+        *p = [0, 1, 2].map(|a| p[a] - o[a]);
+    }
     let mut n = [0.0f32; 3];
-    let mut centroid = [0.0f32; 3];
     for (k, p) in pts.iter().enumerate() {
         let q = pts[(k + 1) % pts.len()];
         n[0] += (p[1] - q[1]) * (p[2] + q[2]);
         n[1] += (p[2] - q[2]) * (p[0] + q[0]);
         n[2] += (p[0] - q[0]) * (p[1] + q[1]);
-        for a in 0..3 {
-            centroid[a] += p[a];
-        }
     }
-    let n = normalised(n);
-    // The counter-clockwise side faces the eye (at the origin).
-    let front = -(n[0] * centroid[0] + n[1] * centroid[1] + n[2] * centroid[2]) > 0.0;
-    let n = if front { n } else { n.map(|v| -v) };
-    let light = normalised(LAMBERT_LIGHT);
-    let lit = (n[0] * light[0] + n[1] * light[1] + n[2] * light[2]).max(0.0);
-    let k = LAMBERT_AMBIENT + (1.0 - LAMBERT_AMBIENT) * lit;
-    let k = if k.is_finite() {
-        k.clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    let [r, g, b] = LAMBERT_BASE.map(|v| (f32::from(v) * k + 0.5) as u8);
-    rgb565(r, g, b)
+    normalised(n)
 }
 
 /// `a · b`.

@@ -1,54 +1,276 @@
-//! zline behind the [`Renderer`] trait. Everything that depends on zline's
-//! rendering API is in this file, so an API change is adapted here alone.
+//! zline behind the [`Renderer`] trait, driven as its README's "Draw an
+//! OBJ file" shows a user: `HostRenderer::<Rgb565, D>::for_mesh`, then
+//! each frame `renderer.clear()`, `let light = Shading::lambert();`,
+//! `renderer.draw_mesh(&mesh, &model, &camera, cull, |f|
+//! light.color(f).into())` and `renderer.render(sink)`. Everything that
+//! depends on zline's rendering API is in this file, so an API change is
+//! adapted here alone.
 
-use zline::Mat4 as ZMat4;
-use zline::Shading;
-use zline::host::{BandedRenderer, host_renderer};
-use zline::{Camera, Cull as ZCull, FaceInfo, VertexCache, draw_mesh, reference_model};
-use zline::{Depth16, FrameBufferSink};
-use zline_lab::methods::HostScanline;
+use core::convert::Infallible;
 
-use crate::framebuffer::Frame565;
+use embedded_graphics::pixelcolor::Rgb565;
+use embedded_graphics::pixelcolor::raw::RawU16;
+use embedded_graphics::prelude::*;
+use zline::host::{BandedRenderer, HostRenderer};
+use zline::{
+    Camera, Cull as ZCull, Depth24, DepthFormat, DrawTargetSink, FaceInfo, FrameBufferSink, Mat4,
+    Shading, reference_model,
+};
+
 use crate::renderer::Renderer;
-use crate::view::{Cull, Scene, View};
+use crate::view::{BACKGROUND, Cull, Scene, View};
 
-/// zline's scanline core with 16-bit depth, in `Vec` storage sized for the
-/// mesh.
+/// Where zline's finished rows go.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Output {
+    /// Drawn in place into the rows of a `Vec<Rgb565>` frame
+    /// (`FrameBufferSink`, which lends the scanner each row).
+    InPlace,
+    /// Through `DrawTargetSink` into a [`PlainTarget`]: a `Vec<Rgb565>`
+    /// that implements only `draw_iter`, so each row's `fill_contiguous`
+    /// is embedded-graphics' default, pixel by pixel.
+    DrawTarget,
+}
+
+/// A W×H Rgb565 frame that is the plainest `DrawTarget` a user writes:
+/// `draw_iter` only (bounds-checked, pixel by pixel), none of
+/// `fill_contiguous`, `fill_solid` or `clear` (embedded-graphics' defaults
+/// apply).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct PlainTarget {
+    /// Width in pixels.
+    pub width: usize,
+    /// Height in pixels.
+    pub height: usize,
+    /// Pixels, row-major from the top.
+    pub pixels: Vec<Rgb565>,
+}
+
+impl PlainTarget {
+    /// A black frame.
+    pub fn new(width: usize, height: usize) -> Self {
+        Self {
+            width,
+            height,
+            pixels: vec![Rgb565::BLACK; width * height],
+        }
+    }
+
+    /// The pixels as raw Rgb565.
+    pub fn raw(&self) -> Vec<u16> {
+        self.pixels
+            .iter()
+            .map(|&c| RawU16::from(c).into_inner())
+            .collect()
+    }
+}
+
+impl OriginDimensions for PlainTarget {
+    fn size(&self) -> Size {
+        Size::new(self.width as u32, self.height as u32)
+    }
+}
+
+impl DrawTarget for PlainTarget {
+    type Color = Rgb565;
+    type Error = Infallible;
+
+    fn draw_iter<I>(&mut self, pixels: I) -> Result<(), Self::Error>
+    where
+        I: IntoIterator<Item = Pixel<Self::Color>>,
+    {
+        for Pixel(p, color) in pixels {
+            if p.x >= 0 && p.y >= 0 && (p.x as usize) < self.width && (p.y as usize) < self.height {
+                self.pixels[p.y as usize * self.width + p.x as usize] = color;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A colour no Lambert face and no background can have: a frame filled
+/// with it before one render must have none of it left.
+const POISON: Rgb565 = Rgb565::new(31, 0, 31);
+
+/// zline's scanline renderer with depth format `D` (`Depth16` or
+/// `Depth24`), sized for the mesh (`HostRenderer::for_mesh`).
 ///
-/// Timed region (one frame): clear the tables, `draw_mesh` (transform
-/// every vertex with the model matrix from
-/// `zline::reference_model` and `Camera::reference`; cull,
-/// when `--cull back`, faces running clockwise on screen; clip; project;
-/// shade each face with `Shading::lambert()`, converted to Rgb565; offer
-/// it to the tables), then prepare the tables (bucket sort by first row)
-/// and scan every row with the one z row, drawn straight into its row of
-/// the same Rgb565 frame the peers draw into (`FrameBufferSink`, zline's
-/// colour type being the frame's raw `u16`). Shading: each face's colour
-/// from the same per-face Lambert table the peers use
-/// ([`Scene::face_colors`], computed before timing); zline's shading
-/// closure looks it up by face id. Face ids (untimed) come from a second,
-/// host-sized render of the same view.
-pub struct ZlineRenderer<'a> {
+/// Timed region (one frame), what a user's frame loop does:
+/// `renderer.clear()` (empties the tables), `let light =
+/// Shading::lambert();`, `renderer.draw_mesh(&mesh, &model, &camera,
+/// cull, |f| light.color(f).into())` (transform every vertex, cull when
+/// `--cull back`, clip, project, Lambert per face: `Shading::color` to
+/// `Rgb888`, converted to `Rgb565`; fill the tables), then
+/// `renderer.render(sink)` (prepare the tables, scan every row) into the
+/// [`Output`]. The scanner writes every pixel of every row, background
+/// included, so the frame needs no clear of its own: [`Self::new`] checks
+/// that by rendering once into a frame filled with a colour no pixel can
+/// have. The model matrix (`reference_model`) and camera are built once
+/// per view, untimed, as every peer's are.
+///
+/// Face ids (untimed): the same renderer type with `u32` colours drawing
+/// `|f| f.face`, in place. Rows through a [`PlainTarget`] give none: their
+/// frame is checked to equal the in-place one, pixel for pixel.
+pub struct ZlineRenderer<'a, D: DepthFormat> {
     scene: &'a Scene,
-    renderer: zline::host::HostRenderer<u16, Depth16>,
-    cache: Box<VertexCache<65536>>,
-    frame: Frame565,
-    model: ZMat4,
+    renderer: HostRenderer<Rgb565, D>,
+    frame: PlainTarget,
+    model: Mat4,
     camera: Camera,
     cull: ZCull,
-    colors: Vec<u16>,
+    output: Output,
+    name: String,
     view: View,
 }
 
-impl<'a> ZlineRenderer<'a> {
-    /// Builds the renderer for `view`, its tables sized for the mesh.
-    pub fn new(scene: &'a Scene, view: &View) -> Result<Self, String> {
+impl<'a, D: DepthFormat> ZlineRenderer<'a, D> {
+    /// Builds the renderer for `view`, checking that one frame writes
+    /// every pixel.
+    pub fn new(scene: &'a Scene, view: &View, output: Output) -> Result<Self, String> {
         let mesh = &scene.mesh;
-        let renderer = host_renderer(
-            &scene.mesh.capacities(view.width),
+        let renderer =
+            HostRenderer::<Rgb565, D>::for_mesh(mesh, view.width, view.height, Rgb565::BLACK)
+                .map_err(|e| format!("zline: {e}"))?;
+        let model = reference_model(mesh, view.yaw_deg, view.pitch_deg)
+            .map_err(|e| format!("zline: {e}"))?;
+        let name = match output {
+            Output::InPlace => format!("zline {}", D::NAME),
+            Output::DrawTarget => format!("zline {} drawtarget", D::NAME),
+        };
+        let mut r = Self {
+            scene,
+            renderer,
+            frame: PlainTarget::new(usize::from(view.width), usize::from(view.height)),
+            model,
+            camera: Camera::reference(view.width, view.height),
+            cull: zline_cull(view.cull),
+            output,
+            name,
+            view: *view,
+        };
+        r.frame.pixels.fill(POISON);
+        r.render()?;
+        if r.frame.pixels.contains(&POISON) {
+            return Err(format!("{}: a frame left pixels unwritten", r.name));
+        }
+        Ok(r)
+    }
+}
+
+fn zline_cull(cull: Cull) -> ZCull {
+    match cull {
+        Cull::None => ZCull::None,
+        Cull::Back => ZCull::Back,
+    }
+}
+
+impl<D: DepthFormat> Renderer for ZlineRenderer<'_, D> {
+    fn name(&self) -> &str {
+        &self.name
+    }
+
+    fn timed_region(&self) -> String {
+        let sink = match self.output {
+            Output::InPlace => {
+                "`FrameBufferSink`: each row drawn in place in a `Vec<Rgb565>` frame"
+            }
+            Output::DrawTarget => {
+                "`DrawTargetSink` into a `Vec<Rgb565>` `DrawTarget` with `draw_iter` only \
+                 (`fill_contiguous` per row falls back to pixel by pixel)"
+            }
+        };
+        format!(
+            "`renderer.clear()` (its tables), `Shading::lambert()`, `renderer.draw_mesh(.., \
+             |f| light.color(f).into())` (transform, cull, clip, project, Lambert per face), \
+             `renderer.render(..)` through {sink}; every pixel written, background included, \
+             so no frame clear; depth {} in its one z row",
+            D::NAME
+        )
+    }
+
+    fn render(&mut self) -> Result<(), String> {
+        self.renderer.clear();
+        let light = Shading::lambert();
+        self.renderer
+            .draw_mesh(
+                &self.scene.mesh,
+                &self.model,
+                &self.camera,
+                self.cull,
+                |f| light.color(f).into(),
+            )
+            .map_err(|e| format!("zline: {e}"))?;
+        let width = self.frame.width;
+        match self.output {
+            Output::InPlace => self
+                .renderer
+                .render(&mut FrameBufferSink::new(&mut self.frame.pixels, width))
+                .map(|_| ())
+                .map_err(|e| format!("zline: {e:?}")),
+            Output::DrawTarget => self
+                .renderer
+                .render(&mut DrawTargetSink::new(&mut self.frame))
+                .map(|_| ())
+                .map_err(|e| format!("zline: {e:?}")),
+        }
+    }
+
+    fn face_ids(&mut self) -> Result<Option<Vec<u32>>, String> {
+        if self.output != Output::InPlace {
+            return Ok(None);
+        }
+        let (w, h) = (self.view.width, self.view.height);
+        let mut ids = HostRenderer::<u32, D>::for_mesh(&self.scene.mesh, w, h, BACKGROUND)
+            .map_err(|e| format!("zline: {e}"))?;
+        ids.draw_mesh(
+            &self.scene.mesh,
+            &self.model,
+            &self.camera,
+            self.cull,
+            |f| f.face,
+        )
+        .map_err(|e| format!("zline: {e}"))?;
+        let mut out = vec![BACKGROUND; usize::from(w) * usize::from(h)];
+        ids.render(&mut FrameBufferSink::new(&mut out, usize::from(w)))
+            .map_err(|e| format!("zline: {e:?}"))?;
+        Ok(Some(out))
+    }
+
+    fn rgb565(&self) -> Vec<u16> {
+        self.frame.raw()
+    }
+}
+
+/// zline drawing the frame in horizontal bands on several threads
+/// ([`BandedRenderer::render_mesh`]) with 24-bit depth: the threads,
+/// started once a frame, project the mesh's vertices and sort its faces
+/// into the bands their rows reach (both in chunks), then each builds its
+/// band's tables from that projection and its faces, shades them with
+/// `Shading::lambert()` and scans its rows in place into its own part of
+/// the frame. The same frame as `zline z24`, pixel for pixel (checked).
+/// Timed by the wall clock, not thread CPU time (the work is on several
+/// threads).
+pub struct ZlineBandsRenderer<'a> {
+    scene: &'a Scene,
+    renderer: BandedRenderer<Rgb565, Depth24>,
+    frame: PlainTarget,
+    model: Mat4,
+    camera: Camera,
+    cull: ZCull,
+    name: String,
+}
+
+impl<'a> ZlineBandsRenderer<'a> {
+    /// Builds the renderer for `view` with `threads` bands, each band's
+    /// tables sized for the whole mesh.
+    pub fn new(scene: &'a Scene, view: &View, threads: usize) -> Result<Self, String> {
+        let mesh = &scene.mesh;
+        let renderer = BandedRenderer::new(
+            &mesh.capacities(view.width),
             view.width,
             view.height,
-            0,
+            Rgb565::BLACK,
+            threads,
         )
         .map_err(|e| format!("zline: {e}"))?;
         let model = reference_model(mesh, view.yaw_deg, view.pitch_deg)
@@ -56,105 +278,11 @@ impl<'a> ZlineRenderer<'a> {
         Ok(Self {
             scene,
             renderer,
-            cache: Box::default(),
-            frame: Frame565::new(usize::from(view.width), usize::from(view.height)),
+            frame: PlainTarget::new(usize::from(view.width), usize::from(view.height)),
             model,
             camera: Camera::reference(view.width, view.height),
-            cull: match view.cull {
-                Cull::None => ZCull::None,
-                Cull::Back => ZCull::Back,
-            },
-            colors: scene.face_colors(view),
-            view: *view,
-        })
-    }
-}
-
-impl Renderer for ZlineRenderer<'_> {
-    fn name(&self) -> &str {
-        "zline"
-    }
-
-    fn render(&mut self) -> Result<(), String> {
-        self.renderer.clear();
-        let colors = &self.colors;
-        draw_mesh(
-            &mut self.renderer,
-            &mut *self.cache,
-            &self.scene.mesh,
-            &self.model,
-            &self.camera,
-            self.cull,
-            |f| colors[f.face as usize],
-        )
-        .map_err(|e| format!("zline: {e}"))?;
-        let width = self.frame.width;
-        self.renderer
-            .render(&mut FrameBufferSink::new(&mut self.frame.pixels, width))
-            .map(|_| ())
-            .map_err(|e| format!("zline: {e:?}"))
-    }
-
-    fn face_ids(&mut self) -> Result<Option<Vec<u32>>, String> {
-        let mut host = HostScanline::<Depth16>::new(self.view.width, self.view.height)
-            .map_err(|e| format!("zline: {e}"))?;
-        host.render(
-            &self.scene.mesh,
-            &self.model,
-            &self.camera,
-            self.cull,
-            &Shading::FaceId,
-        )
-        .map_err(|e| format!("zline: {e}"))?;
-        Ok(Some(host.frame().faces.clone()))
-    }
-
-    fn rgb565(&self) -> Vec<u16> {
-        self.frame.pixels.clone()
-    }
-}
-
-/// zline drawing the frame in horizontal bands on several threads
-/// ([`BandedRenderer::render_mesh`]): the threads, started once a frame,
-/// project the mesh's vertices and sort its faces into the bands their
-/// rows reach (both in chunks), then each builds its band's tables from
-/// that projection and its faces and scans its rows into its own part of
-/// the frame. The same frame as [`ZlineRenderer`], bit for bit. Timed by
-/// the wall clock, not thread CPU time (the work is on several threads);
-/// the timed region is [`ZlineRenderer`]'s.
-pub struct ZlineBandsRenderer<'a> {
-    scene: &'a Scene,
-    renderer: BandedRenderer<u16, Depth16>,
-    frame: Frame565,
-    model: ZMat4,
-    camera: Camera,
-    cull: ZCull,
-    colors: Vec<u16>,
-    name: String,
-}
-
-impl<'a> ZlineBandsRenderer<'a> {
-    /// Builds the renderer for `view` with `threads` bands, each band's
-    /// tables sized as [`ZlineRenderer`]'s.
-    pub fn new(scene: &'a Scene, view: &View, threads: usize) -> Result<Self, String> {
-        let single = ZlineRenderer::new(scene, view)?;
-        let renderer = BandedRenderer::new(
-            &scene.mesh.capacities(view.width),
-            view.width,
-            view.height,
-            0,
-            threads,
-        )
-        .map_err(|e| format!("zline: {e}"))?;
-        Ok(Self {
-            scene,
-            renderer,
-            frame: single.frame,
-            model: single.model,
-            camera: single.camera,
-            cull: single.cull,
-            colors: single.colors,
-            name: format!("zline-{threads}-threads"),
+            cull: zline_cull(view.cull),
+            name: format!("zline z24 {threads} threads"),
         })
     }
 }
@@ -168,6 +296,14 @@ impl Renderer for ZlineBandsRenderer<'_> {
         true
     }
 
+    fn timed_region(&self) -> String {
+        "`BandedRenderer::render_mesh(.., |f| light.color(f).into())` with \
+         `Shading::lambert()`: threads started, vertices projected and faces sorted into bands, \
+         each band's tables filled and its rows drawn in place (`FrameBufferSink::from_row`); \
+         wall clock, not thread CPU time; depth z24"
+            .into()
+    }
+
     fn render(&mut self) -> Result<(), String> {
         let width = self.frame.width;
         // Each band draws into its own rows of the frame.
@@ -178,7 +314,7 @@ impl Renderer for ZlineBandsRenderer<'_> {
             rest = tail;
             sinks.push(FrameBufferSink::from_row(part, width, rows.start));
         }
-        let colors = &self.colors;
+        let light = Shading::lambert();
         self.renderer
             .render_mesh(
                 &self.scene.mesh,
@@ -186,7 +322,7 @@ impl Renderer for ZlineBandsRenderer<'_> {
                 &self.camera,
                 self.cull,
                 &mut sinks,
-                |f: &FaceInfo| colors[f.face as usize],
+                |f: &FaceInfo| light.color(f).into(),
             )
             .map(|_| ())
             .map_err(|e| format!("zline: {e:?}"))
@@ -197,6 +333,6 @@ impl Renderer for ZlineBandsRenderer<'_> {
     }
 
     fn rgb565(&self) -> Vec<u16> {
-        self.frame.pixels.clone()
+        self.frame.raw()
     }
 }

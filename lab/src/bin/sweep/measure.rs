@@ -245,11 +245,14 @@ pub fn triangles(mesh: &HostMesh) -> usize {
         .sum()
 }
 
-/// The peers' points from `cargo bench-peers`' CSVs: for each peer with a
-/// row for every mesh in `ours` at `size` without culling, (name, time,
-/// wrong-face %). A peer's time on a mesh is its ratio to zline in the
-/// bench's own run times our scanline time here, so the two runs'
-/// machines need not match. `pixels` is the frame's pixels times meshes.
+/// The peers' points from `cargo bench-peers`' CSVs: for each peer row
+/// with a row for every mesh in `ours` at `size` without culling, (name,
+/// time, wrong-face %). A peer's time on a mesh is its time over the
+/// bench's `zline z16` in the bench's own run (both are ratios to its
+/// `zline z24`) times our scanline z16 time here, so the two runs'
+/// machines need not match. The bench gives wrong faces as a share of
+/// the object's pixels (its last column); the chart's share is of the
+/// frames, `pixels` being the frame's pixels times meshes.
 pub fn peers(
     path: &Path,
     size: &str,
@@ -269,27 +272,36 @@ pub fn peers(
             .collect()
     };
     let (times, wrong) = (rows(&times), rows(&wrong));
-    let frame = pixels / ours.len().max(1) as f64;
     let mut out = Vec::new();
-    for peer in ["euc", "embedded-3dgfx"] {
+    for peer in [
+        "euc",
+        "embedded-3dgfx unlit",
+        "embedded-3dgfx lit",
+        "embedded-3dgfx raster shared",
+    ] {
         let (mut ms, mut wrong_pixels) = (0.0, 0.0);
         let mut complete = true;
         for (mesh, our_ms) in ours {
-            let find = |rows: &[Vec<String>], col: usize| {
+            let find = |rows: &[Vec<String>], renderer: &str, col: usize| {
                 rows.iter()
                     .find(|r| {
                         r.len() > col
                             && r[0] == *mesh
                             && r[1] == size
                             && r[2] == "none"
-                            && r[3] == peer
+                            && r[3] == renderer
                     })
                     .and_then(|r| r[col].parse::<f64>().ok())
             };
-            match (find(&times, 6), find(&wrong, 4)) {
-                (Some(ratio), Some(w)) => {
-                    ms += ratio * our_ms;
-                    wrong_pixels += w * frame;
+            match (
+                find(&times, peer, 6),
+                find(&times, "zline z16", 6),
+                find(&wrong, peer, 4),
+                find(&wrong, peer, 5),
+            ) {
+                (Some(ratio), Some(z16), Some(w), Some(object)) if z16 > 0.0 => {
+                    ms += ratio / z16 * our_ms;
+                    wrong_pixels += w * object;
                 }
                 _ => complete = false,
             }

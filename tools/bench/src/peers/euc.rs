@@ -6,13 +6,12 @@
 //! perspective-correct interpolation of what the vertex shader returned.
 //! Here the vertex slice is the corner numbers `0..3T` of the fan
 //! triangles; the vertex shader looks up the corner's OBJ vertex and
-//! multiplies it by the model-view-projection matrix, and hands on the
-//! triangle's face colour (the same value at all three corners, so it
-//! interpolates to itself: euc 0.5 has no flat varyings). Colour target:
+//! multiplies it by the model-view-projection matrix, and computes the
+//! triangle's flat Lambert colour from its object-space normal (the same
+//! value at all three corners, so it interpolates to itself: euc 0.5 has
+//! no flat varyings); the fragment shader returns it. Colour target:
 //! [`Frame565`]; depth: euc's own `Buffer2d<f32>` with its default
 //! `IfLessWrite` (`<=`) test.
-
-use core::marker::PhantomData;
 
 use euc::buffer::Buffer2d;
 use euc::rasterizer::{BackfaceCullingDisabled, BackfaceCullingEnabled, BackfaceMode, Triangles};
@@ -20,148 +19,124 @@ use euc::{Pipeline, Target};
 
 use crate::framebuffer::Frame565;
 use crate::renderer::Renderer;
-use crate::view::{BACKGROUND, Cull, Mat4, Scene, View, transform};
+use crate::view::{
+    BACKGROUND, Cull, Mat4, ObjectLight, Scene, View, dot, lambert_rgb565, transform,
+};
 
-/// What a pipeline writes per pixel, from the rounded per-triangle value.
-trait FromAttr: Clone {
-    fn from_attr(v: f32) -> Self;
-}
-
-impl FromAttr for u16 {
-    #[inline(always)]
-    fn from_attr(v: f32) -> Self {
-        (v + 0.5) as u16
-    }
-}
-
-impl FromAttr for u32 {
-    #[inline(always)]
-    fn from_attr(v: f32) -> Self {
-        (v + 0.5) as u32
-    }
-}
-
-/// The pipeline: positions by corner, one value per triangle (its face's
-/// colour, or its face id for the id pass).
-struct FlatPipeline<'a, P> {
+/// The pipeline as a user writes flat Lambert in euc 0.5: positions by
+/// corner, the triangle's object-space normal by corner, and the light
+/// and eye in object space as uniforms. The vertex shader computes the
+/// two-sided Lambert colour (one dot product with the light, negated when
+/// the triangle's plane faces away from the eye), as `f32`, and the
+/// fragment shader rounds it back to Rgb565.
+struct LambertPipeline<'a> {
     mvp: Mat4,
     positions: &'a [[f32; 3]],
     corners: &'a [u32],
-    values: &'a [f32],
-    _pixel: PhantomData<P>,
+    normals: &'a [[f32; 3]],
+    light: ObjectLight,
 }
 
-impl<P: FromAttr> Pipeline for FlatPipeline<'_, P> {
+impl Pipeline for LambertPipeline<'_> {
     type Vertex = u32;
     type VsOut = f32;
-    type Pixel = P;
+    type Pixel = u16;
 
     #[inline(always)]
     fn vert(&self, corner: &u32) -> ([f32; 4], f32) {
         let k = *corner as usize;
         let p = &self.positions[self.corners[k] as usize];
-        (transform(&self.mvp, p), self.values[k / 3])
+        let n = &self.normals[k / 3];
+        let d = dot(n, &self.light.light);
+        let d = if self.light.front(n, p) { d } else { -d };
+        (transform(&self.mvp, p), f32::from(lambert_rgb565(d)))
     }
 
     #[inline(always)]
-    fn frag(&self, value: &f32) -> P {
-        P::from_attr(*value)
+    fn frag(&self, color: &f32) -> u16 {
+        (*color + 0.5) as u16
+    }
+}
+
+/// The id pass's pipeline: positions by corner, one value per triangle
+/// (its face id, exact in `f32` below 2^24).
+struct IdPipeline<'a> {
+    mvp: Mat4,
+    positions: &'a [[f32; 3]],
+    corners: &'a [u32],
+    ids: &'a [f32],
+}
+
+impl Pipeline for IdPipeline<'_> {
+    type Vertex = u32;
+    type VsOut = f32;
+    type Pixel = u32;
+
+    #[inline(always)]
+    fn vert(&self, corner: &u32) -> ([f32; 4], f32) {
+        let k = *corner as usize;
+        let p = &self.positions[self.corners[k] as usize];
+        (transform(&self.mvp, p), self.ids[k / 3])
+    }
+
+    #[inline(always)]
+    fn frag(&self, id: &f32) -> u32 {
+        (*id + 0.5) as u32
     }
 }
 
 /// euc 0.5.
 ///
-/// Timed region: clear the colour frame and the depth buffer, then one
-/// `Pipeline::draw::<Triangles<_, B>, _>` call over all fan triangles. That
-/// call runs the vertex shader three times per triangle (euc has no vertex
-/// cache or index buffer: 4×4 matrix times position), divides by w, culls,
-/// and rasterises with pixel-centre sampling and a float depth buffer.
-/// Culling: euc's own (`BackfaceCullingEnabled`: triangles whose NDC
-/// winding is clockwise, the same rule as the view's) when `--cull back`,
+/// Timed region: clear the colour frame and the depth buffer (each to
+/// its clear value: black, 1.0), bring zline's light and the eye into
+/// object space ([`Scene::object_light`]), then one
+/// `Pipeline::draw::<Triangles<_, B>, _>` call over all fan triangles.
+/// That call runs the vertex shader three times per triangle (euc has no
+/// vertex cache or index buffer: 4×4 matrix times position, and the
+/// triangle's Lambert colour, [`LambertPipeline`]), divides by w, culls,
+/// and rasterises with pixel-centre sampling and a float depth buffer,
+/// running the fragment shader per covered pixel. Culling: euc's own
+/// (`BackfaceCullingEnabled`: triangles whose NDC winding is clockwise,
+/// the same rule as the view's) when `--cull back`,
 /// `BackfaceCullingDisabled` for `none`. euc 0.5 does not clip: the
 /// reference view keeps every vertex in front of the eye, so nothing
-/// needs it. Face colours are flat Lambert (`Scene::triangle_colors`),
-/// computed once per view before timing. Face ids: drawn again, untimed,
-/// with the face id as the per-triangle value (exact in f32 below 2^24).
+/// needs it. Face ids: drawn again, untimed, with the face id as the
+/// per-triangle value.
 pub struct EucRenderer<'a> {
-    draw: Draw<'a>,
-    colors: Vec<f32>,
+    scene: &'a Scene,
+    view: View,
+    mvp: Mat4,
+    corners: Vec<u32>,
+    corner_list: Vec<u32>,
+    normals: Vec<[f32; 3]>,
     color: Frame565,
     depth: Buffer2d<f32>,
 }
 
-/// What every draw call of one view shares.
-struct Draw<'a> {
-    scene: &'a Scene,
-    mvp: Mat4,
-    cull: Cull,
-    corners: Vec<u32>,
-    corner_list: Vec<u32>,
-}
-
 impl<'a> EucRenderer<'a> {
-    /// Builds the renderer for `view`: the flat corner list and the
-    /// per-triangle colours.
+    /// Builds the renderer for `view`: the flat corner list (the vertex
+    /// buffer) and the per-triangle normals, once per mesh.
     pub fn new(scene: &'a Scene, view: &View) -> Result<Self, String> {
         let corners: Vec<u32> = scene.triangles.iter().flatten().copied().collect();
         let count = u32::try_from(corners.len())
             .map_err(|_| "euc: too many triangle corners for u32".to_string())?;
-        let colors = scene
-            .triangle_colors(view)
-            .into_iter()
-            .map(f32::from)
-            .collect();
         let (w, h) = (usize::from(view.width), usize::from(view.height));
         Ok(Self {
-            draw: Draw {
-                scene,
-                mvp: scene.mvp(view),
-                cull: view.cull,
-                corners,
-                corner_list: (0..count).collect(),
-            },
-            colors,
+            scene,
+            view: *view,
+            mvp: scene.mvp(view),
+            corners,
+            corner_list: (0..count).collect(),
+            normals: scene.triangle_normals(),
             color: Frame565::new(w, h),
             depth: Buffer2d::new([w, h], 1.0),
         })
     }
 }
 
-impl Draw<'_> {
-    /// Draws every triangle with `values` per triangle into `target`,
-    /// depth-testing against the (already cleared) depth buffer.
-    fn draw<P: FromAttr, T: Target<Item = P>>(
-        &self,
-        values: &[f32],
-        target: &mut T,
-        depth: &mut Buffer2d<f32>,
-    ) {
-        let pipeline = FlatPipeline::<P> {
-            mvp: self.mvp,
-            positions: &self.scene.mesh.positions,
-            corners: &self.corners,
-            values,
-            _pixel: PhantomData,
-        };
-        match self.cull {
-            Cull::None => draw_with::<BackfaceCullingDisabled, P, T>(
-                &pipeline,
-                &self.corner_list,
-                target,
-                depth,
-            ),
-            Cull::Back => draw_with::<BackfaceCullingEnabled, P, T>(
-                &pipeline,
-                &self.corner_list,
-                target,
-                depth,
-            ),
-        }
-    }
-}
-
-fn draw_with<B: BackfaceMode, P: FromAttr, T: Target<Item = P>>(
-    pipeline: &FlatPipeline<'_, P>,
+/// One draw call over `corners` with backface mode `B`.
+fn draw_with<B: BackfaceMode, P: Pipeline<Vertex = u32>, T: Target<Item = P::Pixel>>(
+    pipeline: &P,
     corners: &[u32],
     target: &mut T,
     depth: &mut Buffer2d<f32>,
@@ -169,21 +144,55 @@ fn draw_with<B: BackfaceMode, P: FromAttr, T: Target<Item = P>>(
     pipeline.draw::<Triangles<'_, Buffer2d<f32>, B>, T>(corners, target, Some(depth));
 }
 
+/// One draw call with the view's culling.
+fn draw<P: Pipeline<Vertex = u32>, T: Target<Item = P::Pixel>>(
+    cull: Cull,
+    pipeline: &P,
+    corners: &[u32],
+    target: &mut T,
+    depth: &mut Buffer2d<f32>,
+) {
+    match cull {
+        Cull::None => draw_with::<BackfaceCullingDisabled, P, T>(pipeline, corners, target, depth),
+        Cull::Back => draw_with::<BackfaceCullingEnabled, P, T>(pipeline, corners, target, depth),
+    }
+}
+
 impl Renderer for EucRenderer<'_> {
     fn name(&self) -> &str {
         "euc"
     }
 
+    fn timed_region(&self) -> String {
+        "colour frame and depth buffer cleared, light into object space, one `Pipeline::draw` \
+         (vertex shader per triangle corner: 4×4 transform and the triangle's two-sided Lambert \
+         colour; its own culling with `--cull back`; fragment shader per pixel); f32 depth \
+         buffer"
+            .into()
+    }
+
     fn render(&mut self) -> Result<(), String> {
         Target::clear(&mut self.color, 0);
         self.depth.clear(1.0);
-        self.draw
-            .draw::<u16, Frame565>(&self.colors, &mut self.color, &mut self.depth);
+        let pipeline = LambertPipeline {
+            mvp: self.mvp,
+            positions: &self.scene.mesh.positions,
+            corners: &self.corners,
+            normals: &self.normals,
+            light: self.scene.object_light(&self.view),
+        };
+        draw(
+            self.view.cull,
+            &pipeline,
+            &self.corner_list,
+            &mut self.color,
+            &mut self.depth,
+        );
         Ok(())
     }
 
     fn face_ids(&mut self) -> Result<Option<Vec<u32>>, String> {
-        let scene = self.draw.scene;
+        let scene = self.scene;
         if scene.face_count() >= 1 << 24 {
             return Ok(None);
         }
@@ -191,8 +200,19 @@ impl Renderer for EucRenderer<'_> {
         let (w, h) = (self.color.width, self.color.height);
         let mut target = Buffer2d::new([w, h], BACKGROUND);
         self.depth.clear(1.0);
-        self.draw
-            .draw::<u32, Buffer2d<u32>>(&ids, &mut target, &mut self.depth);
+        let pipeline = IdPipeline {
+            mvp: self.mvp,
+            positions: &scene.mesh.positions,
+            corners: &self.corners,
+            ids: &ids,
+        };
+        draw(
+            self.view.cull,
+            &pipeline,
+            &self.corner_list,
+            &mut target,
+            &mut self.depth,
+        );
         Ok(Some(target.as_ref().to_vec()))
     }
 
