@@ -105,7 +105,7 @@ pub use raster::{
     TablePartsRef, TableStorage, Tables, scan,
 };
 pub use renderer::Renderer;
-pub use sink::{Crc32Sink, DrawTargetSink, FnSink, FrameBufferSink, LentRow, RowSink};
+pub use sink::{Crc32Sink, DrawTargetSink, FnSink, FrameBufferSink, LentRow, RowSink, RowSpan};
 
 /// Compiles the README's code examples as doctests.
 #[cfg(doctest)]

@@ -106,10 +106,24 @@ pub struct LentRow<'a, C> {
 ///
 /// Works with any display driver (e.g. `mipidsi`) or framebuffer
 /// implementing `DrawTarget`; the target clips rows that do not fit.
-#[derive(Debug)]
-pub struct DrawTargetSink<'a, T> {
+///
+/// Drawing frame after frame into the same display, [`Self::changed_only`]
+/// sends of each row only the part that differs from what the display
+/// shows: the pixels between the first and the last that are not
+/// background, in this frame or the last.
+pub struct DrawTargetSink<'a, T: DrawTarget> {
     target: &'a mut T,
     origin: Point,
+    shown: Option<(&'a mut [RowSpan], T::Color)>,
+}
+
+impl<T: DrawTarget> core::fmt::Debug for DrawTargetSink<'_, T> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("DrawTargetSink")
+            .field("origin", &self.origin)
+            .field("changed_only", &self.shown.is_some())
+            .finish_non_exhaustive()
+    }
 }
 
 impl<'a, T: DrawTarget> DrawTargetSink<'a, T> {
@@ -120,7 +134,144 @@ impl<'a, T: DrawTarget> DrawTargetSink<'a, T> {
 
     /// Sends rows to `target`, with the frame's top-left corner at `origin`.
     pub fn with_origin(target: &'a mut T, origin: Point) -> Self {
-        Self { target, origin }
+        Self {
+            target,
+            origin,
+            shown: None,
+        }
+    }
+
+    /// Sends of each row only what changed since the frame before, for a
+    /// display that keeps what it was sent: the columns from the first to
+    /// the last pixel that is not `background` (the renderer's) in this
+    /// row or in the one `shown` says the display holds. `shown[y]` is
+    /// updated as row `y` goes out; keep it from frame to frame, one entry
+    /// a row. Start it with [`RowSpan::UNKNOWN`] (the first frame then
+    /// sends whole rows), and set it so again when the display was drawn
+    /// on by anything else, or the frame moved. Rows beyond `shown` go out
+    /// whole.
+    ///
+    /// ```
+    /// use embedded_graphics::mock_display::MockDisplay;
+    /// use embedded_graphics::pixelcolor::BinaryColor;
+    /// use zline::{Capacities, Depth16, DrawTargetSink, RowSpan, ScreenVertex};
+    ///
+    /// const CAPS: Capacities = Capacities {
+    ///     width: 8, vertices: 3, polygons: 1, corners: 3,
+    ///     active_polygons: 1, pooled_edges: 0, mesh_vertices: 0,
+    /// };
+    /// type Zr = zline::renderer_type!(BinaryColor, Depth16, CAPS);
+    /// let mut renderer = Zr::new(8, 4, BinaryColor::Off)?;
+    /// let mut display = MockDisplay::new();
+    /// display.set_allow_overdraw(true);
+    /// let mut shown = [RowSpan::UNKNOWN; 4];
+    /// let v = |x, y| ScreenVertex::from_f32(x, y, 0.5).unwrap();
+    /// for frame in 0..2 {
+    ///     renderer.clear();
+    ///     renderer.push_polygon_vertices(&[v(0.0, 0.0), v(4.0, 0.0), v(0.0, 4.0)], BinaryColor::On)?;
+    ///     let mut sink = DrawTargetSink::new(&mut display).changed_only(&mut shown, BinaryColor::Off);
+    ///     renderer.render(&mut sink)?;
+    /// }
+    /// // Row 0 (samples at y = 0.5) shows columns 0..3 lit; the rest is
+    /// // background, which the second frame did not send again.
+    /// assert_eq!(shown[0], RowSpan::new(0, 3));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn changed_only(mut self, shown: &'a mut [RowSpan], background: T::Color) -> Self {
+        self.shown = Some((shown, background));
+        self
+    }
+
+    /// Sends columns `start..end` of row `y`.
+    fn send(
+        &mut self,
+        y: u16,
+        colors: &[T::Color],
+        start: usize,
+        end: usize,
+    ) -> Result<(), T::Error> {
+        let Some(part) = colors.get(start..end) else {
+            return Ok(());
+        };
+        if part.is_empty() {
+            return Ok(());
+        }
+        let at = |k: usize| i32::try_from(k).unwrap_or(i32::MAX);
+        let area = Rectangle::new(
+            self.origin + Point::new(at(start), i32::from(y)),
+            Size::new(u32::try_from(part.len()).unwrap_or(u32::MAX), 1),
+        );
+        self.target.fill_contiguous(&area, part.iter().copied())
+    }
+}
+
+/// Which columns of a row a display shows in other than the background:
+/// `start..end` (empty when `start == end`), or [`Self::UNKNOWN`]. Kept
+/// from frame to frame by [`DrawTargetSink::changed_only`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct RowSpan {
+    start: u16,
+    end: u16,
+}
+
+impl RowSpan {
+    /// Nothing known of the row: it is sent whole.
+    pub const UNKNOWN: Self = Self {
+        start: 0,
+        end: u16::MAX,
+    };
+    /// A row of background only.
+    pub const EMPTY: Self = Self { start: 0, end: 0 };
+
+    /// Columns `start..end` (empty when `end <= start`).
+    pub const fn new(start: u16, end: u16) -> Self {
+        if end <= start {
+            Self::EMPTY
+        } else {
+            Self { start, end }
+        }
+    }
+
+    /// The first column.
+    pub const fn start(self) -> u16 {
+        self.start
+    }
+
+    /// One past the last column.
+    pub const fn end(self) -> u16 {
+        self.end
+    }
+
+    /// Whether it holds no column.
+    pub const fn is_empty(self) -> bool {
+        self.end <= self.start
+    }
+
+    /// The columns of `colors` from the first to the last that is not
+    /// `background`.
+    fn of<C: PartialEq>(colors: &[C], background: &C) -> Self {
+        let Some(first) = colors.iter().position(|c| c != background) else {
+            return Self::EMPTY;
+        };
+        // There is a last: the first is one.
+        let last = colors
+            .iter()
+            .rposition(|c| c != background)
+            .unwrap_or(first);
+        let column = |k: usize| u16::try_from(k).unwrap_or(u16::MAX);
+        Self::new(column(first), column(last + 1))
+    }
+
+    /// The smallest span holding both.
+    fn union(self, other: Self) -> Self {
+        match (self.is_empty(), other.is_empty()) {
+            (true, _) => other,
+            (_, true) => self,
+            _ => Self {
+                start: self.start.min(other.start),
+                end: self.end.max(other.end),
+            },
+        }
     }
 }
 
@@ -131,12 +282,17 @@ where
     type Error = T::Error;
 
     fn write_row(&mut self, y: u16, colors: &[T::Color], _depths: &[Z]) -> Result<(), T::Error> {
-        let width = u32::try_from(colors.len()).unwrap_or(u32::MAX);
-        let area = Rectangle::new(
-            self.origin + Point::new(0, i32::from(y)),
-            Size::new(width, 1),
-        );
-        self.target.fill_contiguous(&area, colors.iter().copied())
+        let Some((shown, background)) = &mut self.shown else {
+            return self.send(y, colors, 0, colors.len());
+        };
+        let Some(was) = shown.get_mut(usize::from(y)) else {
+            return self.send(y, colors, 0, colors.len());
+        };
+        let now = RowSpan::of(colors, background);
+        let send = was.union(now);
+        *was = now;
+        let end = usize::from(send.end).min(colors.len());
+        self.send(y, colors, usize::from(send.start), end)
     }
 }
 

@@ -14,7 +14,7 @@ use embedded_graphics::prelude::*;
 use zline::host::{BandedRenderer, HostRenderer};
 use zline::{
     Camera, Cull as ZCull, Depth24, DepthFormat, DrawTargetSink, FaceInfo, FrameBufferSink, Mat4,
-    Shading, reference_model,
+    RowSpan, Shading, reference_model,
 };
 
 use crate::renderer::Renderer;
@@ -28,7 +28,9 @@ pub enum Output {
     InPlace,
     /// Through `DrawTargetSink` into a [`PlainTarget`]: a `Vec<Rgb565>`
     /// that implements only `draw_iter`, so each row's `fill_contiguous`
-    /// is embedded-graphics' default, pixel by pixel.
+    /// is embedded-graphics' default, pixel by pixel. As a program drawing
+    /// frame after frame into one display does it: `changed_only`, so each
+    /// row sends only the columns that differ from the frame before.
     DrawTarget,
 }
 
@@ -119,6 +121,8 @@ pub struct ZlineRenderer<'a, D: DepthFormat> {
     camera: Camera,
     cull: ZCull,
     output: Output,
+    /// What the [`PlainTarget`] shows of each row (`changed_only`).
+    shown: Vec<RowSpan>,
     name: String,
     view: View,
 }
@@ -145,6 +149,7 @@ impl<'a, D: DepthFormat> ZlineRenderer<'a, D> {
             camera: Camera::reference(view.width, view.height),
             cull: zline_cull(view.cull),
             output,
+            shown: vec![RowSpan::UNKNOWN; usize::from(view.height)],
             name,
             view: *view,
         };
@@ -172,18 +177,19 @@ impl<D: DepthFormat> Renderer for ZlineRenderer<'_, D> {
     fn timed_region(&self) -> String {
         let sink = match self.output {
             Output::InPlace => {
-                "`FrameBufferSink`: each row drawn in place in a `Vec<Rgb565>` frame"
+                "`FrameBufferSink`: each row drawn in place in a `Vec<Rgb565>` frame, every \
+                 pixel written, background included, so no frame clear"
             }
             Output::DrawTarget => {
-                "`DrawTargetSink` into a `Vec<Rgb565>` `DrawTarget` with `draw_iter` only \
-                 (`fill_contiguous` per row falls back to pixel by pixel)"
+                "`DrawTargetSink::new(..).changed_only(..)` into a `Vec<Rgb565>` `DrawTarget` \
+                 with `draw_iter` only (`fill_contiguous` falls back to pixel by pixel), each \
+                 row sending the columns that changed since the frame before"
             }
         };
         format!(
             "`renderer.clear()` (its tables), `Shading::lambert()`, `renderer.draw_mesh(.., \
              |f| light.color(f).into())` (transform, cull, clip, project, Lambert per face), \
-             `renderer.render(..)` through {sink}; every pixel written, background included, \
-             so no frame clear; depth {} in its one z row",
+             `renderer.render(..)` through {sink}; depth {} in its one z row",
             D::NAME
         )
     }
@@ -209,7 +215,10 @@ impl<D: DepthFormat> Renderer for ZlineRenderer<'_, D> {
                 .map_err(|e| format!("zline: {e:?}")),
             Output::DrawTarget => self
                 .renderer
-                .render(&mut DrawTargetSink::new(&mut self.frame))
+                .render(
+                    &mut DrawTargetSink::new(&mut self.frame)
+                        .changed_only(&mut self.shown, Rgb565::BLACK),
+                )
                 .map(|_| ())
                 .map_err(|e| format!("zline: {e:?}")),
         }
