@@ -36,6 +36,12 @@ use std::process::ExitCode;
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use zline_c6aebe4 as old;
 
+// The peers bench's timing, the same file: thread CPU time and medians.
+#[path = "../../bench/src/timing.rs"]
+#[allow(dead_code)] // (its wall-clock timer is the bench's alone)
+mod timing;
+use timing::{median_min, time_ms};
+
 const USAGE: &str = "\
 usage: zline-bench-ab [MESH.obj] [--size WxH] [--cull none|back] [--rounds N]
 
@@ -276,9 +282,7 @@ fn run(o: &Options) -> Result<(), String> {
     for round in 0..o.rounds {
         for k in 0..2 {
             let which = (round + k) % 2;
-            let start = thread_cpu_ms()?;
-            sides[which].frame()?;
-            times[which].push(thread_cpu_ms()? - start);
+            times[which].push(time_ms(|| sides[which].frame())?);
         }
     }
     let [(old_ms, old_min), (new_ms, new_min)] = [median_min(&times[0]), median_min(&times[1])];
@@ -294,8 +298,9 @@ fn run(o: &Options) -> Result<(), String> {
     );
     println!("# A/B: zline today against zline at {OLD_COMMIT}, one run");
     println!();
-    println!("- machine: {}", machine());
-    println!("- date: {}", now_utc());
+    let (model, cpus) = zline_lab::machine::cpu();
+    println!("- machine: {model}, {cpus} cores");
+    println!("- date: {}", zline_lab::machine::now_utc());
     println!(
         "- build: {} (tools/bench-ab/Cargo.toml [profile.release]: fat LTO, one codegen unit for every crate)",
         if cfg!(debug_assertions) {
@@ -331,72 +336,4 @@ fn run(o: &Options) -> Result<(), String> {
         old_ms / new_ms
     );
     Ok(())
-}
-
-/// CPU time this thread has used, in milliseconds.
-fn thread_cpu_ms() -> Result<f64, String> {
-    let mut ts = libc::timespec {
-        tv_sec: 0,
-        tv_nsec: 0,
-    };
-    // SAFETY: `ts` is a valid, writable timespec.
-    let rc = unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut ts) };
-    if rc != 0 {
-        return Err(format!(
-            "clock_gettime(CLOCK_THREAD_CPUTIME_ID): {}",
-            std::io::Error::last_os_error()
-        ));
-    }
-    Ok(ts.tv_sec as f64 * 1e3 + ts.tv_nsec as f64 * 1e-6)
-}
-
-/// Median (mean of the middle two for an even count) and minimum.
-fn median_min(samples: &[f64]) -> (f64, f64) {
-    let mut v = samples.to_vec();
-    v.sort_by(f64::total_cmp);
-    let n = v.len();
-    let median = match n {
-        0 => f64::NAN,
-        _ if n % 2 == 1 => v[n / 2],
-        _ => (v[n / 2 - 1] + v[n / 2]) / 2.0,
-    };
-    (median, v.first().copied().unwrap_or(f64::NAN))
-}
-
-/// The CPU's model name (`/proc/cpuinfo`) and the logical CPUs.
-fn machine() -> String {
-    let model = std::fs::read_to_string("/proc/cpuinfo")
-        .ok()
-        .and_then(|s| {
-            s.lines()
-                .find(|l| l.starts_with("model name"))
-                .and_then(|l| l.split_once(':'))
-                .map(|(_, m)| m.trim().to_string())
-        })
-        .unwrap_or_else(|| "unknown CPU".into());
-    let cpus = std::thread::available_parallelism().map_or(0, |n| n.get());
-    format!("{model}, {cpus} cores")
-}
-
-/// The time now, `YYYY-MM-DD HH:MM UTC`.
-fn now_utc() -> String {
-    let secs = std::time::SystemTime::now()
-        .duration_since(std::time::UNIX_EPOCH)
-        .map_or(0, |d| d.as_secs()) as i64;
-    let (days, rest) = (secs.div_euclid(86_400), secs.rem_euclid(86_400));
-    // Days since 1970-01-01 to a civil date (Howard Hinnant's algorithm).
-    let z = days + 719_468;
-    let era = z.div_euclid(146_097);
-    let doe = z - era * 146_097;
-    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
-    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
-    let mp = (5 * doy + 2) / 153;
-    let day = doy - (153 * mp + 2) / 5 + 1;
-    let month = if mp < 10 { mp + 3 } else { mp - 9 };
-    let year = yoe + era * 400 + i64::from(month <= 2);
-    format!(
-        "{year:04}-{month:02}-{day:02} {:02}:{:02} UTC",
-        rest / 3600,
-        rest % 3600 / 60
-    )
 }
