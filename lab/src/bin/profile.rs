@@ -8,10 +8,11 @@
 //! cargo run --release -p zline-lab --features profile --bin profile -- --report cg.out
 //! ```
 //!
-//! The frame is the peers bench's: the reference view, each face's Lambert
-//! colour from a table made once (`--lambert`: computed per face per
-//! frame), no culling (or `--cull back`), 16-bit depth, every row copied
-//! into an Rgb565 frame buffer. The stages are functions the core and the
+//! The frame is the peers bench's `zline z24` row, as the README draws:
+//! the reference view, each face's colour from `Shading::lambert()` in
+//! the frame (`--table`: from a table made once, as the bench before
+//! 2026-11-26 did), no culling (or `--cull back`), 24-bit depth (or
+//! `--depth z16`), every row copied into an Rgb565 frame buffer. The stages are functions the core and the
 //! front end keep out of line for this purpose; `--report` reads a
 //! callgrind file and prints each stage's share of the instructions spent
 //! in the frames (loading the mesh excluded), as a Markdown table:
@@ -48,7 +49,7 @@ use zline::Mesh;
 use zline::Shading;
 use zline::host::{HostMesh, host_renderer};
 use zline::{Camera, Cull, VertexCache, draw_mesh, reference_model};
-use zline::{Depth16, FnSink};
+use zline::{Depth16, Depth24, DepthFormat, FnSink};
 use zline_lab::cli::parse_size;
 use zline_lab::cli::run_tool;
 use zline_lab::cli::{help_requested, load_model};
@@ -62,7 +63,7 @@ fn copy_row(frame: &mut [u16], width: usize, y: u16, colors: &[Rgb565]) {
     }
 }
 
-fn frames(
+fn frames<D: DepthFormat>(
     mesh: &HostMesh,
     size: (u16, u16),
     cull: Cull,
@@ -71,7 +72,7 @@ fn frames(
 ) -> Result<(), String> {
     let caps = mesh.capacities(size.0);
     let black = Rgb565::new(0, 0, 0);
-    let mut renderer = host_renderer::<Rgb565, Depth16>(&caps, size.0, size.1, black)
+    let mut renderer = host_renderer::<Rgb565, D>(&caps, size.0, size.1, black)
         .map_err(|e| e.to_string())?;
     let mut cache: Box<VertexCache<65536>> = Box::default();
     let model = reference_model(mesh, 30.0, 20.0).map_err(|e| e.to_string())?;
@@ -109,7 +110,7 @@ fn frames(
         )
         .map_err(|e| e.to_string())?;
         renderer
-            .render(&mut FnSink(|y: u16, colors: &[Rgb565], _: &[u16]| {
+            .render(&mut FnSink(|y: u16, colors: &[Rgb565], _: &[D::Value]| {
                 copy_row(&mut frame, width, y, colors);
                 Ok::<(), ()>(())
             }))
@@ -282,14 +283,21 @@ fn perf_report(path: &str) -> Result<(), String> {
 
 fn run(args: &[String]) -> Result<(), String> {
     let (mut path, mut size, mut cull, mut count) = (None, (800, 600), Cull::None, 4);
-    let mut live_shading = false;
+    let (mut live_shading, mut z16) = (true, false);
     let mut it = args.iter();
     while let Some(a) = it.next() {
         let mut value = || it.next().ok_or_else(|| format!("{a} needs a value"));
         match a.as_str() {
             "--report" => return report(value()?),
             "--perf-report" => return perf_report(value()?),
-            "--lambert" => live_shading = true,
+            "--table" => live_shading = false,
+            "--depth" => {
+                z16 = match value()?.as_str() {
+                    "z16" => true,
+                    "z24" => false,
+                    s => return Err(format!("--depth: unknown '{s}' (z16, z24)")),
+                }
+            }
             "--size" => size = parse_size(value()?)?,
             "--cull" => {
                 cull = match value()?.as_str() {
@@ -310,11 +318,15 @@ fn run(args: &[String]) -> Result<(), String> {
         }
     }
     let mesh = load_model(&path.ok_or("missing MODEL.obj")?)?;
-    frames(&mesh, size, cull, count, live_shading)
+    if z16 {
+        frames::<Depth16>(&mesh, size, cull, count, live_shading)
+    } else {
+        frames::<Depth24>(&mesh, size, cull, count, live_shading)
+    }
 }
 
 const USAGE: &str =
-    "usage: profile MODEL.obj [--size WxH] [--cull none|back] [--frames N] [--lambert]
+    "usage: profile MODEL.obj [--size WxH] [--cull none|back] [--depth z24|z16] [--frames N] [--table]
        profile --report CALLGRIND.OUT | profile --perf-report PERF.DATA
 Draws frames for valgrind's callgrind or perf to profile (build with --features profile), or reports
 each stage's share of a profile.";
