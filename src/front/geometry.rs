@@ -284,7 +284,7 @@ impl Mat4 {
 /// 10^-18 and 10^18), and in `f64` otherwise, where the square of any
 /// finite `f32` is representable (a direction between points 10^20
 /// apart, or 10^-20); zero stays zero.
-fn unit(v: Vec3) -> Vec3 {
+pub(crate) fn unit(v: Vec3) -> Vec3 {
     let squared = v.dot(v);
     if squared.is_normal() {
         return v.normalized();

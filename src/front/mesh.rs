@@ -9,7 +9,7 @@
 //! from `face_starts[f]` up to `face_starts[f + 1]` (or the end of
 //! `corners` for the last face), each corner a 0-based vertex index.
 
-use crate::front::geometry::newell_normal;
+use crate::front::geometry::{newell_normal, unit};
 use crate::limits::POSITION_SCALE;
 
 /// A polygon mesh: positions and faces of 3 or more corners.
@@ -46,13 +46,15 @@ pub trait Mesh {
         &[]
     }
 
-    /// Face `index`'s normal in model space as
-    /// [`newell_normal`](crate::newell_normal) gives it from the face's
-    /// corners (not normalised), when the mesh stores it: then a shading
-    /// that asks for the face's normal
-    /// ([`FaceInfo::normal`](crate::FaceInfo::normal)) gets the same
-    /// vector without reading the corners. `None` (the default) when it is
-    /// not stored; it is then computed each frame.
+    /// Face `index`'s normal in model space, the direction of
+    /// [`newell_normal`](crate::newell_normal) of the face's corners, when
+    /// the mesh stores it: then a shading that asks for the face's normal
+    /// ([`FaceInfo::normal`](crate::FaceInfo::normal)) gets it without
+    /// reading the corners. Stored at unit length ([`face_normals`] writes
+    /// them so), it is turned into view space by one rotation and no
+    /// square root when the model-view matrix is a rotation with uniform
+    /// scale; any other length is normalised each time. `None` (the
+    /// default) when it is not stored; it is then computed each frame.
     fn face_normal(&self, index: usize) -> Option<[f32; 3]> {
         let _ = index;
         None
@@ -218,8 +220,7 @@ impl<'a> StaticMesh<'a> {
     }
 
     /// The same mesh with each face's normal precomputed: `normals[f]` is
-    /// [`newell_normal`](crate::newell_normal) of face `f`'s corners, as
-    /// [`face_normals`] writes them. `Err` when there is not one for every
+    /// the unit normal of face `f`, as [`face_normals`] writes them. `Err` when there is not one for every
     /// face.
     pub const fn with_face_normals(self, normals: &'a [[f32; 3]]) -> Result<Self, MeshError> {
         if normals.len() != self.face_starts.len() {
@@ -366,10 +367,11 @@ impl MeshArrays for StaticMesh<'_> {
 
 /// Each face's normal for [`StaticMesh::with_face_normals`] (and
 /// [`Mesh::face_normal`]): [`newell_normal`] of its corners, in model
-/// space, not normalised.
+/// space, at unit length (zero for a face of no area).
 pub fn face_normals<M: Mesh + ?Sized>(mesh: &M) -> impl Iterator<Item = [f32; 3]> + '_ {
     (0..mesh.face_count()).map(move |f| {
         let n = newell_normal(mesh.face(f).iter().map(|&i| mesh.position(usize::from(i))));
+        let n = unit(n);
         [n.x, n.y, n.z]
     })
 }
@@ -502,6 +504,23 @@ mod tests {
         let with = mesh.with_face_normals(&normals).unwrap();
         assert_eq!(with.face_normal(1), Some([0.0, 0.0, 1.0]));
         assert_eq!(with.face_normal(2), None);
+    }
+
+    /// Stored normals are unit whatever the face's size, and zero for a
+    /// face of no area.
+    #[test]
+    fn face_normals_are_unit() {
+        let positions = [
+            [0.0, 0.0, 0.0],
+            [300.0, 0.0, 0.0],
+            [0.0, 0.02, 0.0],
+            [0.0, 0.0, 1e-9],
+        ];
+        let mesh = StaticMesh::new(&positions, &[0, 1, 2, 0, 1, 3, 0, 0, 1], &[0, 3, 6]).unwrap();
+        let normals: std::vec::Vec<_> = face_normals(&mesh).collect();
+        assert_eq!(normals[0], [0.0, 0.0, 1.0]);
+        assert_eq!(normals[1], [0.0, -1.0, 0.0]);
+        assert_eq!(normals[2], [0.0, 0.0, 0.0]);
     }
 
     #[test]

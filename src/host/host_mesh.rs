@@ -27,8 +27,8 @@ pub struct HostMesh {
     /// Faces past its end are tested each frame. [`Self::from_obj`] finds
     /// them.
     pub planar_faces: Vec<u32>,
-    /// Each face's normal ([`Mesh::face_normal`](crate::Mesh::face_normal):
-    /// Newell's, model space, not normalised), so that shading reads it
+    /// Each face's unit normal ([`Mesh::face_normal`](crate::Mesh::face_normal):
+    /// the direction of Newell's, model space), so that shading reads it
     /// instead of the corners; empty or short, the faces past its end
     /// compute theirs each frame. [`Self::from_obj`] computes them.
     pub face_normals: Vec<[f32; 3]>,

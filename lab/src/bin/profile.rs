@@ -72,8 +72,8 @@ fn frames<D: DepthFormat>(
 ) -> Result<(), String> {
     let caps = mesh.capacities(size.0);
     let black = Rgb565::new(0, 0, 0);
-    let mut renderer = host_renderer::<Rgb565, D>(&caps, size.0, size.1, black)
-        .map_err(|e| e.to_string())?;
+    let mut renderer =
+        host_renderer::<Rgb565, D>(&caps, size.0, size.1, black).map_err(|e| e.to_string())?;
     let mut cache: Box<VertexCache<65536>> = Box::default();
     let model = reference_model(mesh, 30.0, 20.0).map_err(|e| e.to_string())?;
     let camera = Camera::reference(size.0, size.1);

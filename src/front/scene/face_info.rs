@@ -29,7 +29,7 @@ enum FaceGeometry<'a> {
     Mesh {
         mesh: &'a dyn Mesh,
         corners: &'a [u16],
-        model_view: &'a Mat4,
+        frame: &'a Frame,
         face: usize,
     },
     /// Given.
@@ -75,13 +75,13 @@ impl FaceInfo<'_> {
             FaceGeometry::Mesh {
                 mesh,
                 corners,
-                model_view,
+                frame,
                 face,
             } => match mesh.face_normal(face) {
                 Some(n) if corners.len() == mesh.face(face).len() => {
-                    view_normal(Vec3::from_array(n), model_view)
+                    frame.view_normal(Vec3::from_array(n))
                 }
-                _ => mesh_normal(mesh, corners, model_view),
+                _ => mesh_normal(mesh, corners, &frame.model_view),
             },
             FaceGeometry::Known { normal, .. } => normal,
             FaceGeometry::Quantized {
@@ -114,7 +114,7 @@ impl FaceInfo<'_> {
             FaceGeometry::Mesh {
                 mesh,
                 corners,
-                model_view,
+                frame: Frame { model_view, .. },
                 ..
             }
             | FaceGeometry::Quantized {
@@ -174,7 +174,7 @@ impl Frame {
             _ => FaceGeometry::Mesh {
                 mesh,
                 corners,
-                model_view,
+                frame: self,
                 face,
             },
         };

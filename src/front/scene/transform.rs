@@ -10,7 +10,7 @@ use core::cell::OnceCell;
 use crate::error::Error;
 use crate::front::clip::ClipPoint;
 use crate::front::fixed_point::FixedFrame;
-use crate::front::geometry::{Mat4, Vec3, Vec4};
+use crate::front::geometry::{Mat4, Vec3, Vec4, unit};
 use crate::front::mesh::{Mesh, QuantizedView};
 use crate::front::scene::camera::Camera;
 use crate::front::scene::cull::Cull;
@@ -106,6 +106,38 @@ fn frustum_w_near(projection: &Mat4, (gx, gy): (f64, f64)) -> f64 {
     if w.is_finite() && w > 0.0 { w } else { 0.0 }
 }
 
+/// How far from 1 the squared length of a vector may be for
+/// [`Frame::view_normal`] to take it as unit: a unit `f32` vector from
+/// [`unit`] is within a few units of `2^-24`.
+const UNIT_TOLERANCE: f32 = 1.0 / (1 << 16) as f32;
+
+/// One over the scale of the upper 3x3 of `m`, when that 3x3 is a
+/// rotation (or reflection) times one scale: its columns of equal length
+/// and at right angles to within `2^-16` of their squared length, and the
+/// columns divided by the scale finite. `None` otherwise (a shear, a
+/// non-uniform scale, a singular or non-finite matrix).
+fn similarity_inverse_scale(m: &Mat4) -> Option<f32> {
+    let column = |j: usize| Vec3::new(m.m[0][j], m.m[1][j], m.m[2][j]);
+    let [c0, c1, c2] = [column(0), column(1), column(2)];
+    let squared = c0.dot(c0);
+    if !squared.is_normal() || !squared.is_finite() {
+        return None;
+    }
+    let tolerance = squared * UNIT_TOLERANCE;
+    let near = |value: f32, want: f32| (value - want).abs() <= tolerance;
+    let similar = near(c1.dot(c1), squared)
+        && near(c2.dot(c2), squared)
+        && near(c0.dot(c1), 0.0)
+        && near(c0.dot(c2), 0.0)
+        && near(c1.dot(c2), 0.0);
+    if !similar {
+        return None;
+    }
+    let s = 1.0 / libm::sqrtf(squared);
+    let finite = [c0, c1, c2].iter().all(|c| (*c * s).is_finite());
+    (s.is_normal() && finite).then_some(s)
+}
+
 /// Per-draw constants.
 pub(super) struct Frame {
     mvp: Mat4,
@@ -116,6 +148,14 @@ pub(super) struct Frame {
     /// What `mvp64` is the product of: projection, view and model.
     factors: [Mat4; 3],
     pub(super) model_view: Mat4,
+    /// One over the scale of `model_view` when it is a rotation with
+    /// uniform scale: a unit normal turned by it and multiplied by this
+    /// stays unit, with no square root per face ([`Frame::view_normal`]).
+    /// Zero for any other model-view, and for the integer front end, whose
+    /// normals are its own. (One `f32`, not the rotation's rows: with the
+    /// rows, the larger frame cost the Cortex-M0+ 1,000 more instructions
+    /// a frame of the torus knot, which never uses them.)
+    inverse_scale: f32,
     pub(super) width: f32,
     pub(super) height: f32,
     /// Guard band half-widths in NDC units, x and y.
@@ -177,9 +217,15 @@ impl Frame {
             let [z, w] = [terms.m[2], terms.m[3]];
             (z[0] + z[1] + z[2] + w[0] + w[1] + w[2], z[3] + w[3])
         };
+        let inverse_scale = if fixed.is_some() {
+            0.0
+        } else {
+            similarity_inverse_scale(&model_view).unwrap_or(0.0)
+        };
         Self {
             mvp,
             near_far_terms,
+            inverse_scale,
             clip64: OnceCell::new(),
             factors: [camera.projection, camera.view, *model],
             model_view,
@@ -191,6 +237,20 @@ impl Frame {
                 2.0 * CLIP_BAND_PX / height - 1.0,
             ),
             cull,
+        }
+    }
+
+    /// A model-space normal `n` as a unit normal in view space. A unit `n`
+    /// (as [`face_normals`](crate::face_normals) stores them) under a
+    /// model-view that is a rotation with uniform scale is turned by the
+    /// rotation alone; any other is transformed and normalised.
+    #[inline]
+    pub(super) fn view_normal(&self, n: Vec3) -> Vec3 {
+        let turned = self.model_view.transform_vector(n);
+        if self.inverse_scale != 0.0 && (n.dot(n) - 1.0).abs() <= UNIT_TOLERANCE {
+            turned * self.inverse_scale
+        } else {
+            unit(turned)
         }
     }
 
@@ -386,5 +446,81 @@ impl VertexSource for &[ProjectedVertex] {
     #[inline(always)]
     fn projected(self, index: usize) -> Option<ProjectedVertex> {
         self.get(index).copied()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn similarity(scale: f32, yaw: f32, pitch: f32) -> Mat4 {
+        Mat4::translation(Vec3::new(0.5, -2.0, -7.0))
+            .mul(&Mat4::rotation_x(pitch))
+            .mul(&Mat4::rotation_y(yaw))
+            .mul(&Mat4::scale(Vec3::new(scale, scale, scale)))
+    }
+
+    /// A rotation times one scale gives its rotation: orthonormal rows
+    /// that turn a vector as the matrix does, less the scale. A shear, a
+    /// non-uniform scale, a singular or a non-finite matrix gives none.
+    #[test]
+    fn a_similarity_gives_its_rotation_and_nothing_else_does() {
+        for scale in [1e-6, 0.37, 1.0, 3.0, 1e6] {
+            for (yaw, pitch) in [(0.0, 0.0), (0.3, -1.2), (2.9, 0.7)] {
+                let m = similarity(scale, yaw, pitch);
+                let s = similarity_inverse_scale(&m).expect("a similarity");
+                let column = |j: usize| Vec3::new(m.m[0][j], m.m[1][j], m.m[2][j]) * s;
+                let rows = [0, 1, 2].map(column);
+                for (i, a) in rows.iter().enumerate() {
+                    for (j, b) in rows.iter().enumerate() {
+                        let want = if i == j { 1.0 } else { 0.0 };
+                        assert!((a.dot(*b) - want).abs() < 1e-6, "{scale} {i} {j}");
+                    }
+                }
+                let v = Vec3::new(0.2, -0.9, 0.4);
+                let turned = m.transform_vector(v) * (1.0 / scale);
+                let by_scale = m.transform_vector(v) * s;
+                assert!((turned - by_scale).length() < 1e-5, "{scale}");
+            }
+        }
+        let squash = similarity(1.0, 0.3, 0.2).mul(&Mat4::scale(Vec3::new(1.0, 1.001, 1.0)));
+        let mut shear = Mat4::IDENTITY;
+        shear.m[0][1] = 0.01;
+        let flat = Mat4::scale(Vec3::new(1.0, 1.0, 0.0));
+        let mut nan = similarity(1.0, 0.1, 0.1);
+        nan.m[2][2] = f32::NAN;
+        let huge = Mat4::scale(Vec3::new(1e30, 1e30, 1e30));
+        for m in [squash, shear, flat, nan, huge, Mat4::scale(Vec3::default())] {
+            assert!(similarity_inverse_scale(&m).is_none(), "{m:?}");
+        }
+    }
+
+    /// A unit normal turned by the rotation alone is the normal the full
+    /// path gives (transformed and normalised) to within `2^-20` per
+    /// component; a normal not of unit length, or a model-view that is
+    /// not a similarity, takes the full path and gives exactly its
+    /// result.
+    #[test]
+    fn view_normals_by_the_rotation_agree_with_the_normalised_ones() {
+        let camera = Camera::reference(64, 64);
+        let full = |frame: &Frame, n: Vec3| unit(frame.model_view.transform_vector(n));
+        for scale in [0.01, 1.0, 40.0] {
+            let model = similarity(scale, 0.8, -0.4);
+            let frame = Frame::new(&model, &camera, Cull::None, None);
+            assert!(frame.inverse_scale != 0.0);
+            for k in 0..200 {
+                let t = k as f32 * 0.37;
+                let n = unit(Vec3::new(t.sin(), (1.7 * t).cos(), (0.3 * t).sin() - 0.2));
+                let (fast, want) = (frame.view_normal(n), full(&frame, n));
+                assert!((fast - want).length() < 1.0 / (1 << 20) as f32, "{n:?}");
+                let long = n * 3.0;
+                assert_eq!(frame.view_normal(long), full(&frame, long));
+            }
+        }
+        let model = Mat4::scale(Vec3::new(1.0, 2.0, 1.0));
+        let frame = Frame::new(&model, &camera, Cull::None, None);
+        assert_eq!(frame.inverse_scale, 0.0);
+        let n = unit(Vec3::new(0.3, 0.4, -0.5));
+        assert_eq!(frame.view_normal(n), full(&frame, n));
     }
 }
