@@ -220,8 +220,8 @@ impl<'a> StaticMesh<'a> {
     }
 
     /// The same mesh with each face's normal precomputed: `normals[f]` is
-    /// the unit normal of face `f`, as [`face_normals`] writes them. `Err` when there is not one for every
-    /// face.
+    /// the unit normal of face `f`, as [`face_normals`] writes them. `Err`
+    /// when there is not one for every face.
     pub const fn with_face_normals(self, normals: &'a [[f32; 3]]) -> Result<Self, MeshError> {
         if normals.len() != self.face_starts.len() {
             return Err(MeshError::BadNormals { face: None });

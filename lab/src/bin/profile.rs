@@ -12,8 +12,9 @@
 //! the reference view, each face's colour from `Shading::lambert()` in
 //! the frame (`--table`: from a table made once, as the bench before
 //! 2026-11-26 did), no culling (or `--cull back`), 24-bit depth (or
-//! `--depth z16`), every row copied into an Rgb565 frame buffer. The stages are functions the core and the
-//! front end keep out of line for this purpose; `--report` reads a
+//! `--depth z16`), every row copied into an Rgb565 frame buffer. The
+//! stages are functions the core and the front end keep out of line for
+//! this purpose; `--report` reads a
 //! callgrind file and prints each stage's share of the instructions spent
 //! in the frames (loading the mesh excluded), as a Markdown table:
 //!
@@ -78,8 +79,10 @@ fn frames<D: DepthFormat>(
     let model = reference_model(mesh, 30.0, 20.0).map_err(|e| e.to_string())?;
     let camera = Camera::reference(size.0, size.1);
     let shading = Shading::lambert();
-    // The bench's shading: each face's Lambert colour, computed once.
-    let table: Vec<Rgb565> = (0..mesh.face_count())
+    // `--table`: each face's Lambert colour, computed once (none is made
+    // for live shading).
+    let table_faces = if live_shading { 0 } else { mesh.face_count() };
+    let table: Vec<Rgb565> = (0..table_faces)
         .map(|f| {
             Rgb565::from(shading.color(&zline::FaceInfo::new(
                 f as u32,

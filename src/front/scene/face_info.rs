@@ -4,7 +4,7 @@
 use crate::front::fixed_point::FixedFrame;
 use crate::front::geometry::{Mat4, Vec3, newell_normal};
 use crate::front::mesh::Mesh;
-use crate::front::scene::transform::Frame;
+use crate::front::scene::transform::{Frame, normalised_view_normal};
 use crate::limits::NORMAL_SCALE;
 
 /// What a shading closure knows about a face. The face's index and side
@@ -139,12 +139,7 @@ impl FaceInfo<'_> {
 /// The view-space unit normal of a face from its corners (Newell's).
 fn mesh_normal(mesh: &dyn Mesh, corners: &[u16], model_view: &Mat4) -> Vec3 {
     let n = newell_normal(corners.iter().map(|&i| mesh.position(usize::from(i))));
-    view_normal(n, model_view)
-}
-
-/// A model-space normal `n` (any length) as a unit normal in view space.
-fn view_normal(n: Vec3, model_view: &Mat4) -> Vec3 {
-    model_view.transform_vector(n).normalized()
+    normalised_view_normal(n, model_view)
 }
 
 /// An integer normal in units of `1/32767` as a `f32` vector.

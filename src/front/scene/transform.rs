@@ -10,7 +10,7 @@ use core::cell::OnceCell;
 use crate::error::Error;
 use crate::front::clip::ClipPoint;
 use crate::front::fixed_point::FixedFrame;
-use crate::front::geometry::{Mat4, Vec3, Vec4, unit};
+use crate::front::geometry::{Mat4, Vec3, Vec4};
 use crate::front::mesh::{Mesh, QuantizedView};
 use crate::front::scene::camera::Camera;
 use crate::front::scene::cull::Cull;
@@ -120,7 +120,7 @@ fn similarity_inverse_scale(m: &Mat4) -> Option<f32> {
     let column = |j: usize| Vec3::new(m.m[0][j], m.m[1][j], m.m[2][j]);
     let [c0, c1, c2] = [column(0), column(1), column(2)];
     let squared = c0.dot(c0);
-    if !squared.is_normal() || !squared.is_finite() {
+    if !squared.is_normal() {
         return None;
     }
     let tolerance = squared * UNIT_TOLERANCE;
@@ -136,6 +136,12 @@ fn similarity_inverse_scale(m: &Mat4) -> Option<f32> {
     let s = 1.0 / libm::sqrtf(squared);
     let finite = [c0, c1, c2].iter().all(|c| (*c * s).is_finite());
     (s.is_normal() && finite).then_some(s)
+}
+
+/// A model-space normal `n` (any length) as a unit normal in view space:
+/// transformed by `model_view`, then normalised.
+pub(super) fn normalised_view_normal(n: Vec3, model_view: &Mat4) -> Vec3 {
+    model_view.transform_vector(n).normalized()
 }
 
 /// Per-draw constants.
@@ -243,14 +249,13 @@ impl Frame {
     /// A model-space normal `n` as a unit normal in view space. A unit `n`
     /// (as [`face_normals`](crate::face_normals) stores them) under a
     /// model-view that is a rotation with uniform scale is turned by the
-    /// rotation alone; any other is transformed and normalised.
+    /// rotation alone; any other is [`normalised_view_normal`].
     #[inline]
     pub(super) fn view_normal(&self, n: Vec3) -> Vec3 {
-        let turned = self.model_view.transform_vector(n);
         if self.inverse_scale != 0.0 && (n.dot(n) - 1.0).abs() <= UNIT_TOLERANCE {
-            turned * self.inverse_scale
+            self.model_view.transform_vector(n) * self.inverse_scale
         } else {
-            unit(turned)
+            normalised_view_normal(n, &self.model_view)
         }
     }
 
@@ -452,6 +457,7 @@ impl VertexSource for &[ProjectedVertex] {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::front::geometry::unit;
 
     fn similarity(scale: f32, yaw: f32, pitch: f32) -> Mat4 {
         Mat4::translation(Vec3::new(0.5, -2.0, -7.0))
