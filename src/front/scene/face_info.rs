@@ -23,14 +23,15 @@ pub struct FaceInfo<'a> {
 /// Where a [`FaceInfo`]'s normal and depth come from.
 #[derive(Clone, Copy)]
 enum FaceGeometry<'a> {
-    /// From the mesh, on demand; the normal the mesh stores for face
-    /// `face` ([`Mesh::face_normal`]) when `corners` are all of its
-    /// corners (a triangle of a bent face's fan has its own normal).
+    /// From the mesh, on demand: the normal the mesh stores for the face
+    /// ([`Mesh::face_normal`]) when `corners` are all of its corners (a
+    /// triangle of a bent face's fan has its own normal), else Newell's
+    /// of `corners`.
     Mesh {
         mesh: &'a dyn Mesh,
         corners: &'a [u16],
         frame: &'a Frame,
-        face: usize,
+        stored: Option<[f32; 3]>,
     },
     /// Given.
     Known { normal: Vec3, view_depth: f32 },
@@ -76,12 +77,10 @@ impl FaceInfo<'_> {
                 mesh,
                 corners,
                 frame,
-                face,
-            } => match mesh.face_normal(face) {
-                Some(n) if corners.len() == mesh.face(face).len() => {
-                    frame.view_normal(Vec3::from_array(n))
-                }
-                _ => mesh_normal(mesh, corners, &frame.model_view),
+                stored,
+            } => match stored {
+                Some(n) => frame.view_normal(Vec3::from_array(n)),
+                None => mesh_normal(mesh, corners, &frame.model_view),
             },
             FaceGeometry::Known { normal, .. } => normal,
             FaceGeometry::Quantized {
@@ -149,11 +148,13 @@ fn normal_vector_i32(n: [i32; 3]) -> Vec3 {
 }
 
 impl Frame {
-    /// What the shader may ask about a face.
+    /// What the shader may ask about a face: `face` of `mesh`, drawn as the
+    /// polygon of `corners`, which are all of the face's when `whole` (else
+    /// a triangle of its fan).
     pub(super) fn face_info<'a, M: Mesh>(
         &'a self,
         mesh: &'a M,
-        face: usize,
+        (face, whole): (usize, bool),
         corners: &'a [u16],
         front: bool,
     ) -> FaceInfo<'a> {
@@ -170,7 +171,7 @@ impl Frame {
                 mesh,
                 corners,
                 frame: self,
-                face,
+                stored: mesh.face_normal(face).filter(|_| whole),
             },
         };
         FaceInfo {

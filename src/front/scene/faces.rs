@@ -312,6 +312,7 @@ where
         stats: &mut stats,
         shade: &mut shade,
         planes: mesh.shared_planes(),
+        face_corners: 0,
     };
     let mut draw_face = |face: usize| {
         draw.face(face).map_err(|error| DrawError {
@@ -350,6 +351,9 @@ struct Draw<'a, T: ?Sized, M: ?Sized, S, P> {
     shade: &'a mut S,
     /// The mesh's shared planes not yet reached (sorted by face).
     planes: &'a [SharedPlane],
+    /// The number of corners of the face being drawn: a polygon of fewer
+    /// is a triangle of its fan.
+    face_corners: usize,
 }
 
 impl<C, T, M, S, P> Draw<'_, T, M, S, P>
@@ -362,6 +366,7 @@ where
 {
     fn face(&mut self, face: usize) -> Result<(), Error> {
         let corners = self.mesh.face(face);
+        self.face_corners = corners.len();
         if corners.len() > MAX_FACE_CORNERS {
             return Err(Error::TooManyCorners);
         }
@@ -419,9 +424,9 @@ where
                     return Ok(());
                 }
                 let (frame, mesh, stats) = (self.frame, self.mesh, &mut *self.stats);
-                let shade = &mut *self.shade;
+                let (shade, whole) = (&mut *self.shade, corners.len() == self.face_corners);
                 let admission = self.tables.offer_triangle(ids, |outline| {
-                    shade_front_face(frame, mesh, face, corners, outline, stats, shade)
+                    shade_front_face(frame, mesh, (face, whole), corners, outline, stats, shade)
                 })?;
                 self.count(face, admission)?;
                 return Ok(());
@@ -461,11 +466,11 @@ where
             }
         }
         let (frame, mesh, stats) = (self.frame, self.mesh, &mut *self.stats);
-        let shade = &mut *self.shade;
+        let (shade, whole) = (&mut *self.shade, corners.len() == self.face_corners);
         let slots = &self.slots;
         let ids = corners.iter().map(|&index| slots[usize::from(index)]);
         let admission = self.tables.offer_polygon(ids, |outline| {
-            shade_front_face(frame, mesh, face, corners, outline, stats, shade)
+            shade_front_face(frame, mesh, (face, whole), corners, outline, stats, shade)
         })?;
         self.count(face, admission)
     }
@@ -536,7 +541,7 @@ where
             let shade = &mut *self.shade;
             let admission = self.tables.offer_triangle(triangle, |_| {
                 *color.get_or_insert_with(|| {
-                    shade_front_face(frame, mesh, face, corners, &outline, stats, shade)
+                    shade_front_face(frame, mesh, (face, true), corners, &outline, stats, shade)
                 })
             })?;
             self.count(face, admission)?;
@@ -722,7 +727,8 @@ where
             return Ok(());
         }
         let (mesh, stats, shade) = (self.mesh, &mut *self.stats, &mut *self.shade);
-        let Some(color) = shade_front_face(frame, mesh, face, corners, &outline, stats, shade)
+        let whole = (face, corners.len() == self.face_corners);
+        let Some(color) = shade_front_face(frame, mesh, whole, corners, &outline, stats, shade)
         else {
             return Ok(());
         };
@@ -766,7 +772,7 @@ where
 fn shade_front_face<C, M: Mesh>(
     frame: &Frame,
     mesh: &M,
-    face: usize,
+    face: (usize, bool),
     corners: &[u16],
     outline: &Outline,
     stats: &mut DrawStats,

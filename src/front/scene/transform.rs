@@ -14,7 +14,7 @@ use crate::front::geometry::{Mat4, Vec3, Vec4};
 use crate::front::mesh::{Mesh, QuantizedView};
 use crate::front::scene::camera::Camera;
 use crate::front::scene::cull::Cull;
-use crate::limits::CLIP_BAND_PX;
+use crate::limits::{CLIP_BAND_PX, DEPTH_MAX, DEPTH_ONE, GUARD_BAND, SUBPIXEL_STEPS};
 use crate::raster::vertex::ScreenVertex;
 
 /// The `f32` front end's error on a vertex's distance to the near or far
@@ -340,14 +340,33 @@ impl Frame {
     }
 
     /// Screen vertex of a clip-space point inside the near, far and guard
-    /// planes.
+    /// planes: [`ScreenVertex::from_f32`] of its pixel position and depth,
+    /// with no branch (the same values, to the bit; tested below).
+    #[inline(always)]
     fn project(&self, p: Vec4) -> Option<ScreenVertex> {
         let inv_w = 1.0 / p.w;
         let x = (p.x * inv_w + 1.0) * 0.5 * self.width;
         let y = (1.0 - p.y * inv_w) * 0.5 * self.height;
         let z = ((p.z * inv_w + 1.0) * 0.5).clamp(0.0, 1.0);
-        ScreenVertex::from_f32(x, y, z).ok()
+        let (x, y) = (snap(x), snap(y));
+        let depth = ((z * DEPTH_ONE as f32 + 0.5) as u32).min(DEPTH_MAX);
+        // `snap`'s values within the guard band; NaN compares false.
+        let inside = |v: Option<i32>| v.is_some_and(|v| v.unsigned_abs() < GUARD_BAND as u32);
+        (inside(x) & inside(y) & (0.0..=1.0).contains(&z)).then(|| ScreenVertex {
+            x: x.unwrap_or_default(),
+            y: y.unwrap_or_default(),
+            z: depth,
+        })
     }
+}
+
+/// `pixels` on the sub-pixel grid, rounded half away from zero, as
+/// [`ScreenVertex::from_f32`] rounds it; `None` outside `±2^31`, or NaN.
+#[inline(always)]
+fn snap(pixels: f32) -> Option<i32> {
+    let scaled = pixels * SUBPIXEL_STEPS as f32;
+    let rounded = scaled + 0.5f32.copysign(scaled);
+    (rounded.abs() < 2147483648.0).then_some(rounded as i32)
 }
 
 /// Where one mesh vertex lands in a frame ([`project_vertices`]).
@@ -464,6 +483,60 @@ mod tests {
             .mul(&Mat4::rotation_x(pitch))
             .mul(&Mat4::rotation_y(yaw))
             .mul(&Mat4::scale(Vec3::new(scale, scale, scale)))
+    }
+
+    /// The projection's snapping gives what `ScreenVertex::from_f32`
+    /// gives, value for value: every kind of `f32` near the grid's
+    /// roundings, the guard band's edges and beyond, NaN and infinities.
+    #[test]
+    fn projection_rounds_as_from_f32() {
+        let camera = Camera::reference(64, 48);
+        let frame = Frame::new(&Mat4::IDENTITY, &camera, Cull::None, None);
+        let (w, h) = (frame.width, frame.height);
+        let mut values = std::vec::Vec::new();
+        for base in [
+            0.0f32,
+            0.5 / 256.0,
+            1.0 / 256.0,
+            3.0,
+            63.5,
+            8191.99,
+            8192.0,
+            1e9,
+        ] {
+            for sign in [1.0f32, -1.0] {
+                let v = base * sign;
+                values.push(v);
+                let mut up = v;
+                let mut down = v;
+                for _ in 0..4 {
+                    up = f32::from_bits(up.to_bits() + 1);
+                    down = f32::from_bits(down.to_bits().wrapping_sub(1));
+                    values.extend([up, down]);
+                }
+            }
+        }
+        values.extend([f32::NAN, f32::INFINITY, f32::NEG_INFINITY, -0.0]);
+        let mut next = 0x2545_f491u32;
+        for _ in 0..100_000 {
+            next ^= next << 13;
+            next ^= next >> 17;
+            next ^= next << 5;
+            values.push(f32::from_bits(next) % 9000.0);
+        }
+        for (k, &x) in values.iter().enumerate() {
+            let y = values[(k * 7 + 3) % values.len()];
+            let z = values[(k * 13 + 1) % values.len()].abs() % 1.5;
+            // The clip-space point that projects to (x, y, z) with w = 1.
+            let p = Vec4::new(2.0 * x / w - 1.0, 1.0 - 2.0 * y / h, 2.0 * z - 1.0, 1.0);
+            let (px, py) = ((p.x + 1.0) * 0.5 * w, (1.0 - p.y) * 0.5 * h);
+            let pz = ((p.z + 1.0) * 0.5).clamp(0.0, 1.0);
+            assert_eq!(
+                frame.project(p),
+                ScreenVertex::from_f32(px, py, pz).ok(),
+                "{x} {y} {z}"
+            );
+        }
     }
 
     /// A rotation times one scale gives its rotation: orthonormal rows
