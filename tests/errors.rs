@@ -154,14 +154,30 @@ fn active_tables_full_stop_the_frame_at_the_row() {
     assert_eq!(rows, [0, 1, 2, 3], "rows above the overflow were delivered");
 
     // Triangles keep their two active edges inline: AE = 0 is enough.
+    // (Nine pixels wide, so that they are stepped by their edges; small
+    // triangles have none.)
+    let wide = |x: f32| [vtx(x, 4.0, 0.5), vtx(x + 9.0, 4.0, 0.5), vtx(x, 8.0, 0.5)];
     let mut r: Renderer<TableArrays<u32, 16, 4, 16>, ScanArrays<u32, Depth16, 16, 4, 0>> =
         Renderer::with_height(16, 0).unwrap();
-    r.push_polygon_vertices(&tri(0.0, 4.0), 1).unwrap();
-    r.push_polygon_vertices(&tri(5.0, 4.0), 2).unwrap();
+    r.push_polygon_vertices(&wide(0.0), 1).unwrap();
+    r.push_polygon_vertices(&wide(5.0), 2).unwrap();
     let stats = r
         .render(&mut FnSink(|_: u16, _: &[u32], _: &[u16]| Ok::<(), ()>(())))
         .unwrap();
     assert_eq!((stats.peak_active_edges, stats.peak_pooled_edges), (4, 0));
+    // Small triangles (three pixels each way) hold none.
+    let small = |x: f32| [vtx(x, 4.0, 0.5), vtx(x + 3.0, 4.0, 0.5), vtx(x, 7.0, 0.5)];
+    let mut r: Renderer<TableArrays<u32, 16, 4, 16>, ScanArrays<u32, Depth16, 16, 4, 0>> =
+        Renderer::with_height(16, 0).unwrap();
+    r.push_polygon_vertices(&small(0.0), 1).unwrap();
+    r.push_polygon_vertices(&small(5.0), 2).unwrap();
+    let stats = r
+        .render(&mut FnSink(|_: u16, _: &[u32], _: &[u16]| Ok::<(), ()>(())))
+        .unwrap();
+    assert_eq!(
+        (stats.peak_active_polygons, stats.peak_active_edges),
+        (2, 0)
+    );
 
     // A U shape crosses rows 1..5 four times: two edges go to the pool,
     // which holds one.

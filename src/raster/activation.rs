@@ -8,11 +8,12 @@ use crate::arith::wide::{cross, mul_i64_small};
 use crate::error::Error;
 use crate::raster::BRANCH_FREE;
 use crate::raster::active::{ActivePolygon, NO_EDGE, NO_ROW, SpanDepth};
-use crate::raster::depth::{DepthFormat, IN_RANGE};
+use crate::raster::depth::{DepthFormat, IN_RANGE, NarrowRow};
 use crate::raster::edge::ActiveEdge;
 use crate::raster::entry_geometry::{entry_corners, for_each_edge, shared_depth, shared_plane_of};
 use crate::raster::fixed::first_sample_at_or_after;
 use crate::raster::plane::{Plane, TrianglePlane};
+use crate::raster::small::{SMALL_TRIANGLES, SmallCoverage};
 use crate::raster::span::{RowBuffers, SpanSource};
 use crate::raster::stepping::ScanState;
 use crate::raster::tables::entry::{PolygonEntry, entry_corner_ids};
@@ -141,6 +142,13 @@ impl<C: Copy> ScanState<'_, '_, C> {
         {
             return Ok(());
         }
+        if SMALL_TRIANGLES
+            && self.small_triangles
+            && !shared
+            && let Some(done) = self.activate_small(position, &polygon, [a, b, c], row, rows)
+        {
+            return done;
+        }
         // The plane passes through the corners: in range when they are
         // (see IN_RANGE).
         let in_range = [a.z, b.z, c.z].iter().all(|z| IN_RANGE.contains(z));
@@ -149,24 +157,7 @@ impl<C: Copy> ScanState<'_, '_, C> {
         // A band's scan may activate it further down.
         let rows_below = i32::from(row) - i32::from(polygon.first_row);
         let stepped = |dz_dx: i64, dz_dy: i64, first: i64| {
-            if D::NARROW
-                && in_range
-                && let Some(narrow) = D::narrow_row(first, dz_dx, dz_dy, rows_below)
-            {
-                return (SpanDepth::Narrow, Some(narrow));
-            }
-            let depth = SpanDepth::Stepped {
-                dz_dx,
-                dz_dy,
-                // 0 <= rows_below < 2^12, |dz_dy| < 2^40.
-                row_value: if rows_below == 0 {
-                    first
-                } else {
-                    first + mul_i64_small(dz_dy, rows_below)
-                },
-                accumulator: in_range.then(|| D::accumulator_step(dz_dx)).flatten(),
-            };
-            (depth, None)
+            stepped_depth::<D>((dz_dx, dz_dy, first), in_range, rows_below)
         };
         let own_plane = if shared {
             None
@@ -298,6 +289,67 @@ impl<C: Copy> ScanState<'_, '_, C> {
         true
     }
 
+    /// Enters a small triangle ([`SmallCoverage`]) activated on `row`,
+    /// with the depth set-up its edges would step, when it is in range:
+    /// drawn at once when that is the last row it covers, else into the
+    /// APT. `None` (nothing done) for a triangle that is not small, or
+    /// whose depth set-up is not a triangle's in range: its edges take it.
+    /// Out of line: the stepped path's state stays out of its registers.
+    #[inline(never)]
+    fn activate_small<D: DepthFormat>(
+        &mut self,
+        position: usize,
+        polygon: &PolygonEntry<C>,
+        corners: [ScreenVertex; 3],
+        row: u16,
+        rows: &mut RowBuffers<'_, C, D>,
+    ) -> Option<Result<(), Error>> {
+        let width = self.tables.width;
+        let coverage = SmallCoverage::new(corners, row, polygon.end_row - row, width)?;
+        if coverage.is_empty() {
+            return Some(Ok(()));
+        }
+        let [a, b, c] = corners;
+        let plane = TrianglePlane::new(a, b, c)?;
+        let in_range = [a.z, b.z, c.z].iter().all(|z| IN_RANGE.contains(z));
+        if !in_range {
+            return None;
+        }
+        let rows_below = i32::from(row) - i32::from(polygon.first_row);
+        let first = plane.row_start(polygon.first_row);
+        let depth = stepped_depth::<D>((plane.dz_dx, plane.dz_dy, first), true, rows_below);
+        if !matches!(
+            depth,
+            (SpanDepth::Narrow, Some(_))
+                | (
+                    SpanDepth::Stepped {
+                        accumulator: Some(_),
+                        ..
+                    },
+                    None
+                )
+        ) {
+            return None;
+        }
+        let set = |entry: &mut ActivePolygon<C>| {
+            let at = (position as u32, polygon.id() + 1, polygon.end_row);
+            entry.set_small(at, polygon.color, depth, coverage)
+        };
+        if coverage.is_last_row() {
+            // Its one row now, and no APT entry.
+            let mut entry = ActivePolygon::filler(polygon.color);
+            set(&mut entry);
+            self.fill_and_step(&mut entry, row, rows);
+            return Some(Ok(()));
+        }
+        Some(
+            self.active
+                .push_in_place(set)
+                .map(|_| ())
+                .map_err(|()| Error::ActivePolygonsFull { row }),
+        )
+    }
+
     /// Starts edges of the active polygon at `slot`: at its activation,
     /// every edge covering `row`; later, those starting on `row`.
     #[inline(never)]
@@ -337,6 +389,39 @@ impl<C: Copy> ScanState<'_, '_, C> {
         });
         result
     }
+}
+
+/// A stepped triangle's depth set-up on the row `rows_below` rows under
+/// its first, from its gradients and its plane's value at column 0 of its
+/// first row, `(dz_dx, dz_dy, first)`, and whether its corners are in
+/// range: a narrow row when the format has one and the triangle is in
+/// range, else the stepped plane (with the accumulator's step when in
+/// range). The one set-up both a triangle's edges and a small triangle's
+/// masks draw with.
+#[inline(always)]
+fn stepped_depth<D: DepthFormat>(
+    (dz_dx, dz_dy, first): (i64, i64, i64),
+    in_range: bool,
+    rows_below: i32,
+) -> (SpanDepth, Option<NarrowRow>) {
+    if D::NARROW
+        && in_range
+        && let Some(narrow) = D::narrow_row(first, dz_dx, dz_dy, rows_below)
+    {
+        return (SpanDepth::Narrow, Some(narrow));
+    }
+    let depth = SpanDepth::Stepped {
+        dz_dx,
+        dz_dy,
+        // 0 <= rows_below < 2^12, |dz_dy| < 2^40.
+        row_value: if rows_below == 0 {
+            first
+        } else {
+            first + mul_i64_small(dz_dy, rows_below)
+        },
+        accumulator: in_range.then(|| D::accumulator_step(dz_dx)).flatten(),
+    };
+    (depth, None)
 }
 
 /// A triangle's corners (with their vertex indices) sorted by y (stable:

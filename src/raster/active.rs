@@ -9,6 +9,7 @@
 use super::depth::NarrowRow;
 use super::edge::ActiveEdge;
 use super::slots::Slots;
+use super::small::SmallCoverage;
 
 /// End of an edge list in the pool.
 pub(crate) const NO_EDGE: u32 = u32::MAX;
@@ -84,7 +85,8 @@ pub struct ActivePolygon<C> {
     extra: u32,
     /// For a triangle waiting for its `switch_row`: the vertex-table
     /// indices of its middle and bottom corners, the ends of the lower
-    /// short edge.
+    /// short edge. For a small triangle, which has no edges: its coverage
+    /// ([`SmallCoverage::to_words`]).
     pub(crate) lower: [u16; 2],
 }
 
@@ -97,6 +99,10 @@ enum Shape {
     Triangle,
     /// A triangle whose depth is a narrow row (the common case).
     NarrowTriangle,
+    /// A small triangle: no edges; its coverage masks in `lower`, its
+    /// depth a triangle's in range (a narrow row, or stepped with an
+    /// accumulator).
+    Small,
 }
 
 /// No row: a triangle with no edge left to start.
@@ -181,16 +187,53 @@ impl<C: Copy> ActivePolygon<C> {
         self.lower = lower;
     }
 
+    /// Makes this entry a small triangle entering the APT: its depth
+    /// set-up (a triangle's in range) and its coverage. Written field by
+    /// field, as [`Self::set_triangle`].
+    #[inline]
+    pub(crate) fn set_small(
+        &mut self,
+        (position, key, end_row): (u32, u32, u16),
+        color: C,
+        (depth, narrow): (SpanDepth, Option<NarrowRow>),
+        coverage: SmallCoverage,
+    ) {
+        self.position = position;
+        self.key = key;
+        self.end_row = end_row;
+        self.color = color;
+        self.depth = depth;
+        if let Some(row) = narrow {
+            self.narrow = row;
+        }
+        self.shape = Shape::Small;
+        self.lower = coverage.to_words();
+    }
+
+    /// Whether this is a small triangle ([`Self::set_small`]).
+    #[inline]
+    pub(crate) fn is_small(&self) -> bool {
+        self.shape == Shape::Small
+    }
+
     /// A triangle's lower short edge taking the place of the upper one.
     #[inline]
     pub(crate) fn switch_short_edge(&mut self, lower: ActiveEdge) {
         self.pair[usize::from(self.short_side)] = lower;
     }
 
-    /// Whether this is a triangle (two ordered edges, no pool).
+    /// Whether this is a triangle (two ordered edges, or a small one with
+    /// none; no pool).
     #[inline]
     pub(crate) fn is_triangle(&self) -> bool {
         self.shape != Shape::Polygon
+    }
+
+    /// Whether this is a triangle stepped by its two edges whose depth
+    /// steps its plane's value (not a narrow row).
+    #[inline]
+    pub(crate) fn is_plane_stepped_triangle(&self) -> bool {
+        self.shape == Shape::Triangle
     }
 
     /// Whether this is a triangle whose depth is its `narrow` row.

@@ -40,6 +40,7 @@ pub(crate) mod lanes;
 pub(crate) mod plane;
 pub(crate) mod scan;
 pub(crate) mod slots;
+pub(crate) mod small;
 pub(crate) mod span;
 pub(crate) mod stats;
 pub(crate) mod stepping;

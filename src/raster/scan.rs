@@ -32,6 +32,7 @@ use crate::raster::active::{ActivePolygon, EdgePool};
 use crate::raster::depth::DepthFormat;
 use crate::raster::edge::ActiveEdge;
 use crate::raster::slots::{OrderedSlots, Slots};
+use crate::raster::small::SMALL_TRIANGLES;
 use crate::raster::span::{PixelWrite, RowBuffers};
 use crate::raster::stats::FrameStats;
 use crate::raster::stepping::ScanState;
@@ -175,7 +176,27 @@ where
     K: RowSink<S::Color, <S::Depth as DepthFormat>::Value>,
 {
     let background = scanner.background;
-    scan_rows::<S::Color, S::Depth, K>(tables, scanner.storage.parts_mut(), background, rows, sink)
+    let parts = scanner.storage.parts_mut();
+    scan_rows::<S::Color, S::Depth, K>(tables, parts, background, (rows, SMALL_TRIANGLES), sink)
+}
+
+/// [`scan`] with small triangles drawn from coverage masks or not (the
+/// rows are the same; the tests compare them).
+#[cfg(test)]
+pub(crate) fn scan_small_as<S, K>(
+    tables: &Prepared<'_, S::Color>,
+    scanner: &mut Scanner<S>,
+    rows: Range<u16>,
+    small_triangles: bool,
+    sink: &mut K,
+) -> Result<FrameStats, RenderError<K::Error>>
+where
+    S: ScanStorage,
+    K: RowSink<S::Color, <S::Depth as DepthFormat>::Value>,
+{
+    let background = scanner.background;
+    let parts = scanner.storage.parts_mut();
+    scan_rows::<S::Color, S::Depth, K>(tables, parts, background, (rows, small_triangles), sink)
 }
 
 /// [`scan`], capacity-erased: compiled once per colour, depth format and
@@ -186,7 +207,7 @@ fn scan_rows<C: Copy, D: DepthFormat, K: RowSink<C, D::Value>>(
     tables: &Prepared<'_, C>,
     parts: ScanParts<'_, C, D>,
     background: C,
-    rows: Range<u16>,
+    (rows, small_triangles): (Range<u16>, bool),
     sink: &mut K,
 ) -> Result<FrameStats, RenderError<K::Error>> {
     let width = usize::from(tables.width);
@@ -207,6 +228,7 @@ fn scan_rows<C: Copy, D: DepthFormat, K: RowSink<C, D::Value>>(
             degenerate: tables.degenerate,
             ..FrameStats::default()
         },
+        small_triangles,
     };
     let (depth_row, own_colors, key_row) = (
         &mut parts.depth_row[..width],

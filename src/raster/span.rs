@@ -8,6 +8,7 @@ use crate::raster::BRANCH_FREE;
 use crate::raster::depth::DepthFormat;
 use crate::raster::lanes::{LANES, block, fill_block};
 use crate::raster::plane::Plane;
+use crate::raster::small::SmallCoverage;
 
 /// The row being built: depth, colour and tie-break key per pixel.
 pub(crate) struct RowBuffers<'a, C, D: DepthFormat> {
@@ -94,6 +95,49 @@ impl<C: Copy, D: DepthFormat> RowBuffers<'_, C, D> {
                 *pixel = color;
             }
             acc = D::advance(acc, step);
+        }
+        true
+    }
+
+    /// Depth-tests and writes the samples a small triangle covers on this
+    /// row, by the row's write rule, each sample's depth from the
+    /// accumulator at its column (`accumulator_at`, as a span starting
+    /// there would take it); whether it covered any.
+    #[inline(always)]
+    pub(super) fn fill_lanes(
+        &mut self,
+        coverage: &SmallCoverage,
+        key: u32,
+        color: C,
+        accumulator_at: impl Fn(i32) -> (D::Accum, D::Accum),
+    ) -> bool {
+        let mut mask = coverage.row_mask();
+        if mask == 0 {
+            return false;
+        }
+        let column0 = usize::from(coverage.column0);
+        while mask != 0 {
+            let k = mask.trailing_zeros() as usize;
+            mask &= mask - 1;
+            let x = column0 + k;
+            let (Some(stored), Some(stored_key), Some(pixel)) = (
+                self.depth.get_mut(x),
+                self.key.get_mut(x),
+                self.color.get_mut(x),
+            ) else {
+                break;
+            };
+            let depth = D::value(accumulator_at(x as i32).0);
+            let wins = match self.write {
+                PixelWrite::NearerOrFirstAdded => {
+                    depth < *stored || (depth == *stored && depth != D::CLEAR && key < *stored_key)
+                }
+                PixelWrite::Nearer => depth < *stored,
+                PixelWrite::Overwrite => true,
+            };
+            if wins {
+                (*stored, *stored_key, *pixel) = (depth, key, color);
+            }
         }
         true
     }

@@ -11,6 +11,7 @@ use crate::raster::edge::ActiveEdge;
 use crate::raster::entry_geometry::polygon_plane;
 use crate::raster::fixed::first_sample_at_or_after;
 use crate::raster::slots::OrderedSlots;
+use crate::raster::small::SmallCoverage;
 use crate::raster::span::{RowBuffers, SpanSource};
 use crate::raster::stats::FrameStats;
 use crate::raster::tables::Prepared;
@@ -21,6 +22,10 @@ pub(crate) struct ScanState<'t, 'a, C> {
     pub active: OrderedSlots<'a, ActivePolygon<C>>,
     pub pool: EdgePool<'a>,
     pub stats: FrameStats,
+    /// Whether small triangles are drawn from coverage masks
+    /// ([`SMALL_TRIANGLES`](crate::raster::small::SMALL_TRIANGLES); the
+    /// tests take both ways and compare the rows).
+    pub small_triangles: bool,
 }
 
 impl<C: Copy> ScanState<'_, '_, C> {
@@ -132,7 +137,7 @@ fn fill_and_step_triangle<C: Copy, D: DepthFormat>(
         polygon.narrow.next_row();
         return Some(true);
     }
-    if !polygon.is_triangle() {
+    if !polygon.is_plane_stepped_triangle() {
         return None;
     }
     // Fields are read where they are used, not copied out first: on a
@@ -260,6 +265,9 @@ fn fill_and_step_general<C: Copy, D: DepthFormat>(
     row: u16,
     rows: &mut RowBuffers<'_, C, D>,
 ) -> bool {
+    if polygon.is_small() {
+        return fill_and_step_small(polygon, stats, rows);
+    }
     let source = match polygon.depth {
         SpanDepth::Stepped {
             dz_dx,
@@ -296,6 +304,46 @@ fn fill_and_step_general<C: Copy, D: DepthFormat>(
         *row_value += *dz_dy;
     }
     active
+}
+
+/// [`fill_and_step`] for a small triangle: the samples it covers on this
+/// row, each written with the depth its stepped span would give it (the
+/// accumulator at its column); then its masks and its depth step to the
+/// next row. Whether it covers a sample on a later row.
+#[inline(always)]
+fn fill_and_step_small<C: Copy, D: DepthFormat>(
+    polygon: &mut ActivePolygon<C>,
+    stats: &mut FrameStats,
+    rows: &mut RowBuffers<'_, C, D>,
+) -> bool {
+    let mut coverage = SmallCoverage::from_words(polygon.lower);
+    let (key, color, narrow) = (polygon.key, polygon.color, polygon.narrow);
+    let filled = match polygon.depth {
+        SpanDepth::Stepped {
+            dz_dx,
+            row_value,
+            accumulator: Some(step),
+            ..
+        } => rows.fill_lanes(&coverage, key, color, |column| {
+            D::accumulator_at(row_value, dz_dx, step, column)
+        }),
+        _ => rows.fill_lanes(&coverage, key, color, |column| {
+            D::narrow_at(&narrow, column)
+        }),
+    };
+    if filled {
+        stats.spans += 1;
+    }
+    let alive = !coverage.is_last_row();
+    coverage.next_row();
+    polygon.lower = coverage.to_words();
+    match &mut polygon.depth {
+        SpanDepth::Stepped {
+            row_value, dz_dy, ..
+        } => *row_value += *dz_dy,
+        _ => polygon.narrow.next_row(),
+    }
+    alive
 }
 
 /// [`fill_and_step`] for a polygon with a shared plane, out of line: each

@@ -24,6 +24,7 @@ use crate::raster::active::{ActivePolygon, EdgePool};
 use crate::raster::depth::DepthFormat;
 use crate::raster::edge::ActiveEdge;
 use crate::raster::slots::{OrderedSlots, Slots};
+use crate::raster::small::SMALL_TRIANGLES;
 use crate::raster::span::{PixelWrite, RowBuffers};
 use crate::raster::stats::FrameStats;
 use crate::raster::stepping::{ScanState, fill_and_step};
@@ -104,6 +105,7 @@ pub fn render_bands<C: Copy, D: DepthFormat, K: RowSink<C, D::Value>>(
         active: OrderedSlots::new(buffers.active, &mut slot_order),
         pool: EdgePool::new(Slots::new(buffers.pool, &mut pool_len)),
         stats: FrameStats::default(),
+        small_triangles: SMALL_TRIANGLES,
     };
     let mut stats = BandStats::default();
     let count = order.map_or(tables.polygons.len(), <[u32]>::len);
