@@ -71,6 +71,14 @@ pub enum Error {
     /// distance), or the projection is singular and has no frustum (for
     /// example a near and far plane whose product underflows `f32`).
     ClipRange,
+    /// A painted renderer's storage
+    /// ([`PaintStorage`](crate::paint::PaintStorage)) holds values for
+    /// fewer vertices than its vertex table, planes for fewer polygons than
+    /// its active polygon table, or a row narrower than the frame.
+    PaintStorageTooSmall,
+    /// A polygon was given a different number of corner values than
+    /// corners.
+    ValueCountMismatch,
 }
 
 impl fmt::Display for Error {
@@ -112,6 +120,13 @@ impl fmt::Display for Error {
                 "face too large for its distance from the eye to be clipped exactly \
                  (clip-space size over 2^28 times the near plane's w), or a singular projection",
             ),
+            Error::PaintStorageTooSmall => f.write_str(
+                "the paint storage holds fewer vertex values, active-polygon planes or \
+                 pixels than the renderer needs",
+            ),
+            Error::ValueCountMismatch => {
+                f.write_str("a polygon's corner values are not one per corner")
+            }
         }
     }
 }

@@ -75,6 +75,7 @@ mod arith;
 mod error;
 mod front;
 pub mod limits;
+pub mod paint;
 mod raster;
 mod renderer;
 mod sink;

@@ -36,14 +36,14 @@ impl<C: Copy> ScanState<'_, '_, C> {
     /// "activation" stage.)
     #[cfg_attr(feature = "profile", inline(never))]
     #[cfg_attr(not(feature = "profile"), inline(always))]
-    pub(crate) fn activate_polygon<D: DepthFormat>(
+    pub(crate) fn activate_polygon<D: DepthFormat, const AT_ONCE: bool>(
         &mut self,
         position: usize,
         row: u16,
         rows: &mut RowBuffers<'_, C, D>,
     ) -> Result<(), Error> {
         if self.tables.polygons[position].corner_count() == 3 {
-            self.activate_triangle(position, row, rows)
+            self.activate_triangle::<D, AT_ONCE>(position, row, rows)
         } else {
             self.activate_general(position, row)
         }
@@ -106,7 +106,7 @@ impl<C: Copy> ScanState<'_, '_, C> {
     /// the lower short edge waits for its `switch_row`. A triangle that
     /// covers this row alone is drawn at once and never enters the APT.
     #[inline(never)]
-    fn activate_triangle<D: DepthFormat>(
+    fn activate_triangle<D: DepthFormat, const AT_ONCE: bool>(
         &mut self,
         position: usize,
         row: u16,
@@ -135,7 +135,8 @@ impl<C: Copy> ScanState<'_, '_, C> {
         // stepped from its first row as one scan over the whole frame
         // steps it, where the tiny path's exact values could differ from
         // the stepped ones by one step of the depth format.
-        if !shared
+        if AT_ONCE
+            && !shared
             && polygon.end_row == row + 1
             && polygon.first_row == row
             && self.draw_tiny_row(a, b, c, &polygon, row, rows)
@@ -145,7 +146,8 @@ impl<C: Copy> ScanState<'_, '_, C> {
         if SMALL_TRIANGLES
             && self.small_triangles
             && !shared
-            && let Some(done) = self.activate_small(position, &polygon, [a, b, c], row, rows)
+            && let Some(done) =
+                self.activate_small::<D, AT_ONCE>(position, &polygon, [a, b, c], row, rows)
         {
             return done;
         }
@@ -235,7 +237,7 @@ impl<C: Copy> ScanState<'_, '_, C> {
         };
         self.stats.edges += 2;
         self.pool.live += 2;
-        if polygon.end_row == row + 1 {
+        if AT_ONCE && polygon.end_row == row + 1 {
             // One row: its span now, and no APT entry.
             let mut entry = ActivePolygon::filler(polygon.color);
             set(&mut entry);
@@ -296,7 +298,7 @@ impl<C: Copy> ScanState<'_, '_, C> {
     /// whose depth set-up is not a triangle's in range: its edges take it.
     /// Out of line: the stepped path's state stays out of its registers.
     #[inline(never)]
-    fn activate_small<D: DepthFormat>(
+    fn activate_small<D: DepthFormat, const AT_ONCE: bool>(
         &mut self,
         position: usize,
         polygon: &PolygonEntry<C>,
@@ -335,7 +337,7 @@ impl<C: Copy> ScanState<'_, '_, C> {
             let at = (position as u32, polygon.id() + 1, polygon.end_row);
             entry.set_small(at, polygon.color, depth, coverage)
         };
-        if coverage.is_last_row() {
+        if AT_ONCE && coverage.is_last_row() {
             // Its one row now, and no APT entry.
             let mut entry = ActivePolygon::filler(polygon.color);
             set(&mut entry);

@@ -30,6 +30,7 @@
 
 pub(crate) mod activation;
 pub(crate) mod active;
+pub(crate) mod attribute;
 pub(crate) mod capacities;
 pub(crate) mod depth;
 pub(crate) mod edge;
@@ -37,6 +38,7 @@ pub(crate) mod entry_geometry;
 pub(crate) mod fixed;
 pub mod inspect;
 pub(crate) mod lanes;
+pub mod paint;
 pub(crate) mod plane;
 pub(crate) mod scan;
 pub(crate) mod slots;

@@ -116,6 +116,30 @@ impl Plane {
         })
     }
 
+    /// The plane through the same corners (the same `x` and `y`, in the
+    /// same order) with other values in place of depth: Newell's `a` and
+    /// `b` anew, `c` and its reciprocal kept (they depend on `x` and `y`
+    /// alone). The ranges are depth's: values `0..=DEPTH_MAX`.
+    pub fn with_values(&self, corners: impl IntoIterator<Item = ScreenVertex>) -> Self {
+        let (a, b, c, origin) = newell(corners);
+        debug_assert_eq!(
+            (c, origin.x, origin.y),
+            (self.c, self.origin.x, self.origin.y)
+        );
+        Self {
+            a,
+            b,
+            c: self.c,
+            recip: self.recip,
+            origin,
+        }
+    }
+
+    /// Corner 0, where the plane is anchored.
+    pub fn origin(&self) -> ScreenVertex {
+        self.origin
+    }
+
     /// The plane of a triangle through corner `o` (the same arithmetic as
     /// [`Self::new`] over `[o, p, q]`); `None` when its area is zero.
     #[inline]

@@ -157,6 +157,11 @@ impl<S: ScanStorage> Scanner<S> {
     pub fn row_capacity(&mut self) -> usize {
         self.storage.parts_mut().depth_row.len()
     }
+
+    /// Its storage.
+    pub(crate) fn storage_mut(&mut self) -> &mut S {
+        &mut self.storage
+    }
 }
 
 /// Scans `rows` (clipped to the frame) of prepared tables with `scanner`
@@ -278,7 +283,7 @@ fn scan_rows<C: Copy, D: DepthFormat, K: RowSink<C, D::Value>>(
             // at its first row, with the edges covering it.
             for (position, polygon) in polygons[..next_polygon].iter().enumerate() {
                 if polygon.end_row > first {
-                    state.activate_polygon(position, first, &mut row_buffers)?;
+                    state.activate_polygon::<D, true>(position, first, &mut row_buffers)?;
                 }
             }
         }
@@ -286,23 +291,13 @@ fn scan_rows<C: Copy, D: DepthFormat, K: RowSink<C, D::Value>>(
             .get(next_polygon)
             .is_some_and(|p| p.first_row == row)
         {
-            state.activate_polygon(next_polygon, row, &mut row_buffers)?;
+            state.activate_polygon::<D, true>(next_polygon, row, &mut row_buffers)?;
             next_polygon += 1;
         }
         while let Some(entry) = tables.edges.get(next_edge).filter(|e| e.row() == row) {
             next_edge += 1;
-            let position = entry.position() as u32;
             let slot = state
-                .active
-                .live_slots()
-                .iter()
-                .map(|&slot| usize::from(slot))
-                .find(|&slot| {
-                    state
-                        .active
-                        .get(slot)
-                        .is_some_and(|a| a.position == position)
-                })
+                .find_slot(entry.position() as u32)
                 .ok_or(Error::ActivePolygonsFull { row })?;
             state.activate_edges(slot, row, false)?;
         }

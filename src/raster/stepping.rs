@@ -48,6 +48,21 @@ impl<C: Copy> ScanState<'_, '_, C> {
         )
     }
 
+    /// The slot of the active polygon at `position` of the polygon
+    /// table, if it is active.
+    #[inline]
+    pub(super) fn find_slot(&self, position: u32) -> Option<usize> {
+        self.active
+            .live_slots()
+            .iter()
+            .map(|&slot| usize::from(slot))
+            .find(|&slot| {
+                self.active
+                    .get(slot)
+                    .is_some_and(|a| a.position == position)
+            })
+    }
+
     pub(super) fn note_peaks(&mut self) {
         let s = &mut self.stats;
         s.peak_active_polygons = s.peak_active_polygons.max(self.active.len() as u32);

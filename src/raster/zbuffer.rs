@@ -192,7 +192,7 @@ fn draw_rows<C: Copy, D: DepthFormat>(
     // Row `y` of the band, as the scanline's row buffers.
     let at = |y: u16| usize::from(y - y0) * width;
     let mut y = rows.start;
-    state.activate_polygon(
+    state.activate_polygon::<D, true>(
         position,
         y,
         &mut band_row::<C, D>((depth, color, scratch), at(y), width, write),

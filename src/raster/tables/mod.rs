@@ -28,7 +28,7 @@
 mod state;
 
 mod admission;
-pub(super) mod entry;
+pub(crate) mod entry;
 mod prepare;
 mod storage;
 

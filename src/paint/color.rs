@@ -1,0 +1,135 @@
+//! Colours from painted values: each channel arrives as an 8.8 fixed-point
+//! value (`0..=`[`CHANNEL_MAX`], 255.0 at the top) and is quantised to the
+//! colour's own channel depth, rounded to the nearest level, or with an
+//! ordered dither ([`bayer_threshold`]) that trades banding for a fine
+//! pattern where the colour has fewer than 8 bits a channel.
+
+use embedded_graphics_core::pixelcolor::{
+    Bgr555, Bgr565, Bgr666, Bgr888, Rgb555, Rgb565, Rgb666, Rgb888,
+};
+
+/// 255.0 in a painted channel's 8.8 fixed point.
+pub const CHANNEL_MAX: u32 = 255 << 8;
+
+/// The rounding offset of a channel quantised without dither: half a
+/// level, so a channel rounds to the nearest level (ties up). An exact
+/// 8-bit input `c` then gives embedded-graphics' own conversion,
+/// `floor((c·max + 127) / 255)`: `c·max + 127.5` crosses a multiple of 255
+/// exactly where `c·max + 127` does, both sides being integers and halves.
+const NEAREST: u32 = CHANNEL_MAX / 2;
+
+/// A colour a painted row can hold, made from three 8.8 channels.
+pub trait PaintColor: Copy {
+    /// Whether a channel has fewer than 8 bits, so that dithering can help.
+    const COARSE: bool;
+
+    /// The colour of channels `rgb` (each `0..=`[`CHANNEL_MAX`]; larger
+    /// values are taken as [`CHANNEL_MAX`]), each rounded to the nearest
+    /// level when `threshold` is `None`, else raised to the next level
+    /// where its fraction of a level exceeds `threshold / 65,280`
+    /// ([`bayer_threshold`]).
+    fn from_channels(rgb: [u32; 3], threshold: Option<u32>) -> Self;
+}
+
+/// `v` (8.8, at most [`CHANNEL_MAX`]) quantised to `0..=max` with the
+/// offset `t` (`0..65,280`): `floor((v·max + t) / 65,280)`.
+///
+/// Ranges: `v·max <= 65,280·255 < 2^24`, plus `t < 2^16`.
+#[inline(always)]
+fn level(v: u32, max: u32, t: u32) -> u32 {
+    (v.min(CHANNEL_MAX) * max + t) / CHANNEL_MAX
+}
+
+/// The ordered-dither threshold of pixel `(x, y)`: the 4x4 Bayer matrix's
+/// entry `b` as the offset `(2b + 1)·65,280 / 32` for [`level`], so that
+/// the sixteen thresholds of a 4x4 block are spread evenly over a level
+/// and average half of it (the rounding of no dither).
+#[inline(always)]
+pub fn bayer_threshold(x: u16, y: u16) -> u32 {
+    const BAYER: [[u8; 4]; 4] = [[0, 8, 2, 10], [12, 4, 14, 6], [3, 11, 1, 9], [15, 7, 13, 5]];
+    let b = u32::from(BAYER[usize::from(y & 3)][usize::from(x & 3)]);
+    (2 * b + 1) * (CHANNEL_MAX / 32)
+}
+
+macro_rules! paint_color {
+    ($($color:ty: $r:expr, $g:expr, $b:expr;)*) => {$(
+        impl PaintColor for $color {
+            const COARSE: bool = $r < 255 || $g < 255 || $b < 255;
+
+            #[inline(always)]
+            fn from_channels(rgb: [u32; 3], threshold: Option<u32>) -> Self {
+                let t = threshold.unwrap_or(NEAREST);
+                <$color>::new(
+                    level(rgb[0], $r, t) as u8,
+                    level(rgb[1], $g, t) as u8,
+                    level(rgb[2], $b, t) as u8,
+                )
+            }
+        }
+    )*};
+}
+
+paint_color! {
+    Rgb565: 31, 63, 31;
+    Bgr565: 31, 63, 31;
+    Rgb555: 31, 31, 31;
+    Bgr555: 31, 31, 31;
+    Rgb666: 63, 63, 63;
+    Bgr666: 63, 63, 63;
+    Rgb888: 255, 255, 255;
+    Bgr888: 255, 255, 255;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use embedded_graphics_core::pixelcolor::RgbColor;
+
+    /// Without dither, an exact 8-bit channel converts as
+    /// embedded-graphics converts `Rgb888`, for every value.
+    #[test]
+    fn exact_channels_convert_as_embedded_graphics() {
+        for c in 0..=255u8 {
+            let v = u32::from(c) << 8;
+            let ours = Rgb565::from_channels([v, v, v], None);
+            assert_eq!(ours, Rgb565::from(Rgb888::new(c, c, c)), "{c}");
+            assert_eq!(Rgb888::from_channels([v, v, v], None), Rgb888::new(c, c, c));
+        }
+    }
+
+    /// Without dither a channel rounds to the nearest level; the top and
+    /// values beyond it give the top level.
+    #[test]
+    fn channels_round_to_the_nearest_level() {
+        for v in (0..=CHANNEL_MAX).step_by(7) {
+            let exact = f64::from(v) / 256.0 * 31.0 / 255.0;
+            let got = f64::from(Rgb565::from_channels([v, 0, 0], None).r());
+            assert!((got - exact).abs() <= 0.5 + 1e-9, "{v}: {got} for {exact}");
+        }
+        assert_eq!(Rgb565::from_channels([u32::MAX; 3], None), Rgb565::WHITE);
+        assert_eq!(Rgb565::from_channels([u32::MAX; 3], Some(0)), Rgb565::WHITE);
+    }
+
+    /// Dithered, a 4x4 block averages to the exact level within 1/16 of a
+    /// level (the matrix has 16 thresholds), and each pixel is one of the
+    /// two levels around it.
+    #[test]
+    fn a_dithered_block_averages_to_the_value() {
+        for v in (0..=CHANNEL_MAX).step_by(13) {
+            let exact = f64::from(v) / 256.0 * 31.0 / 255.0;
+            let mut sum = 0.0;
+            for y in 0..4 {
+                for x in 0..4 {
+                    let c = Rgb565::from_channels([v, 0, 0], Some(bayer_threshold(x, y)));
+                    let level = f64::from(c.r());
+                    assert!(level == exact.floor() || level == exact.ceil(), "{v}");
+                    sum += level;
+                }
+            }
+            assert!(
+                (sum / 16.0 - exact).abs() <= 1.0 / 16.0 + 1e-9,
+                "{v}: {sum}"
+            );
+        }
+    }
+}

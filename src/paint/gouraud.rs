@@ -1,0 +1,182 @@
+//! Gouraud shading: a colour at each vertex, each channel interpolated
+//! over the polygon as an attribute plane (affine in screen space, as
+//! classic Gouraud shading is: no division per pixel), then quantised to
+//! the row's colour, with an ordered dither where it has fewer than 8
+//! bits a channel (on by default there).
+
+use core::marker::PhantomData;
+
+use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
+
+use crate::paint::PaintMode;
+use crate::paint::color::{CHANNEL_MAX, PaintColor, bayer_threshold};
+use crate::raster::attribute::{
+    ATTRIBUTE_FRAC_BITS, AttributePlane, attribute_planes, exact_value_at,
+};
+use crate::raster::vertex::ScreenVertex;
+
+/// A vertex colour in 8.8 fixed point per channel: `0x0000` is 0 and
+/// `0xFF00` is 255 (values above are taken as 255), so shading computed
+/// per vertex keeps 8 bits below the 8-bit step.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
+pub struct Rgb8p8 {
+    /// Red.
+    pub r: u16,
+    /// Green.
+    pub g: u16,
+    /// Blue.
+    pub b: u16,
+}
+
+impl Rgb8p8 {
+    /// Black.
+    pub const BLACK: Self = Self { r: 0, g: 0, b: 0 };
+
+    /// An 8-bit colour, exactly.
+    pub fn from_rgb888(c: Rgb888) -> Self {
+        Self {
+            r: (c.r() as u16) << 8,
+            g: (c.g() as u16) << 8,
+            b: (c.b() as u16) << 8,
+        }
+    }
+
+    /// Channels in `[0, 1]` (values beyond are clamped; NaN is 0), rounded
+    /// to the nearest 1/256 of an 8-bit step.
+    pub fn from_unit(rgb: [f32; 3]) -> Self {
+        let channel = |v: f32| {
+            let scaled = v.clamp(0.0, 1.0) * CHANNEL_MAX as f32 + 0.5;
+            // `as` saturates, and NaN becomes 0.
+            scaled as u16
+        };
+        Self {
+            r: channel(rgb[0]),
+            g: channel(rgb[1]),
+            b: channel(rgb[2]),
+        }
+    }
+
+    /// The channels as attribute values.
+    fn values(self) -> [u32; 3] {
+        [u32::from(self.r), u32::from(self.g), u32::from(self.b)]
+    }
+}
+
+impl From<Rgb888> for Rgb8p8 {
+    fn from(c: Rgb888) -> Self {
+        Self::from_rgb888(c)
+    }
+}
+
+/// The planes of a Gouraud-shaded polygon: one per channel.
+pub type GouraudPlanes = [AttributePlane; 3];
+
+/// Gouraud shading into colours `C`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Gouraud<C> {
+    dither: bool,
+    color: PhantomData<C>,
+}
+
+impl<C: PaintColor> Gouraud<C> {
+    /// Gouraud shading, dithered where `C` has fewer than 8 bits a channel
+    /// (`Rgb565`: gradients would band visibly), not where it has 8.
+    pub const fn new() -> Self {
+        Self::with_dither(C::COARSE)
+    }
+
+    /// Gouraud shading, dithered or not.
+    pub const fn with_dither(dither: bool) -> Self {
+        Self {
+            dither,
+            color: PhantomData,
+        }
+    }
+
+    /// Whether it dithers.
+    pub const fn dithers(&self) -> bool {
+        self.dither
+    }
+}
+
+impl<C: PaintColor> Default for Gouraud<C> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// A plane value (plane units) as a channel: rounded to 8.8, clamped to
+/// `0..=`[`CHANNEL_MAX`] (a pixel inside the polygon is off its corners'
+/// range by at most the plane's error, below 2^-4 of a value step).
+#[inline(always)]
+fn channel(value: i64) -> u32 {
+    let rounded = (value + (1 << (ATTRIBUTE_FRAC_BITS - 1))) >> ATTRIBUTE_FRAC_BITS;
+    rounded.clamp(0, i64::from(CHANNEL_MAX)) as u32
+}
+
+impl<C: PaintColor> PaintMode for Gouraud<C> {
+    type Vertex = Rgb8p8;
+    type Planes = GouraudPlanes;
+    type Color = C;
+    const VERTEX_FILLER: Rgb8p8 = Rgb8p8::BLACK;
+    const PLANES_FILLER: GouraudPlanes = [AttributePlane::ZERO; 3];
+
+    fn planes(
+        &self,
+        corners: impl Iterator<Item = (ScreenVertex, Rgb8p8)> + Clone,
+        width: u16,
+        height: u16,
+    ) -> GouraudPlanes {
+        attribute_planes(corners.map(|(v, c)| (v, c.values())), width, height).unwrap_or_default()
+    }
+
+    #[inline]
+    fn paint_run(
+        &self,
+        planes: &GouraudPlanes,
+        corners: impl Iterator<Item = (ScreenVertex, Rgb8p8)> + Clone,
+        x0: u16,
+        y: u16,
+        out: &mut [C],
+    ) {
+        if planes.iter().any(AttributePlane::is_steep) {
+            return self.paint_steep(planes, corners, x0, y, out);
+        }
+        let [r, g, b] = planes;
+        let (mut vr, mut vg, mut vb) = (r.value_at(x0, y), g.value_at(x0, y), b.value_at(x0, y));
+        for (x, pixel) in (x0..).zip(out) {
+            let threshold = self.dither.then(|| bayer_threshold(x, y));
+            *pixel = C::from_channels([channel(vr), channel(vg), channel(vb)], threshold);
+            (vr, vg, vb) = (vr + r.dx, vg + g.dx, vb + b.dx);
+        }
+    }
+}
+
+impl<C: PaintColor> Gouraud<C> {
+    /// [`PaintMode::paint_run`] for a polygon with a steep plane: its
+    /// channels' exact values at each pixel (rare: slivers narrower than
+    /// a sub-pixel step).
+    #[inline(never)]
+    fn paint_steep(
+        &self,
+        planes: &GouraudPlanes,
+        corners: impl Iterator<Item = (ScreenVertex, Rgb8p8)> + Clone,
+        x0: u16,
+        y: u16,
+        out: &mut [C],
+    ) {
+        let values = corners.map(|(v, c)| (v, c.values()));
+        for (x, pixel) in (x0..).zip(out) {
+            let rgb: [u32; 3] = core::array::from_fn(|k| {
+                let value = if planes[k].is_steep() {
+                    exact_value_at(values.clone(), k, x, y)
+                } else {
+                    planes[k].value_at(x, y)
+                };
+                channel(value)
+            });
+            let threshold = self.dither.then(|| bayer_threshold(x, y));
+            *pixel = C::from_channels(rgb, threshold);
+        }
+    }
+}

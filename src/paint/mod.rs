@@ -1,0 +1,134 @@
+//! Smooth shading and textures: modes that paint each visible pixel from
+//! planes of values given at a polygon's corners, after visibility is
+//! decided (see [`crate::raster::paint`]): each pixel is shaded once,
+//! however many polygons covered it.
+//!
+//! * [`PaintMode`]: what a vertex carries, the planes a polygon gets from
+//!   its corners, and how a run of pixels is painted from them;
+//!   [`Gouraud`] (a colour per vertex, interpolated);
+//! * [`PaintColor`]: the colours a painted row can hold, quantised from
+//!   8.8 fixed-point channels, with an ordered dither ([`bayer_threshold`]);
+//! * [`PaintStorage`] and [`PaintArrays`]: the values of the vertex table,
+//!   the planes of the active polygons and the painted row;
+//!   [`PaintedRenderer`] joins them to a [`Renderer`](crate::Renderer).
+
+mod color;
+mod gouraud;
+mod renderer;
+mod storage;
+
+pub use color::{CHANNEL_MAX, PaintColor, bayer_threshold};
+pub use gouraud::{Gouraud, GouraudPlanes, Rgb8p8};
+pub use renderer::PaintedRenderer;
+pub use storage::{PaintArrays, PaintParts, PaintStorage, SlotPlanes};
+
+use crate::raster::paint::{NO_SLOT, RowPainter};
+use crate::raster::tables::Prepared;
+use crate::raster::tables::entry::entry_corner_ids;
+use crate::raster::vertex::ScreenVertex;
+
+/// A way of painting polygons from values at their corners.
+pub trait PaintMode {
+    /// What each vertex of the vertex table carries.
+    type Vertex: Copy;
+    /// What an active polygon holds to paint its pixels: its planes.
+    type Planes: Copy;
+    /// The colour painted.
+    type Color: Copy;
+    /// A value of [`Self::Vertex`] to fill storage with.
+    const VERTEX_FILLER: Self::Vertex;
+    /// A value of [`Self::Planes`] to fill storage with.
+    const PLANES_FILLER: Self::Planes;
+
+    /// The planes of a polygon, from its corners (position and value, in
+    /// order), in a frame `width` x `height`. A polygon of zero area (never
+    /// queued) may get any planes.
+    fn planes(
+        &self,
+        corners: impl Iterator<Item = (ScreenVertex, Self::Vertex)> + Clone,
+        width: u16,
+        height: u16,
+    ) -> Self::Planes;
+
+    /// Paints `out`, the pixels from column `x0` on of row `y`, all won by
+    /// the polygon with these `planes` and `corners` (from which a steep
+    /// plane's exact values are taken).
+    fn paint_run(
+        &self,
+        planes: &Self::Planes,
+        corners: impl Iterator<Item = (ScreenVertex, Self::Vertex)> + Clone,
+        x0: u16,
+        y: u16,
+        out: &mut [Self::Color],
+    );
+}
+
+/// A [`RowPainter`] from a [`PaintMode`] over [`PaintParts`].
+pub(crate) struct Painter<'a, M: PaintMode> {
+    pub mode: &'a M,
+    /// The values of the vertex table's vertices.
+    pub vertices: &'a [M::Vertex],
+    /// The planes of the polygons in each APT slot.
+    pub slots: &'a mut [SlotPlanes<M::Planes>],
+    pub background: M::Color,
+}
+
+impl<M: PaintMode> Painter<'_, M> {
+    /// The corners of the polygon at `position`, with their values.
+    #[inline]
+    fn corners<'t>(
+        vertices: &'t [M::Vertex],
+        tables: &'t Prepared<'t, u16>,
+        position: usize,
+    ) -> impl Iterator<Item = (ScreenVertex, M::Vertex)> + Clone + 't {
+        let ids: &[u16] = match tables.polygons.get(position) {
+            Some(polygon) => entry_corner_ids(polygon, tables.corners),
+            None => &[],
+        };
+        ids.iter().filter_map(move |&id| {
+            let id = usize::from(id);
+            Some((*tables.vertices.get(id)?, *vertices.get(id)?))
+        })
+    }
+}
+
+impl<M: PaintMode> RowPainter for Painter<'_, M> {
+    type Color = M::Color;
+
+    fn enter(&mut self, slot: usize, position: usize, _row: u16, tables: &Prepared<'_, u16>) {
+        let corners = Self::corners(self.vertices, tables, position);
+        let planes = self.mode.planes(corners, tables.width, tables.height);
+        if let Some(entry) = self.slots.get_mut(slot) {
+            *entry = SlotPlanes {
+                position: position as u32,
+                planes,
+            };
+        }
+    }
+
+    fn paint(&self, row: u16, slots: &[u16], tables: &Prepared<'_, u16>, out: &mut [M::Color]) {
+        let width = slots.len().min(out.len());
+        let mut x = 0;
+        while x < width {
+            let slot = slots[x];
+            let mut end = x + 1;
+            while end < width && slots[end] == slot {
+                end += 1;
+            }
+            let run = &mut out[x..end];
+            match self.slots.get(usize::from(slot)) {
+                Some(entry) if slot != NO_SLOT => {
+                    let corners = Self::corners(self.vertices, tables, entry.position as usize);
+                    self.mode
+                        .paint_run(&entry.planes, corners, x as u16, row, run);
+                }
+                _ => run.fill(self.background),
+            }
+            x = end;
+        }
+    }
+
+    fn background(&self) -> M::Color {
+        self.background
+    }
+}

@@ -1,0 +1,291 @@
+//! Attribute planes: a value given at each corner of a polygon (a colour
+//! channel, a texture coordinate divided by `w`, `1/w` itself),
+//! interpolated over the polygon as a plane in screen space, set up as its
+//! depth is: Newell's plane through the corners with the value in place of
+//! depth ([`Plane`]), gradients rounded once to plane units
+//! (`2^-16` of a value step), and the plane's exactly rounded value at one
+//! anchor pixel.
+//!
+//! A painted row (see [`crate::raster::paint`]) evaluates the plane at the
+//! first pixel of each run of pixels its polygon won and steps it along
+//! the run. Both are the same sum: the value at pixel `(x, y)` is
+//! `at_origin + dx·x + dy·y` in integers, with `at_origin` the anchor's
+//! value moved to pixel `(0, 0)` exactly. So it is off the exact plane by
+//! at most half a plane unit for the anchor and half a unit per pixel
+//! stepped from it in x and in y: `2^-17·(1 + |x - x_a| + |y - y_a|)`
+//! value steps, below `2^-4` anywhere in a frame (`|x - x_a|, |y - y_a| <
+//! 2^12`, the anchor being the pixel of corner 0 clamped to the frame).
+//!
+//! A plane whose gradient reaches [`STEEP_GRADIENT`] (the whole value
+//! range within one pixel: a sliver narrower than a sub-pixel step) is not
+//! stepped: each of its pixels takes the plane's exactly rounded value,
+//! recomputed from the corners ([`AttributePlane::STEEP`]).
+//!
+//! # Ranges
+//! Values are `0..=`[`VALUE_MAX`] (`2^24 - 1`), depth's own range, so every
+//! bound of [`Plane`] holds as proven there (corners in the guard band):
+//!
+//! | quantity | bound | held in |
+//! |---|---|---|
+//! | gradient `dx`, `dy` (else steep) | `< 2^40` plane units per pixel | `i64` |
+//! | value at the anchor (within `2^14` px of corner 0, so of a value in range) | `< 2^40 + 2^54` | `i64` |
+//! | `at_origin` (anchor `< 2^12`) | `< 2^40 + 2^54 + 2^53` | `i64` |
+//! | value at any pixel of the frame | `< 2^56` | `i64` |
+
+use crate::arith::wide::mul_i64_small;
+use crate::limits::{DEPTH_MAX, PLANE_FRAC_BITS, SUBPIXEL_BITS};
+use crate::raster::plane::{Plane, STEEP_GRADIENT};
+use crate::raster::vertex::ScreenVertex;
+
+/// Largest attribute value a corner may have.
+pub const VALUE_MAX: u32 = DEPTH_MAX;
+
+/// Fractional bits of an attribute plane's values over a corner's value:
+/// a pixel's value is `value · 2^PLANE_FRAC_BITS`.
+pub const ATTRIBUTE_FRAC_BITS: u32 = PLANE_FRAC_BITS;
+
+/// One attribute over one polygon: its value at pixel `(x, y)` is
+/// `at_origin + dx·x + dy·y` in plane units ([`Self::value_at`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct AttributePlane {
+    /// The plane's value moved to the sample of pixel `(0, 0)` (it may lie
+    /// far outside the polygon; only values at its pixels are used).
+    pub at_origin: i64,
+    /// Change per pixel to the right.
+    pub dx: i64,
+    /// Change per row down.
+    pub dy: i64,
+}
+
+impl AttributePlane {
+    /// The plane of value 0 everywhere.
+    pub const ZERO: Self = Self {
+        at_origin: 0,
+        dx: 0,
+        dy: 0,
+    };
+
+    /// The marker of a steep plane: never a stepped plane (its gradient
+    /// would be `2^63 - 1`), it says each pixel's value is to be computed
+    /// from the corners ([`exact_value_at`]).
+    pub const STEEP: Self = Self {
+        at_origin: 0,
+        dx: i64::MAX,
+        dy: 0,
+    };
+
+    /// Whether this is [`Self::STEEP`].
+    #[inline(always)]
+    pub fn is_steep(&self) -> bool {
+        self.dx == i64::MAX
+    }
+
+    /// The value at pixel `(x, y)` in plane units (`x, y < 2^12`).
+    #[inline(always)]
+    pub fn value_at(&self, x: u16, y: u16) -> i64 {
+        self.at_origin + mul_i64_small(self.dx, i32::from(x)) + mul_i64_small(self.dy, i32::from(y))
+    }
+}
+
+/// The planes of `N` attributes over a polygon, from its corners, each
+/// with its `N` values (each at most [`VALUE_MAX`]; a larger one is taken
+/// as [`VALUE_MAX`]), in a frame `width` x `height`; `None` when the
+/// polygon's projected area is zero. The depth plane's set-up, shared by
+/// the `N` planes: one division set-up for all.
+pub fn attribute_planes<const N: usize>(
+    corners: impl Iterator<Item = (ScreenVertex, [u32; N])> + Clone,
+    width: u16,
+    height: u16,
+) -> Option<[AttributePlane; N]> {
+    let shape = Plane::new(corners.clone().map(|(v, _)| ScreenVertex { z: 0, ..v }))?;
+    let (anchor_x, anchor_y) = anchor(&shape, width, height);
+    let mut planes = [AttributePlane::default(); N];
+    for (k, plane) in planes.iter_mut().enumerate() {
+        let values = corners.clone().map(|(v, values)| ScreenVertex {
+            z: values[k].min(VALUE_MAX),
+            ..v
+        });
+        let attribute = shape.with_values(values);
+        *plane = match attribute.gradients() {
+            Some((dx, dy)) => {
+                let anchor = attribute.value_at_pixel(anchor_x, anchor_y);
+                AttributePlane {
+                    at_origin: anchor - mul_i64_small(dx, anchor_x) - mul_i64_small(dy, anchor_y),
+                    dx,
+                    dy,
+                }
+            }
+            None => AttributePlane::STEEP,
+        };
+    }
+    Some(planes)
+}
+
+/// The exactly rounded value of attribute `k` at pixel `(x, y)` of the
+/// polygon with these corners, in plane units, for a steep plane; 0 when
+/// the polygon has no area.
+pub fn exact_value_at<const N: usize>(
+    corners: impl Iterator<Item = (ScreenVertex, [u32; N])> + Clone,
+    k: usize,
+    x: u16,
+    y: u16,
+) -> i64 {
+    let values = corners.map(|(v, values)| ScreenVertex {
+        z: values.get(k).copied().unwrap_or(0).min(VALUE_MAX),
+        ..v
+    });
+    Plane::new(values).map_or(0, |plane| plane.value_at_pixel(i32::from(x), i32::from(y)))
+}
+
+/// The pixel the planes are anchored at: corner 0's, clamped to the frame.
+fn anchor(shape: &Plane, width: u16, height: u16) -> (i32, i32) {
+    let origin = shape.origin();
+    let clamp = |v: i32, size: u16| (v >> SUBPIXEL_BITS).clamp(0, i32::from(size.max(1)) - 1);
+    (clamp(origin.x, width), clamp(origin.y, height))
+}
+
+const _: () = assert!(STEEP_GRADIENT < i64::MAX);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::limits::{GUARD_BAND, HALF_PIXEL, SUBPIXEL_STEPS};
+    use proptest::prelude::*;
+    use std::vec::Vec;
+
+    /// Largest coordinate magnitude the guard band admits.
+    const G: i32 = GUARD_BAND - 1;
+
+    /// The exact value of the plane through three corners at `(x, y)`
+    /// (sub-pixel), in plane units, as a rational `num / den`.
+    fn exact(corners: &[(ScreenVertex, [u32; 1]); 3], x: i32, y: i32) -> (i128, i128) {
+        let p = |k: usize| {
+            let (v, [value]) = corners[k];
+            (i128::from(v.x), i128::from(v.y), i128::from(value))
+        };
+        let ((x0, y0, z0), (x1, y1, z1), (x2, y2, z2)) = (p(0), p(1), p(2));
+        let (px, py, pz, qx, qy, qz) = (x1 - x0, y1 - y0, z1 - z0, x2 - x0, y2 - y0, z2 - z0);
+        let c = px * qy - py * qx;
+        let a = py * qz - pz * qy;
+        let b = pz * qx - px * qz;
+        let (dx, dy) = (i128::from(x) - x0, i128::from(y) - y0);
+        // z = z0 - (a·dx + b·dy) / c, times 2^16.
+        ((z0 * c - (a * dx + b * dy)) << 16, c)
+    }
+
+    /// Checks the plane of `corners` at pixels of a `width` x `height`
+    /// frame: within half a plane unit per pixel from the anchor (plus one
+    /// half for the anchor) of the exact value; a steep plane's exact
+    /// values to the half unit.
+    fn check(
+        corners: [(ScreenVertex, [u32; 1]); 3],
+        width: u16,
+        height: u16,
+        pixels: &[(u16, u16)],
+    ) {
+        let Some([plane]) = attribute_planes(corners.iter().copied(), width, height) else {
+            return;
+        };
+        let (ax, ay) = {
+            let o = corners[0].0;
+            let clamp = |v: i32, size: u16| (v >> SUBPIXEL_BITS).clamp(0, i32::from(size) - 1);
+            (clamp(o.x, width), clamp(o.y, height))
+        };
+        for &(x, y) in pixels {
+            let (sx, sy) = (
+                i32::from(x) * SUBPIXEL_STEPS + HALF_PIXEL,
+                i32::from(y) * SUBPIXEL_STEPS + HALF_PIXEL,
+            );
+            let (num, den) = exact(&corners, sx, sy);
+            let got = if plane.is_steep() {
+                exact_value_at(corners.iter().copied(), 0, x, y)
+            } else {
+                plane.value_at(x, y)
+            };
+            // |got - num/den| <= bound  <=>  |got·den - num| <= bound·|den|
+            let steps = if plane.is_steep() {
+                0
+            } else {
+                (i32::from(x) - ax).abs() + (i32::from(y) - ay).abs()
+            };
+            let error2 = (2 * i128::from(got) * den - 2 * num).abs();
+            let bound2 = i128::from(1 + steps) * den.abs();
+            assert!(
+                error2 <= bound2,
+                "{corners:?} at ({x}, {y}): {got} for {num}/{den}"
+            );
+        }
+    }
+
+    fn v(x: i32, y: i32) -> ScreenVertex {
+        ScreenVertex { x, y, z: 0 }
+    }
+
+    /// Corners on the guard band's edges, values at both ends, a frame of
+    /// the largest size: every quantity in range (overflow checks are on)
+    /// and every value within its bound, at the frame's corners.
+    #[test]
+    fn extremes_stay_in_range() {
+        let frame = crate::limits::MAX_FRAME_SIZE as u16;
+        let pixels = [
+            (0, 0),
+            (frame - 1, 0),
+            (0, frame - 1),
+            (frame - 1, frame - 1),
+            (17, 4000),
+        ];
+        let corners = [-G, 0, G];
+        for &x0 in &corners {
+            for &y1 in &corners {
+                for values in [[0, VALUE_MAX, 0], [VALUE_MAX, 0, VALUE_MAX], [VALUE_MAX; 3]] {
+                    let tri = [
+                        (v(x0, -G), [values[0]]),
+                        (v(G, y1), [values[1]]),
+                        (v(-G, G), [values[2]]),
+                    ];
+                    check(tri, frame, frame, &pixels);
+                }
+            }
+        }
+    }
+
+    /// A sliver one sub-pixel step wide with the whole value range across
+    /// it is steep, and its values are exact.
+    #[test]
+    fn slivers_are_steep_and_exact() {
+        let tri = [
+            (v(0, 0), [0]),
+            (v(4096 * SUBPIXEL_STEPS - 1, 1), [0]),
+            (v(0, 1), [VALUE_MAX]),
+        ];
+        let [plane] = attribute_planes(tri.iter().copied(), 4096, 16).unwrap();
+        assert!(plane.is_steep());
+        check(tri, 4096, 16, &[(0, 0), (100, 0), (4095, 0)]);
+    }
+
+    proptest! {
+        /// Random triangles anywhere in the guard band, any values: every
+        /// value of a 64x64 frame's sampled pixels within its bound.
+        #[test]
+        fn values_are_within_the_bound(
+            xy in prop::array::uniform6(-G..=G),
+            small in prop::array::uniform6(-2048i32..2048),
+            values in prop::array::uniform3(0..=VALUE_MAX),
+            local in any::<bool>(),
+        ) {
+            // Half the cases are small triangles near the frame.
+            let c: [i32; 6] = if local {
+                core::array::from_fn(|k| small[k] * 8 + 8192)
+            } else {
+                xy
+            };
+            let tri = [
+                (v(c[0], c[1]), [values[0]]),
+                (v(c[2], c[3]), [values[1]]),
+                (v(c[4], c[5]), [values[2]]),
+            ];
+            let pixels: Vec<(u16, u16)> = (0..64).step_by(7).flat_map(|x| (0..64).step_by(9).map(move |y| (x, y))).collect();
+            check(tri, 64, 64, &pixels);
+        }
+    }
+}

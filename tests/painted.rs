@@ -1,0 +1,302 @@
+//! The painted renderer (`zline::paint`): Gouraud shading after
+//! visibility. Exact pixels of small scenes; values within the attribute
+//! planes' bound of the exact plane at every pixel; and, for random scenes
+//! of overlapping, concave and off-screen polygons, each polygon given one
+//! colour at every corner paints exactly the frame the flat renderer draws
+//! with those colours (the same winner at every pixel, one-row polygons
+//! and steep slivers included).
+
+use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
+use proptest::prelude::*;
+use zline::limits::{DEPTH_MAX, SUBPIXEL_STEPS};
+use zline::paint::{Gouraud, Rgb8p8};
+use zline::{Admission, Capacities, Depth16, Depth24, DepthFormat, Error, FnSink, ScreenVertex};
+
+const S: i32 = SUBPIXEL_STEPS;
+const W: u16 = 40;
+const H: u16 = 32;
+
+const CAPS: Capacities = Capacities {
+    width: W as usize,
+    vertices: 96,
+    polygons: 16,
+    corners: 96,
+    active_polygons: 16,
+    pooled_edges: 96,
+    mesh_vertices: 0,
+};
+
+type Painted<D> = zline::painted_renderer_type!(Gouraud<Rgb888>, D, CAPS);
+type Flat<D> = zline::renderer_type!(Rgb888, D, CAPS);
+
+const BACKGROUND: Rgb888 = Rgb888::new(1, 2, 3);
+
+/// A sink of boxed closure.
+type Sink<'a, C, Z> = FnSink<Box<dyn FnMut(u16, &[C], &[Z]) -> Result<(), ()> + 'a>>;
+
+/// Every row of a frame, top to bottom.
+fn frame<C: Copy, Z>(render: impl FnOnce(&mut Sink<'_, C, Z>)) -> Vec<Vec<C>> {
+    let mut rows = Vec::new();
+    {
+        let push = |_: u16, colors: &[C], _: &[Z]| {
+            rows.push(colors.to_vec());
+            Ok(())
+        };
+        let mut sink: Sink<'_, C, Z> = FnSink(Box::new(push));
+        render(&mut sink);
+    }
+    rows
+}
+
+fn v(x: i32, y: i32, z: u32) -> ScreenVertex {
+    ScreenVertex::new(x, y, z).unwrap()
+}
+
+fn rgb(r: u8, g: u8, b: u8) -> Rgb8p8 {
+    Rgb8p8::from_rgb888(Rgb888::new(r, g, b))
+}
+
+/// A triangle whose red channel is `16·x + 32·y` (pixels) at every
+/// point: at pixel (i, j), sampled at its centre, `16i + 32j + 24`. The
+/// top-left rule leaves out the hypotenuse's samples (i + j = 3).
+#[test]
+fn a_triangle_paints_its_plane_exactly() {
+    let mut r = Painted::<Depth16>::new(8, 8, Gouraud::new(), BACKGROUND).unwrap();
+    let corners = [v(0, 0, 100), v(4 * S, 0, 100), v(0, 4 * S, 100)];
+    let values = [rgb(0, 200, 9), rgb(64, 200, 9), rgb(128, 200, 9)];
+    let admission = r.push_polygon_vertices(&corners, &values).unwrap();
+    assert!(matches!(admission, Admission::Queued(_)));
+    let rows = frame::<Rgb888, u16>(|sink| {
+        r.render(sink).unwrap();
+    });
+    for (j, row) in rows.iter().enumerate() {
+        for (i, &c) in row.iter().enumerate() {
+            let want = if i + j <= 2 {
+                Rgb888::new((16 * i + 32 * j + 24) as u8, 200, 9)
+            } else {
+                BACKGROUND
+            };
+            assert_eq!(c, want, "pixel ({i}, {j})");
+        }
+    }
+}
+
+/// At every covered pixel of random triangles, each channel is within
+/// half an 8-bit step (the rounding to 8 bits), 1/512 of one (the
+/// rounding to 8.8) and the planes' bound (2^-4 of an 8.8 step) of the
+/// exact barycentric interpolation at the pixel's centre.
+#[test]
+fn channels_are_within_the_bound_of_the_exact_plane() {
+    let mut rng = 0x2545_f491_u64;
+    let mut next = |n: i32| {
+        rng ^= rng << 13;
+        rng ^= rng >> 7;
+        rng ^= rng << 17;
+        (rng % n as u64) as i32
+    };
+    for _ in 0..400 {
+        let mut r = Painted::<Depth24>::new(W, H, Gouraud::new(), BACKGROUND).unwrap();
+        let corners: Vec<ScreenVertex> = (0..3)
+            .map(|_| v(next(i32::from(W) * S), next(i32::from(H) * S), 1000))
+            .collect();
+        let values: Vec<Rgb8p8> = (0..3)
+            .map(|_| Rgb8p8 {
+                r: next(0xFF01) as u16,
+                g: next(0xFF01) as u16,
+                b: next(0xFF01) as u16,
+            })
+            .collect();
+        if !matches!(
+            r.push_polygon_vertices(&corners, &values).unwrap(),
+            Admission::Queued(_)
+        ) {
+            continue;
+        }
+        let rows = frame::<Rgb888, u32>(|sink| {
+            r.render(sink).unwrap();
+        });
+        let p = |k: usize| {
+            (
+                f64::from(corners[k].x) / 256.0,
+                f64::from(corners[k].y) / 256.0,
+            )
+        };
+        let (a, b, c) = (p(0), p(1), p(2));
+        let area = (b.0 - a.0) * (c.1 - a.1) - (b.1 - a.1) * (c.0 - a.0);
+        for (j, row) in rows.iter().enumerate() {
+            for (i, &color) in row.iter().enumerate() {
+                if color == BACKGROUND {
+                    continue;
+                }
+                let (x, y) = (i as f64 + 0.5, j as f64 + 0.5);
+                let wb = ((x - a.0) * (c.1 - a.1) - (y - a.1) * (c.0 - a.0)) / area;
+                let wc = ((b.0 - a.0) * (y - a.1) - (b.1 - a.1) * (x - a.0)) / area;
+                let wa = 1.0 - wb - wc;
+                let exact = |f: fn(&Rgb8p8) -> u16| {
+                    let value = wa * f64::from(f(&values[0]))
+                        + wb * f64::from(f(&values[1]))
+                        + wc * f64::from(f(&values[2]));
+                    value.clamp(0.0, 65280.0) / 256.0
+                };
+                let got = [color.r(), color.g(), color.b()];
+                let want = [exact(|c| c.r), exact(|c| c.g), exact(|c| c.b)];
+                for k in 0..3 {
+                    let error = (f64::from(got[k]) - want[k]).abs();
+                    assert!(
+                        error <= 0.5 + 1.0 / 512.0 + 1.0 / 4096.0,
+                        "pixel ({i}, {j}) channel {k}: {} for {}",
+                        got[k],
+                        want[k]
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// A sliver narrower than a sub-pixel step across the frame has steep
+/// planes: each of its pixels takes the exact value.
+#[test]
+fn a_steep_sliver_takes_exact_values() {
+    let mut r = Painted::<Depth16>::new(W, H, Gouraud::new(), BACKGROUND).unwrap();
+    // From (0, 10.5) to (40, 10.5), the third corner one sub-pixel step
+    // below the middle: the samples of row 10 lie on its top edge.
+    let corners = [
+        v(0, 10 * S + S / 2, 5),
+        v(40 * S, 10 * S + S / 2, 5),
+        v(20 * S, 10 * S + S / 2 + 1, 5),
+    ];
+    let values = [rgb(0, 0, 0), rgb(0, 0, 0), rgb(255, 255, 255)];
+    let admission = r.push_polygon_vertices(&corners, &values).unwrap();
+    assert!(matches!(admission, Admission::Queued(_)));
+    let rows = frame::<Rgb888, u16>(|sink| {
+        r.render(sink).unwrap();
+    });
+    // On the top edge the exact value is 0 everywhere.
+    let covered: Vec<_> = rows[10].iter().filter(|&&c| c != BACKGROUND).collect();
+    assert!(!covered.is_empty());
+    assert!(covered.iter().all(|&&c| c == Rgb888::BLACK), "{covered:?}");
+}
+
+/// Rgb565 rows are dithered by default (a 4x4 block of one 8.8 value
+/// between two levels holds both), and not when asked.
+#[test]
+fn rgb565_is_dithered_by_default() {
+    type Z = zline::painted_renderer_type!(Gouraud<Rgb565>, Depth16, CAPS);
+    let background = Rgb565::new(0, 0, 0);
+    let square = [
+        v(0, 0, 7),
+        v(8 * S, 0, 7),
+        v(8 * S, 8 * S, 7),
+        v(0, 8 * S, 7),
+    ];
+    // 100.0 in 8-bit red is 12.16 levels of 5 bits.
+    let values = [rgb(100, 0, 0); 4];
+    for (mode, levels) in [(Gouraud::new(), 2), (Gouraud::with_dither(false), 1)] {
+        let mut r = Z::new(8, 8, mode, background).unwrap();
+        r.push_polygon_vertices(&square, &values).unwrap();
+        let rows = frame::<Rgb565, u16>(|sink| {
+            r.render(sink).unwrap();
+        });
+        let mut reds: Vec<u8> = rows.iter().flatten().map(|c| c.r()).collect();
+        reds.sort();
+        reds.dedup();
+        assert_eq!(reds.len(), levels, "{reds:?}");
+    }
+}
+
+/// Capacities too small and values not one per corner are errors, and
+/// nothing is added.
+#[test]
+fn mismatched_values_and_small_storage_are_errors() {
+    let mut r = Painted::<Depth16>::new(W, H, Gouraud::new(), BACKGROUND).unwrap();
+    let corners = [v(0, 0, 1), v(4 * S, 0, 1), v(0, 4 * S, 1)];
+    assert_eq!(
+        r.push_polygon_vertices(&corners, &[rgb(1, 2, 3); 2]),
+        Err(Error::ValueCountMismatch)
+    );
+    assert_eq!(r.renderer.vertex_count(), 0);
+    assert_eq!(
+        Painted::<Depth16>::new(W + 1, H, Gouraud::new(), BACKGROUND).err(),
+        Some(Error::BadFrameSize)
+    );
+}
+
+fn polygon() -> impl Strategy<Value = Vec<ScreenVertex>> {
+    prop::collection::vec(
+        (
+            -20 * S..(i32::from(W) + 20) * S,
+            -20 * S..(i32::from(H) + 20) * S,
+            0..=DEPTH_MAX,
+        ),
+        3..=6,
+    )
+    .prop_map(|corners| {
+        corners
+            .into_iter()
+            .map(|(x, y, z)| ScreenVertex { x, y, z })
+            .collect()
+    })
+}
+
+/// A thin or one-row triangle: small polygons take the paths the flat
+/// scan draws at once.
+fn small_triangle() -> impl Strategy<Value = Vec<ScreenVertex>> {
+    (0..i32::from(W) * S, 0..i32::from(H) * S, 0..=DEPTH_MAX).prop_flat_map(|(x, y, z)| {
+        prop::collection::vec(
+            (
+                x..x + 3 * S,
+                y..y + S,
+                z..=z.saturating_add(9999).min(DEPTH_MAX),
+            ),
+            3,
+        )
+        .prop_map(|corners| {
+            corners
+                .into_iter()
+                .map(|(x, y, z)| ScreenVertex { x, y, z })
+                .collect()
+        })
+    })
+}
+
+fn color_of(k: usize) -> Rgb888 {
+    Rgb888::new(
+        (k * 37 + 11) as u8,
+        (k * 91 + 5) as u8,
+        (k * 13 + 200) as u8,
+    )
+}
+
+fn flat_equals_painted<D: DepthFormat>(scene: &[Vec<ScreenVertex>]) -> Result<(), TestCaseError> {
+    let mut flat = Flat::<D>::new(W, H, BACKGROUND).unwrap();
+    let mut painted = Painted::<D>::new(W, H, Gouraud::new(), BACKGROUND).unwrap();
+    for (k, polygon) in scene.iter().enumerate() {
+        let color = color_of(k);
+        let a = flat.push_polygon_vertices(polygon, color);
+        let values = vec![Rgb8p8::from_rgb888(color); polygon.len()];
+        let b = painted.push_polygon_vertices(polygon, &values);
+        prop_assert_eq!(a, b);
+    }
+    let want = frame::<Rgb888, D::Value>(|sink| {
+        flat.render(sink).unwrap();
+    });
+    let got = frame::<Rgb888, D::Value>(|sink| {
+        painted.render(sink).unwrap();
+    });
+    prop_assert_eq!(got, want);
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(300))]
+
+    /// One colour at every corner of each polygon paints the flat frame.
+    #[test]
+    fn uniform_corners_paint_the_flat_frame(
+        scene in prop::collection::vec(prop_oneof![polygon(), small_triangle()], 1..12)
+    ) {
+        flat_equals_painted::<Depth16>(&scene)?;
+        flat_equals_painted::<Depth24>(&scene)?;
+    }
+}
