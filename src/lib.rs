@@ -99,6 +99,7 @@ pub use front::scene::{
     project_vertices, reference_model, reference_model_around,
 };
 pub use front::shade::{Lambert, Shading, face_id_color};
+pub use raster::paint::{NO_SLOT, RowPainter, scan_painted};
 pub use raster::{
     ActiveEdge, ActivePolygon, Admission, Capacities, Depth16, Depth24, DepthFormat, EdgeEntry,
     FrameStats, MeshCounts, Outline, OutlineBuilder, PolygonEntry, PolygonTables, Prepared,

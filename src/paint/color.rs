@@ -41,7 +41,7 @@ fn level(v: u32, max: u32, t: u32) -> u32 {
 }
 
 /// The ordered-dither threshold of pixel `(x, y)`: the 4x4 Bayer matrix's
-/// entry `b` as the offset `(2b + 1)·65,280 / 32` for [`level`], so that
+/// entry `b` as the offset `(2b + 1)·65,280 / 32` of a channel's level, so that
 /// the sixteen thresholds of a 4x4 block are spread evenly over a level
 /// and average half of it (the rounding of no dither).
 #[inline(always)]

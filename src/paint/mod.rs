@@ -1,6 +1,7 @@
 //! Smooth shading and textures: modes that paint each visible pixel from
 //! planes of values given at a polygon's corners, after visibility is
-//! decided (see [`crate::raster::paint`]): each pixel is shaded once,
+//! decided (a painted scan, [`scan_painted`](crate::scan_painted)): each
+//! pixel is shaded once,
 //! however many polygons covered it.
 //!
 //! * [`PaintMode`]: what a vertex carries, the planes a polygon gets from
