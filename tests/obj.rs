@@ -3,7 +3,7 @@
 
 use proptest::prelude::*;
 use zline::obj::{
-    Capacity, Element, ObjCounts, ObjError, ObjErrorKind, ObjMesh, ObjReader, Statement, count,
+    Capacity, Element, ObjCorner, ObjCounts, ObjError, ObjErrorKind, ObjMesh, ObjReader, Statement, count,
 };
 use zline::{Mesh, StaticMesh};
 
@@ -151,7 +151,7 @@ l 1 2\np 1\nfoo bar baz\nvp 0.5\ncstype bezier\nf 1/1/1 2/2/1 3/1/1\n";
     assert_eq!(
         keywords,
         [
-            "mtllib", "o", "g", "s", "usemtl", "vt", "vt", "vn", "l", "p", "foo", "vp", "cstype"
+            "mtllib", "o", "g", "s", "usemtl", "l", "p", "foo", "vp", "cstype"
         ]
     );
     let mesh = parse(bytes);
@@ -179,7 +179,12 @@ fn reader_reports_lines_and_statements() {
     while let Some(statement) = reader.next() {
         seen.push((reader.line(), statement.unwrap()));
     }
-    let face = heapless::Vec::from_slice(&[2, 1, 0]).unwrap();
+    let corner = |vertex| ObjCorner {
+        vertex,
+        texcoord: None,
+        normal: None,
+    };
+    let face = heapless::Vec::from_slice(&[corner(2), corner(1), corner(0)]).unwrap();
     assert_eq!(
         seen,
         [
@@ -669,5 +674,57 @@ proptest! {
             apply(&mut bytes, e);
         }
         check_consistent(&bytes);
+    }
+}
+
+/// `vt` and `vn` lines are read (`vt`'s `v` 0 when missing, its `w`
+/// checked and ignored), and a face's corners name them, 0-based, by
+/// positive or negative index.
+#[test]
+fn texture_coordinates_and_normals_are_read() {
+    let bytes = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0.25\nvt 0.5 0.75 1\nvn 0 0 2\n\
+f 1/1/1 2/2/1 3/-1/-1\nf 1//1 2 3/1\n";
+    let mut texcoords = Vec::new();
+    let mut normals = Vec::new();
+    let mut faces = Vec::new();
+    for statement in ObjReader::<4>::new(bytes) {
+        match statement.unwrap() {
+            Statement::TexCoord(uv) => texcoords.push(uv),
+            Statement::Normal(n) => normals.push(n),
+            Statement::Face(corners) => faces.push(
+                corners
+                    .iter()
+                    .map(|c| (c.vertex, c.texcoord, c.normal))
+                    .collect::<Vec<_>>(),
+            ),
+            Statement::Vertex(_) | Statement::Other(_) => {}
+        }
+    }
+    assert_eq!(texcoords, [[0.25, 0.0], [0.5, 0.75]]);
+    assert_eq!(normals, [[0.0, 0.0, 2.0]]);
+    assert_eq!(
+        faces,
+        [
+            vec![(0, Some(0), Some(0)), (1, Some(1), Some(0)), (2, Some(1), Some(0))],
+            vec![(0, None, Some(0)), (1, None, None), (2, Some(0), None)],
+        ]
+    );
+}
+
+/// Malformed `vt` and `vn` lines are errors naming their line.
+#[test]
+fn malformed_texture_coordinates_and_normals_are_errors() {
+    let cases: [(&[u8], u32, ObjErrorKind); 6] = [
+        (b"v 0 0 0\nvt\n", 2, ObjErrorKind::MissingCoordinate),
+        (b"vt 0 0 0 0\n", 1, ObjErrorKind::TooManyNumbers),
+        (b"vt nan 0\n", 1, ObjErrorKind::BadNumber),
+        (b"vn 0 0\n", 1, ObjErrorKind::MissingCoordinate),
+        (b"\nvn 0 0 1 0\n", 2, ObjErrorKind::TooManyNumbers),
+        (b"vn 0 inf 1\n", 1, ObjErrorKind::BadNumber),
+    ];
+    for (bytes, line, kind) in cases {
+        let first_error = ObjReader::<4>::new(bytes).find_map(Result::err);
+        assert_eq!(first_error, Some(at(line, kind)), "{}", String::from_utf8_lossy(bytes));
+        assert_eq!(count(bytes), Err(at(line, kind)));
     }
 }

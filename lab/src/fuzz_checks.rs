@@ -137,7 +137,7 @@ pub fn obj_reader(data: &[u8]) {
         match statement {
             Ok(Statement::Vertex(_)) => vertices += 1,
             Ok(Statement::Face(corners)) => assert!(corners.len() >= 3),
-            Ok(Statement::Other(_)) => {}
+            Ok(Statement::TexCoord(_) | Statement::Normal(_) | Statement::Other(_)) => {}
             Err(_) => break,
         }
     }
@@ -201,6 +201,23 @@ fn line_model_check(data: &[u8], error: Option<zline::obj::ObjError>) {
         let extra = tokens.get(4..).unwrap_or(&[]);
         let too_many = vertex && extra.len() > 4;
         let bad_extra = vertex && extra.iter().take(4).any(|t| !number(t));
+        // `vt`: one to three numbers; `vn`: three. A line of either that
+        // keeps the rule is accepted; one that breaks it is refused, with
+        // the kind the first fault gives.
+        let attribute_rule = match tokens.first().copied() {
+            Some(b"vt") => Some((1, 3)),
+            Some(b"vn") => Some((3, 3)),
+            _ => None,
+        };
+        let attribute_fault = attribute_rule.and_then(|(least, most)| {
+            let args = &tokens[1..];
+            match args.iter().take(most).position(|t| !number(t)) {
+                Some(_) => Some(ObjErrorKind::BadNumber),
+                None if args.len() > most => Some(ObjErrorKind::TooManyNumbers),
+                None if args.len() < least => Some(ObjErrorKind::MissingCoordinate),
+                None => None,
+            }
+        });
         if line_number < stop {
             assert!(
                 !continues,
@@ -209,6 +226,10 @@ fn line_model_check(data: &[u8], error: Option<zline::obj::ObjError>) {
             assert!(
                 !too_many && !bad_extra,
                 "line {line_number}: a vertex with {extra:?} after z was accepted"
+            );
+            assert_eq!(
+                attribute_fault, None,
+                "line {line_number}: a malformed vt or vn line was accepted"
             );
         } else if let Some(e) = error {
             if let ObjErrorKind::IndexOutOfRange { index, .. } = e.kind {
@@ -239,6 +260,8 @@ fn line_model_check(data: &[u8], error: Option<zline::obj::ObjError>) {
                 assert_eq!(e.kind, ObjErrorKind::BadNumber, "line {line_number}");
             } else if too_many {
                 assert_eq!(e.kind, ObjErrorKind::TooManyNumbers, "line {line_number}");
+            } else if let Some(kind) = attribute_fault {
+                assert_eq!(e.kind, kind, "line {line_number}");
             }
         }
     }

@@ -27,16 +27,19 @@
 //!   `r g b`, or both (at most seven numbers in all): they are checked
 //!   and ignored. Every number must be finite: `nan`, `inf` and any other
 //!   token are errors.
+//! - `vt u [v [w]]` is a texture coordinate (`v` is 0 when missing, `w`
+//!   is checked and ignored) and `vn x y z` a normal: finite numbers, as
+//!   for `v`.
 //! - `f` lists 3 or more corners (at most `N`, and at most
 //!   [`crate::limits::MAX_FACE_CORNERS`]), each `v`,
-//!   `v/vt`, `v//vn` or `v/vt/vn`. Only `v` is used, but `vt` and `vn` are
+//!   `v/vt`, `v//vn` or `v/vt/vn` ([`ObjCorner`]); `vt` and `vn` are
 //!   checked like `v` against the `vt` and `vn` lines.
 //!   Positive indices count from 1 and may name any line of their kind in
 //!   the file, even a later one; negative ones count back from the last
 //!   one defined before the face (`-1` is that one). An index out of range
 //!   (including one too large for any integer type) is
 //!   [`ObjErrorKind::IndexOutOfRange`], naming the index and how many exist.
-//! - Every other statement (`vt`, `vn`, `o`, `g`, `s`, `usemtl`,
+//! - Every other statement (`o`, `g`, `s`, `usemtl`,
 //!   `mtllib`, `l`, `p`, unknown keywords) is skipped without looking at
 //!   its arguments; [`Statement::Other`] names its keyword.
 //! - `#` starts a comment up to the end of the line. Comment bytes are
@@ -99,10 +102,12 @@ pub enum ObjErrorKind {
     /// A coordinate or index is not a number, is not ASCII, or (for a
     /// coordinate) is NaN or infinite.
     BadNumber,
-    /// A `v` line has fewer than three coordinates.
+    /// A `v` or `vn` line has fewer than three coordinates, or a `vt`
+    /// line none.
     MissingCoordinate,
     /// A `v` line has more than seven numbers (`x y z`, then `w`, a colour
-    /// `r g b`, or both).
+    /// `r g b`, or both), a `vt` line more than three or a `vn` line more
+    /// than three.
     TooManyNumbers,
     /// The line ends with `\`: line continuation is not supported, so the
     /// line would be read short and the next one as a statement of its
@@ -292,6 +297,32 @@ fn parse_coordinate(token: &[u8]) -> Result<f32, ObjErrorKind> {
     }
 }
 
+/// `M` coordinates of a `vt` or `vn` line: at least `required` finite
+/// numbers, at most `most` (those beyond `M` are checked and ignored),
+/// missing ones 0.
+fn numbers<'t, const M: usize>(
+    args: &mut impl Iterator<Item = &'t [u8]>,
+    required: usize,
+    most: usize,
+) -> Result<[f32; M], ObjErrorKind> {
+    let mut values = [0.0; M];
+    let mut count = 0;
+    for token in args {
+        if count >= most {
+            return Err(ObjErrorKind::TooManyNumbers);
+        }
+        let value = parse_coordinate(token)?;
+        if let Some(slot) = values.get_mut(count) {
+            *slot = value;
+        }
+        count += 1;
+    }
+    if count < required {
+        return Err(ObjErrorKind::MissingCoordinate);
+    }
+    Ok(values)
+}
+
 /// A decimal integer with optional sign, saturated to the `i64` range
 /// (an index that large is out of range anyway, and reported so): every
 /// value of `i64`, `i64::MIN` included, comes back as written.
@@ -388,6 +419,8 @@ impl ElementCounts {
 /// One parsed line, before the face corners are stored anywhere.
 enum Parsed<'a> {
     Vertex([f32; 3]),
+    TexCoord([f32; 2]),
+    Normal([f32; 3]),
     Face,
     Other(&'a [u8]),
 }
@@ -424,7 +457,7 @@ impl<'a> Parser<'a> {
 
     fn next_with(
         &mut self,
-        corner: &mut impl FnMut(u16) -> Result<(), ObjErrorKind>,
+        corner: &mut impl FnMut(ObjCorner) -> Result<(), ObjErrorKind>,
     ) -> Option<Result<Parsed<'a>, ObjError>> {
         if self.failed {
             return None;
@@ -446,6 +479,8 @@ impl<'a> Parser<'a> {
         }
         let parsed = match keyword {
             b"v" => self.vertex(&mut args).map(Parsed::Vertex),
+            b"vt" => numbers::<2>(&mut args, 1, 3).map(Parsed::TexCoord),
+            b"vn" => numbers::<3>(&mut args, 3, 3).map(Parsed::Normal),
             b"f" => self.face(&mut args, corner).map(|()| Parsed::Face),
             other => Ok(Parsed::Other(other)),
         };
@@ -481,21 +516,23 @@ impl<'a> Parser<'a> {
     fn face<'t>(
         &self,
         args: &mut impl Iterator<Item = &'t [u8]>,
-        corner: &mut impl FnMut(u16) -> Result<(), ObjErrorKind>,
+        corner: &mut impl FnMut(ObjCorner) -> Result<(), ObjErrorKind>,
     ) -> Result<(), ObjErrorKind> {
         let mut corners = 0usize;
         for token in args {
             let [vertex, texcoord, normal] = corner_indices(token)?;
-            for (element, index) in [(Element::TexCoord, texcoord), (Element::Normal, normal)] {
-                if let Some(index) = index {
-                    resolve(
-                        element,
-                        index,
-                        self.seen.get(element),
-                        self.total.get(element),
-                    )?;
-                }
-            }
+            let attribute = |element, index: Option<i64>| {
+                index
+                    .map(|index| {
+                        let seen = self.seen.get(element);
+                        let resolved = resolve(element, index, seen, self.total.get(element))?;
+                        // Below the file's line count, so below 2^32.
+                        Ok(resolved as u32)
+                    })
+                    .transpose()
+            };
+            let texcoord = attribute(Element::TexCoord, texcoord)?;
+            let normal = attribute(Element::Normal, normal)?;
             let vertex = vertex.ok_or(ObjErrorKind::BadCorner)?;
             let index = resolve(
                 Element::Vertex,
@@ -507,7 +544,11 @@ impl<'a> Parser<'a> {
             if corners >= MAX_FACE_CORNERS {
                 return Err(ObjErrorKind::TooManyCorners);
             }
-            corner(index)?;
+            corner(ObjCorner {
+                vertex: index,
+                texcoord,
+                normal,
+            })?;
             corners += 1;
         }
         if corners < 3 {
@@ -522,11 +563,27 @@ impl<'a> Parser<'a> {
 pub enum Statement<'a, const N: usize> {
     /// A `v` line: the position.
     Vertex([f32; 3]),
-    /// An `f` line: its corners as 0-based vertex indices.
-    Face(Vec<u16, N>),
-    /// Any other statement, skipped: its keyword (for example `b"vt"`,
-    /// `b"vn"` or `b"usemtl"`), as raw bytes.
+    /// A `vt` line: `u` and `v`.
+    TexCoord([f32; 2]),
+    /// A `vn` line: the normal, as written (not normalised).
+    Normal([f32; 3]),
+    /// An `f` line: its corners.
+    Face(Vec<ObjCorner, N>),
+    /// Any other statement, skipped: its keyword (for example `b"o"` or
+    /// `b"usemtl"`), as raw bytes.
     Other(&'a [u8]),
+}
+
+/// A face corner of an OBJ file: 0-based indices of its position, and of
+/// its texture coordinate and normal when it names them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ObjCorner {
+    /// The `v` line (0 is the first).
+    pub vertex: u16,
+    /// The `vt` line, if any.
+    pub texcoord: Option<u32>,
+    /// The `vn` line, if any.
+    pub normal: Option<u32>,
 }
 
 /// Streams the statements of an OBJ file, one per non-blank line; faces
@@ -539,14 +596,22 @@ pub enum Statement<'a, const N: usize> {
 /// ```
 /// use zline::obj::{ObjReader, Statement};
 ///
-/// let bytes = b"v 0 0 0\nvt 0 0\nv 1 0 0\nv 0 1 0\nf 1/1 2/1 3/1\n";
+/// let bytes = b"v 0 0 0\nvt 0.5 1\nv 1 0 0\nv 0 1 0\nf 1/1 2/1 3/1\n";
 /// let mut reader = ObjReader::<4>::new(bytes);
 /// let mut texcoords = 0;
 /// while let Some(statement) = reader.next() {
 ///     match statement.unwrap() {
 ///         Statement::Vertex(p) => assert!(p[2] == 0.0),
-///         Statement::Face(corners) => assert_eq!((reader.line(), &corners[..]), (5, &[0, 1, 2][..])),
-///         Statement::Other(keyword) => texcoords += usize::from(keyword == b"vt"),
+///         Statement::TexCoord(uv) => {
+///             assert_eq!(uv, [0.5, 1.0]);
+///             texcoords += 1;
+///         }
+///         Statement::Face(corners) => {
+///             let vertices: Vec<u16> = corners.iter().map(|c| c.vertex).collect();
+///             assert_eq!((reader.line(), &vertices[..]), (5, &[0, 1, 2][..]));
+///             assert!(corners.iter().all(|c| c.texcoord == Some(0) && c.normal.is_none()));
+///         }
+///         Statement::Normal(_) | Statement::Other(_) => {}
 ///     }
 /// }
 /// assert_eq!(texcoords, 1);
@@ -580,12 +645,14 @@ impl<'a, const N: usize> Iterator for ObjReader<'a, N> {
     type Item = Result<Statement<'a, N>, ObjError>;
 
     fn next(&mut self) -> Option<Self::Item> {
-        let mut face = Vec::<u16, N>::new();
+        let mut face = Vec::<ObjCorner, N>::new();
         let parsed = self
             .parser
             .next_with(&mut |index| face.push(index).map_err(|_| ObjErrorKind::TooManyCorners))?;
         Some(parsed.map(|parsed| match parsed {
             Parsed::Vertex(position) => Statement::Vertex(position),
+            Parsed::TexCoord(uv) => Statement::TexCoord(uv),
+            Parsed::Normal(n) => Statement::Normal(n),
             Parsed::Face => Statement::Face(face),
             Parsed::Other(keyword) => Statement::Other(keyword),
         }))
@@ -627,8 +694,8 @@ impl ObjCounts {
         match parsed {
             Parsed::Vertex(_) => self.vertices += 1,
             Parsed::Face => self.add_face(corners),
-            Parsed::Other(b"vt") => self.texcoords += 1,
-            Parsed::Other(b"vn") => self.normals += 1,
+            Parsed::TexCoord(_) => self.texcoords += 1,
+            Parsed::Normal(_) => self.normals += 1,
             Parsed::Other(_) => {}
         }
     }
@@ -749,15 +816,17 @@ impl<const V: usize, const C: usize, const F: usize, const N: usize> ObjMesh<V, 
             Statement::Face(corners) => {
                 let start = u32::try_from(self.corners.len()).map_err(|_| Capacity::Corners)?;
                 self.face_starts.push(start).map_err(|_| Capacity::Faces)?;
-                self.corners
-                    .extend_from_slice(&corners)
-                    .map_err(|_| Capacity::Corners)
+                corners.iter().try_for_each(|c| {
+                    self.corners
+                        .push(c.vertex)
+                        .map_err(|_| Capacity::Corners)
+                })
             }
-            Statement::Other(b"vt") => {
+            Statement::TexCoord(_) => {
                 self.texcoords += 1;
                 Ok(())
             }
-            Statement::Other(b"vn") => {
+            Statement::Normal(_) => {
                 self.normals += 1;
                 Ok(())
             }
@@ -780,12 +849,12 @@ impl<const V: usize, const C: usize, const F: usize, const N: usize> ObjMesh<V, 
         &self.face_starts
     }
 
-    /// Number of `vt` lines read (and skipped).
+    /// Number of `vt` lines read (their values are not kept).
     pub fn texcoord_count(&self) -> usize {
         self.texcoords
     }
 
-    /// Number of `vn` lines read (and skipped).
+    /// Number of `vn` lines read (their values are not kept).
     pub fn normal_count(&self) -> usize {
         self.normals
     }

@@ -114,9 +114,9 @@ impl HostMesh {
                 Statement::Vertex(p) => mesh.positions.push(p),
                 Statement::Face(corners) => {
                     mesh.face_starts.push(mesh.corners.len() as u32);
-                    mesh.corners.extend_from_slice(&corners);
+                    mesh.corners.extend(corners.iter().map(|c| c.vertex));
                 }
-                Statement::Other(_) => {}
+                Statement::TexCoord(_) | Statement::Normal(_) | Statement::Other(_) => {}
             }
         }
         Ok(mesh.with_face_analysis())
