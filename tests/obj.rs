@@ -3,7 +3,8 @@
 
 use proptest::prelude::*;
 use zline::obj::{
-    Capacity, Element, ObjCorner, ObjCounts, ObjError, ObjErrorKind, ObjMesh, ObjReader, Statement, count,
+    Capacity, Element, ObjCorner, ObjCounts, ObjError, ObjErrorKind, ObjMesh, ObjReader, Statement,
+    count,
 };
 use zline::{Mesh, StaticMesh};
 
@@ -705,7 +706,11 @@ f 1/1/1 2/2/1 3/-1/-1\nf 1//1 2 3/1\n";
     assert_eq!(
         faces,
         [
-            vec![(0, Some(0), Some(0)), (1, Some(1), Some(0)), (2, Some(1), Some(0))],
+            vec![
+                (0, Some(0), Some(0)),
+                (1, Some(1), Some(0)),
+                (2, Some(1), Some(0))
+            ],
             vec![(0, None, Some(0)), (1, None, None), (2, Some(0), None)],
         ]
     );
@@ -724,7 +729,12 @@ fn malformed_texture_coordinates_and_normals_are_errors() {
     ];
     for (bytes, line, kind) in cases {
         let first_error = ObjReader::<4>::new(bytes).find_map(Result::err);
-        assert_eq!(first_error, Some(at(line, kind)), "{}", String::from_utf8_lossy(bytes));
+        assert_eq!(
+            first_error,
+            Some(at(line, kind)),
+            "{}",
+            String::from_utf8_lossy(bytes)
+        );
         assert_eq!(count(bytes), Err(at(line, kind)));
     }
 }

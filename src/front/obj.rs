@@ -816,11 +816,9 @@ impl<const V: usize, const C: usize, const F: usize, const N: usize> ObjMesh<V, 
             Statement::Face(corners) => {
                 let start = u32::try_from(self.corners.len()).map_err(|_| Capacity::Corners)?;
                 self.face_starts.push(start).map_err(|_| Capacity::Faces)?;
-                corners.iter().try_for_each(|c| {
-                    self.corners
-                        .push(c.vertex)
-                        .map_err(|_| Capacity::Corners)
-                })
+                corners
+                    .iter()
+                    .try_for_each(|c| self.corners.push(c.vertex).map_err(|_| Capacity::Corners))
             }
             Statement::TexCoord(_) => {
                 self.texcoords += 1;
