@@ -34,7 +34,7 @@
 
 use crate::arith::wide::mul_i64_small;
 use crate::limits::{DEPTH_MAX, PLANE_FRAC_BITS, SUBPIXEL_BITS};
-use crate::raster::plane::{Plane, STEEP_GRADIENT};
+use crate::raster::plane::{Plane, STEEP_GRADIENT, TrianglePlane};
 use crate::raster::vertex::ScreenVertex;
 
 /// Largest attribute value a corner may have.
@@ -90,9 +90,51 @@ impl AttributePlane {
 /// The planes of `N` attributes over a polygon, from its corners, each
 /// with its `N` values (each at most [`VALUE_MAX`]; a larger one is taken
 /// as [`VALUE_MAX`]), in a frame `width` x `height`; `None` when the
-/// polygon's projected area is zero. The depth plane's set-up, shared by
-/// the `N` planes: one division set-up for all.
+/// polygon's projected area is zero. A triangle under 256 px each way
+/// (and of less than `2^14` px²) takes the flat scan's triangle set-up ([`triangle_planes`]), anything
+/// else Newell's ([`polygon_planes`]); both share one division set-up
+/// among the `N` planes.
+#[inline]
 pub fn attribute_planes<const N: usize>(
+    corners: impl Iterator<Item = (ScreenVertex, [u32; N])> + Clone,
+    width: u16,
+    height: u16,
+) -> Option<[AttributePlane; N]> {
+    let mut three = corners.clone();
+    if let (Some(o), Some(p), Some(q), None) =
+        (three.next(), three.next(), three.next(), three.next())
+        && let Some(planes) = triangle_planes(o, p, q)
+    {
+        return Some(planes);
+    }
+    polygon_planes(corners, width, height)
+}
+
+/// The planes of a triangle's `N` attributes from [`TrianglePlane`]'s
+/// set-up, anchored at corner `o` itself: off the exact plane by at most
+/// `2^-17·(1 + |x_s - o_x| + |y_s - o_y|)` value steps at the pixel whose
+/// sample is `(x_s, y_s)` (distances in pixels; under `2^-8` inside the
+/// triangle). `None` when that set-up does not take the triangle (256 px
+/// or more across, twice its area `2^15` px² or more, zero area, or a
+/// steep plane).
+pub fn triangle_planes<const N: usize>(
+    (o, o_values): (ScreenVertex, [u32; N]),
+    (p, p_values): (ScreenVertex, [u32; N]),
+    (q, q_values): (ScreenVertex, [u32; N]),
+) -> Option<[AttributePlane; N]> {
+    let values = core::array::from_fn(|k| [o_values[k], p_values[k], q_values[k]]);
+    let planes = TrianglePlane::with_values((o, p, q), values)?;
+    Some(planes.map(|plane| AttributePlane {
+        at_origin: plane.row_start(0),
+        dx: plane.dz_dx,
+        dy: plane.dz_dy,
+    }))
+}
+
+/// The planes of any polygon's `N` attributes from Newell's set-up
+/// ([`Plane`]), anchored at corner 0's pixel clamped to the frame (see
+/// the module's notes for the bound); `None` when the area is zero.
+pub fn polygon_planes<const N: usize>(
     corners: impl Iterator<Item = (ScreenVertex, [u32; N])> + Clone,
     width: u16,
     height: u16,
@@ -173,29 +215,39 @@ mod tests {
         ((z0 * c - (a * dx + b * dy)) << 16, c)
     }
 
-    /// Checks the plane of `corners` at pixels of a `width` x `height`
-    /// frame: within half a plane unit per pixel from the anchor (plus one
-    /// half for the anchor) of the exact value; a steep plane's exact
-    /// values to the half unit.
+    /// Checks the planes of `corners` at pixels of a `width` x `height`
+    /// frame, from both set-ups: Newell's within half a plane unit per
+    /// pixel from its anchor (plus one half for the anchor) of the exact
+    /// value, a steep plane's exact values to the half unit; the
+    /// triangle's (where it takes the triangle) within half a unit per
+    /// pixel of distance from corner 0 (plus one half). Returns whether
+    /// the triangle set-up took it.
     fn check(
         corners: [(ScreenVertex, [u32; 1]); 3],
         width: u16,
         height: u16,
         pixels: &[(u16, u16)],
-    ) {
-        let Some([plane]) = attribute_planes(corners.iter().copied(), width, height) else {
-            return;
+    ) -> bool {
+        let Some([plane]) = polygon_planes(corners.iter().copied(), width, height) else {
+            assert_eq!(
+                attribute_planes(corners.iter().copied(), width, height),
+                None
+            );
+            return false;
         };
         let (ax, ay) = {
             let o = corners[0].0;
             let clamp = |v: i32, size: u16| (v >> SUBPIXEL_BITS).clamp(0, i32::from(size) - 1);
             (clamp(o.x, width), clamp(o.y, height))
         };
-        for &(x, y) in pixels {
-            let (sx, sy) = (
+        let sample = |x: u16, y: u16| {
+            (
                 i32::from(x) * SUBPIXEL_STEPS + HALF_PIXEL,
                 i32::from(y) * SUBPIXEL_STEPS + HALF_PIXEL,
-            );
+            )
+        };
+        for &(x, y) in pixels {
+            let (sx, sy) = sample(x, y);
             let (num, den) = exact(&corners, sx, sy);
             let got = if plane.is_steep() {
                 exact_value_at(corners.iter().copied(), 0, x, y)
@@ -215,6 +267,28 @@ mod tests {
                 "{corners:?} at ({x}, {y}): {got} for {num}/{den}"
             );
         }
+        let [o, p, q] = corners;
+        let Some([plane]) = triangle_planes(o, p, q) else {
+            return false;
+        };
+        assert_eq!(
+            attribute_planes(corners.iter().copied(), width, height),
+            Some([plane])
+        );
+        for &(x, y) in pixels {
+            let (sx, sy) = sample(x, y);
+            let (num, den) = exact(&corners, sx, sy);
+            let got = plane.value_at(x, y);
+            // Distances in sub-pixel steps: bound·2^8 = 2^8 + |dx| + |dy|.
+            let distance = i128::from((sx - o.0.x).abs() + (sy - o.0.y).abs());
+            let error = (i128::from(got) * den - num).abs() << 9;
+            let bound = (256 + distance) * den.abs();
+            assert!(
+                error <= bound,
+                "{corners:?} at ({x}, {y}): {got} for {num}/{den} (triangle set-up)"
+            );
+        }
+        true
     }
 
     fn v(x: i32, y: i32) -> ScreenVertex {
@@ -244,6 +318,42 @@ mod tests {
                         (v(-G, G), [values[2]]),
                     ];
                     check(tri, frame, frame, &pixels);
+                }
+            }
+        }
+    }
+
+    /// Triangles just under the triangle set-up's limits (256 px each way,
+    /// twice the area just under `2^15` px²)
+    /// at the frame's corners and beyond its edges, values at both ends:
+    /// taken by that set-up, in range, within its bound.
+    #[test]
+    fn triangle_set_up_extremes() {
+        let frame = crate::limits::MAX_FRAME_SIZE as u16;
+        let span = 256 * SUBPIXEL_STEPS - 1;
+        let far = i32::from(frame) * SUBPIXEL_STEPS;
+        for (ox, oy) in [
+            (0, 0),
+            (far - span, far - span),
+            (-span / 2, far - span / 2),
+        ] {
+            for values in [[0, VALUE_MAX, 0], [VALUE_MAX, 0, VALUE_MAX], [VALUE_MAX; 3]] {
+                for flip in [false, true] {
+                    let (p, q) = ((ox + span, oy + span / 3), (ox + span / 5, oy + span / 2));
+                    let (p, q) = if flip { (q, p) } else { (p, q) };
+                    let tri = [
+                        (v(ox, oy), [values[0]]),
+                        (v(p.0, p.1), [values[1]]),
+                        (v(q.0, q.1), [values[2]]),
+                    ];
+                    let inside =
+                        |c: i32| (c / SUBPIXEL_STEPS).clamp(0, i32::from(frame) - 1) as u16;
+                    let pixels = [
+                        (inside(ox), inside(oy)),
+                        (inside(p.0), inside(p.1)),
+                        (inside(q.0), inside(q.1)),
+                    ];
+                    assert!(check(tri, frame, frame, &pixels), "{tri:?}");
                 }
             }
         }

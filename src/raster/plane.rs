@@ -39,7 +39,7 @@
 use crate::arith::divide::{DIVISION_IS_CHEAP, Divisor, Reciprocal};
 use crate::arith::wide::{cross, mul_i64_i32, mul_sub_small};
 use crate::limits::{
-    HALF_PIXEL, MAX_POLYGON_CORNERS, PLANE_FRAC_BITS, SUBPIXEL_BITS, SUBPIXEL_STEPS,
+    DEPTH_MAX, HALF_PIXEL, MAX_POLYGON_CORNERS, PLANE_FRAC_BITS, SUBPIXEL_BITS, SUBPIXEL_STEPS,
 };
 use crate::raster::vertex::ScreenVertex;
 
@@ -384,6 +384,29 @@ impl GradientDivisor {
     }
 }
 
+/// `round(-coef·2^8·2^16 / c)` (a gradient in plane units per pixel),
+/// exactly, in two divisions by `divisor` (of `d = |c|`): `|n| = whole·d +
+/// rest`, then the fraction; `None` when steep or beyond the divisor's
+/// quotients. (`|coef| < 2^41`, so `|n| < 2^49`.)
+#[inline(always)]
+fn exact_gradient(divisor: &mut GradientDivisor, c: i64, coef: i64) -> Option<i64> {
+    let d = c.unsigned_abs();
+    let n = if c < 0 { coef } else { -coef } << SUBPIXEL_BITS;
+    let (whole, rest) = divisor.div_rem(n.unsigned_abs())?;
+    let (whole, rest) = (whole as i64, rest as i64);
+    // floor for a negative numerator: -(whole + 1) and d - rest.
+    let (whole, rest) = if n < 0 && rest != 0 {
+        (-whole - 1, d as i64 - rest)
+    } else if n < 0 {
+        (-whole, 0)
+    } else {
+        (whole, rest)
+    };
+    let fraction = divisor.fraction(rest as u64)?;
+    let g = (whole << PLANE_FRAC_BITS) + fraction as i64;
+    (g.abs() < STEEP_GRADIENT).then_some(g)
+}
+
 /// `floor((n·2^16 + floor(d / 2)) / d)`, a gradient rounded to the unit,
 /// for `|n| < 2^57` and `0 < d < 2^31`, from one `f64` division; `None`
 /// when `|n| / d` is [`Divisor::QUOTIENT_LIMIT`] or more, as the integer
@@ -588,30 +611,57 @@ impl TrianglePlane {
         let b = mul_sub_small(pz, qx, qz, px);
         let d = c.unsigned_abs();
         let mut divisor = GradientDivisor::with_path(d as u32, path);
-        let mut gradient = |coef: i64| {
-            // round(-coef·2^8·2^16 / c), exactly, in two divisions by the
-            // same divisor: |n| = whole·d + rest, then the fraction.
-            let n = if c < 0 { coef } else { -coef } << SUBPIXEL_BITS;
-            let (whole, rest) = divisor.div_rem(n.unsigned_abs())?;
-            let (whole, rest) = (whole as i64, rest as i64);
-            // floor for a negative numerator: -(whole + 1) and d - rest.
-            let (whole, rest) = if n < 0 && rest != 0 {
-                (-whole - 1, d as i64 - rest)
-            } else if n < 0 {
-                (-whole, 0)
-            } else {
-                (whole, rest)
-            };
-            let fraction = divisor.fraction(rest as u64)?;
-            let g = (whole << PLANE_FRAC_BITS) + fraction as i64;
-            (g.abs() < STEEP_GRADIENT).then_some(g)
-        };
         Some(Self {
-            dz_dx: gradient(a)?,
-            dz_dy: gradient(b)?,
+            dz_dx: exact_gradient(&mut divisor, c, a)?,
+            dz_dy: exact_gradient(&mut divisor, c, b)?,
             twice_area: c as i32,
             origin: o,
         })
+    }
+
+    /// The planes of `N` values over the triangle `o p q` (`values[k]` at
+    /// the three corners, each at most `DEPTH_MAX`, in place of depth),
+    /// with one division set-up for all: the same gradients and row values
+    /// as [`Self::new`] of each (the tests compare them). `None` as
+    /// [`Self::new`]: zero area, too large, or a steep plane.
+    #[inline]
+    pub fn with_values<const N: usize>(
+        (o, p, q): (ScreenVertex, ScreenVertex, ScreenVertex),
+        values: [[u32; 3]; N],
+    ) -> Option<[Self; N]> {
+        let small = |d: i32| d.unsigned_abs() < 1 << 16;
+        let (px, py, qx, qy) = (p.x - o.x, p.y - o.y, q.x - o.x, q.y - o.y);
+        if !(small(px) && small(py) && small(qx) && small(qy)) {
+            return None;
+        }
+        let c = cross(px, py, qx, qy);
+        if c == 0 || c.unsigned_abs() >= 1 << 31 {
+            return None;
+        }
+        let d = c.unsigned_abs();
+        let mut divisor =
+            (!FLOAT_GRADIENTS).then(|| GradientDivisor::with_path(d as u32, DIVISION_PATH));
+        let mut gradient = |coef: i64| match divisor.as_mut() {
+            Some(divisor) => exact_gradient(divisor, c, coef),
+            None => {
+                let n = if c < 0 { coef } else { -coef } << SUBPIXEL_BITS;
+                float_gradient(n, d as u32).filter(|g| g.abs() < STEEP_GRADIENT)
+            }
+        };
+        let mut planes = [Self {
+            dz_dx: 0,
+            dz_dy: 0,
+            twice_area: c as i32,
+            origin: o,
+        }; N];
+        for (plane, [vo, vp, vq]) in planes.iter_mut().zip(values) {
+            let (vo, vp, vq) = (vo.min(DEPTH_MAX), vp.min(DEPTH_MAX), vq.min(DEPTH_MAX));
+            let (pz, qz) = (vp as i32 - vo as i32, vq as i32 - vo as i32);
+            plane.dz_dx = gradient(mul_sub_small(qz, py, pz, qy))?;
+            plane.dz_dy = gradient(mul_sub_small(pz, qx, qz, px))?;
+            plane.origin.z = vo;
+        }
+        Some(planes)
     }
 
     /// The value at column 0 of `row` (see the type's notes).
@@ -824,6 +874,19 @@ mod tests {
                 Some((t.dz_dx, t.dz_dy)),
                 "{o:?} {p:?} {q:?}"
             );
+        }
+        // Two value planes at once (the second with the depths rotated)
+        // are the two planes set up alone, row values too.
+        let second = TrianglePlane::new(v(o.x, o.y, q.z), v(p.x, p.y, o.z), v(q.x, q.y, p.z));
+        let both = TrianglePlane::with_values((o, p, q), [[o.z, p.z, q.z], [q.z, o.z, p.z]]);
+        let planes = |t: Option<TrianglePlane>| t.map(|t| (t.dz_dx, t.dz_dy, t.row_start(3)));
+        match (TrianglePlane::new(o, p, q), second) {
+            (Some(first), Some(second)) => {
+                let [a, b] = both.expect("both planes set up alone");
+                assert_eq!(planes(Some(a)), planes(Some(first)), "{o:?} {p:?} {q:?}");
+                assert_eq!(planes(Some(b)), planes(Some(second)), "{o:?} {p:?} {q:?}");
+            }
+            _ => assert!(both.is_none(), "{o:?} {p:?} {q:?}"),
         }
         fast.is_some()
     }
