@@ -87,6 +87,7 @@ pub use raster::inspect;
 pub use raster::zbuffer;
 
 pub use error::{Error, RenderError};
+pub use front::clip::ClipValue;
 pub use front::geometry::{Mat4, Vec3, Vec4, newell_normal, radians};
 pub use front::mesh::{
     Mesh, MeshArrays, MeshError, PLANARITY_TOLERANCE, QuantizedView, SharedPlane, StaticMesh,
@@ -95,8 +96,8 @@ pub use front::mesh::{
 pub use front::quantized::QuantizedMesh;
 pub use front::scene::{
     CLIP_RANGE, CacheStorage, Camera, Cull, DrawError, DrawStats, FaceInfo, NoVertexCache,
-    ProjectedVertex, RADIUS_RANGE, VertexCache, bounding_sphere, draw_mesh, draw_mesh_projected,
-    project_vertices, reference_model, reference_model_around,
+    ProjectedVertex, RADIUS_RANGE, VertexCache, VertexInfo, bounding_sphere, draw_mesh,
+    draw_mesh_projected, project_vertices, reference_model, reference_model_around,
 };
 pub use front::shade::{Lambert, Shading, face_id_color};
 pub use raster::paint::{NO_SLOT, RowPainter, scan_painted};

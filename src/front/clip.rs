@@ -108,9 +108,24 @@ pub fn outside_mask(p: ClipPoint, planes: &[[f64; 4]], margin: f64) -> u32 {
         .fold(0, |mask, (k, _)| mask | 1 << k)
 }
 
-/// A vertex streaming through the [`Clipper`].
+/// A value carried by a vertex through clipping (a colour, texture
+/// coordinates): at a corner where the near plane or the guard band cuts
+/// a face's edge it is interpolated between the edge's ends with the
+/// cut's parameter, as the position is (a value linear over a face in
+/// model space is linear in clip space too). `()` carries nothing.
+pub trait ClipValue: Copy {
+    /// `self + (other - self) · t`, for `t` in `[0, 1]`.
+    fn lerp(self, other: Self, t: f64) -> Self;
+}
+
+impl ClipValue for () {
+    #[inline(always)]
+    fn lerp(self, _: Self, _: f64) -> Self {}
+}
+
+/// A vertex streaming through the [`Clipper`], with a value `S`.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ClipVertex {
+pub struct ClipVertex<S = ()> {
     /// Position in clip space.
     pub point: ClipPoint,
     /// For a corner of the input polygon, the caller's tag (for example
@@ -119,15 +134,23 @@ pub struct ClipVertex {
     /// Treat the vertex as inside every plane (distances below zero are
     /// taken as zero), so it comes out unchanged.
     pub known_inside: bool,
+    /// The vertex's value (interpolated at a cut).
+    pub value: S,
 }
 
-impl ClipVertex {
-    /// A corner of the input polygon.
-    pub const fn corner(point: ClipPoint, tag: Option<u16>, known_inside: bool) -> Self {
+impl<S> ClipVertex<S> {
+    /// A corner of the input polygon with a value.
+    pub const fn with_value(
+        point: ClipPoint,
+        tag: Option<u16>,
+        known_inside: bool,
+        value: S,
+    ) -> Self {
         Self {
             point,
             tag,
             known_inside,
+            value,
         }
     }
 
@@ -140,15 +163,17 @@ impl ClipVertex {
 /// One plane's stage: the first vertex it saw and the previous one, with
 /// their distances.
 #[derive(Debug, Clone, Copy)]
-struct Stage {
-    first: Option<(ClipVertex, f64)>,
-    previous: Option<(ClipVertex, f64)>,
+struct Stage<S> {
+    first: Option<(ClipVertex<S>, f64)>,
+    previous: Option<(ClipVertex<S>, f64)>,
 }
 
-const EMPTY_STAGE: Stage = Stage {
-    first: None,
-    previous: None,
-};
+impl<S> Stage<S> {
+    const EMPTY: Self = Self {
+        first: None,
+        previous: None,
+    };
+}
 
 /// A re-entrant Sutherland-Hodgman clipper over `P` planes: push the
 /// polygon's corners in order with [`Clipper::push`], then call
@@ -156,42 +181,45 @@ const EMPTY_STAGE: Stage = Stage {
 /// `out` (possibly fewer than three, when it is clipped away); a polygon of
 /// `n` corners comes out with at most `n + P`.
 #[derive(Debug, Clone)]
-pub struct Clipper<const P: usize> {
+pub struct Clipper<const P: usize, S = ()> {
     planes: [[f64; 4]; P],
-    stages: [Stage; P],
+    stages: [Stage<S>; P],
 }
 
-impl<const P: usize> Clipper<P> {
+impl<const P: usize, S: ClipValue> Clipper<P, S> {
     /// A clipper against `planes`, applied in order.
     pub const fn new(planes: [[f64; 4]; P]) -> Self {
         Self {
             planes,
-            stages: [EMPTY_STAGE; P],
+            stages: [Stage::EMPTY; P],
         }
     }
 
     /// Feeds the next corner of the polygon.
     pub fn push<E>(
         &mut self,
-        vertex: ClipVertex,
-        out: &mut dyn FnMut(ClipVertex) -> Result<(), E>,
+        vertex: ClipVertex<S>,
+        out: &mut dyn FnMut(ClipVertex<S>) -> Result<(), E>,
     ) -> Result<(), E> {
         self.receive(0, vertex, out)
     }
 
     /// Closes the polygon: emits the corners its closing edge makes, and
     /// readies the clipper for the next polygon.
-    pub fn finish<E>(&mut self, out: &mut dyn FnMut(ClipVertex) -> Result<(), E>) -> Result<(), E> {
+    pub fn finish<E>(
+        &mut self,
+        out: &mut dyn FnMut(ClipVertex<S>) -> Result<(), E>,
+    ) -> Result<(), E> {
         let result = self.close(0, out);
-        self.stages = [EMPTY_STAGE; P];
+        self.stages = [Stage::EMPTY; P];
         result
     }
 
     fn emit<E>(
         &mut self,
         stage: usize,
-        vertex: ClipVertex,
-        out: &mut dyn FnMut(ClipVertex) -> Result<(), E>,
+        vertex: ClipVertex<S>,
+        out: &mut dyn FnMut(ClipVertex<S>) -> Result<(), E>,
     ) -> Result<(), E> {
         if stage + 1 < P {
             self.receive(stage + 1, vertex, out)
@@ -203,8 +231,8 @@ impl<const P: usize> Clipper<P> {
     fn receive<E>(
         &mut self,
         stage: usize,
-        vertex: ClipVertex,
-        out: &mut dyn FnMut(ClipVertex) -> Result<(), E>,
+        vertex: ClipVertex<S>,
+        out: &mut dyn FnMut(ClipVertex<S>) -> Result<(), E>,
     ) -> Result<(), E> {
         if P == 0 {
             return out(vertex);
@@ -229,7 +257,7 @@ impl<const P: usize> Clipper<P> {
     fn close<E>(
         &mut self,
         stage: usize,
-        out: &mut dyn FnMut(ClipVertex) -> Result<(), E>,
+        out: &mut dyn FnMut(ClipVertex<S>) -> Result<(), E>,
     ) -> Result<(), E> {
         if stage >= P {
             return Ok(());
@@ -245,16 +273,18 @@ impl<const P: usize> Clipper<P> {
 }
 
 /// Where the edge `a`–`b` meets the plane, computed from its inside end.
-fn crossing(a: ClipVertex, da: f64, b: ClipVertex, db: f64) -> ClipVertex {
+fn crossing<S: ClipValue>(a: ClipVertex<S>, da: f64, b: ClipVertex<S>, db: f64) -> ClipVertex<S> {
     let (inside, d_in, outside, d_out) = if da >= 0.0 {
         (a, da, b, db)
     } else {
         (b, db, a, da)
     };
+    let t = d_in / (d_in - d_out);
     ClipVertex {
-        point: inside.point.lerp(outside.point, d_in / (d_in - d_out)),
+        point: inside.point.lerp(outside.point, t),
         tag: None,
         known_inside: false,
+        value: inside.value.lerp(outside.value, t),
     }
 }
 
@@ -273,7 +303,7 @@ mod tests {
         let mut sink = |c: ClipVertex| out.push(c.point).map_err(|_| ());
         for &p in poly {
             clipper
-                .push(ClipVertex::corner(p, None, false), &mut sink)
+                .push(ClipVertex::with_value(p, None, false, ()), &mut sink)
                 .unwrap();
         }
         clipper.finish(&mut sink).unwrap();
@@ -346,7 +376,10 @@ mod tests {
         let mut sink = |c: ClipVertex| out.push(c).map_err(|_| ());
         for (k, p) in [eps, v(0.5, 0.0), v(0.0, 0.5)].into_iter().enumerate() {
             clipper
-                .push(ClipVertex::corner(p, Some(k as u16), k == 0), &mut sink)
+                .push(
+                    ClipVertex::with_value(p, Some(k as u16), k == 0, ()),
+                    &mut sink,
+                )
                 .unwrap();
         }
         clipper.finish(&mut sink).unwrap();

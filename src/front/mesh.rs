@@ -59,6 +59,23 @@ pub trait Mesh {
         let _ = index;
         None
     }
+
+    /// Vertex `index`'s normal in model space, for smooth shading
+    /// ([`VertexInfo::normal`](crate::VertexInfo::normal)), when the mesh
+    /// has one: at unit length it is turned into view space with no square
+    /// root, as a face's is. `None` (the default) when it has none.
+    fn vertex_normal(&self, index: usize) -> Option<[f32; 3]> {
+        let _ = index;
+        None
+    }
+
+    /// Vertex `index`'s texture coordinates `(u, v)`, `(0, 0)` the
+    /// texture's bottom-left corner and `(1, 1)` its top-right, when the
+    /// mesh has them. `None` (the default) when it has none.
+    fn vertex_uv(&self, index: usize) -> Option<[f32; 2]> {
+        let _ = index;
+        None
+    }
 }
 
 /// A face whose depth comes from a plane it shares with other faces of
@@ -124,6 +141,8 @@ pub enum MeshError {
         /// The offending face, if one.
         face: Option<usize>,
     },
+    /// Vertex normals or texture coordinates, not one per vertex.
+    BadVertexAttributes,
 }
 
 /// A mesh over borrowed slices: `'static` ones live in flash.
@@ -138,6 +157,10 @@ pub struct StaticMesh<'a> {
     shared: &'a [SharedPlane],
     /// Newell's normal of each face; empty when not precomputed.
     normals: &'a [[f32; 3]],
+    /// Each vertex's normal; empty when the mesh has none.
+    vertex_normals: &'a [[f32; 3]],
+    /// Each vertex's texture coordinates; empty when the mesh has none.
+    uvs: &'a [[f32; 2]],
 }
 
 impl<'a> StaticMesh<'a> {
@@ -194,6 +217,8 @@ impl<'a> StaticMesh<'a> {
             planar: &[],
             shared: &[],
             normals: &[],
+            vertex_normals: &[],
+            uvs: &[],
         })
     }
 
@@ -227,6 +252,30 @@ impl<'a> StaticMesh<'a> {
             return Err(MeshError::BadNormals { face: None });
         }
         Ok(Self { normals, ..self })
+    }
+
+    /// The same mesh with a normal for each vertex, for smooth shading
+    /// ([`Mesh::vertex_normal`]; unit length, as `HostMesh::with_vertex_normals`
+    /// and `obj2rust` write them). `Err` when there is not one for every
+    /// vertex.
+    pub const fn with_vertex_normals(self, normals: &'a [[f32; 3]]) -> Result<Self, MeshError> {
+        if normals.len() != self.positions.len() {
+            return Err(MeshError::BadVertexAttributes);
+        }
+        Ok(Self {
+            vertex_normals: normals,
+            ..self
+        })
+    }
+
+    /// The same mesh with texture coordinates for each vertex
+    /// ([`Mesh::vertex_uv`]). `Err` when there are not some for every
+    /// vertex.
+    pub const fn with_uvs(self, uvs: &'a [[f32; 2]]) -> Result<Self, MeshError> {
+        if uvs.len() != self.positions.len() {
+            return Err(MeshError::BadVertexAttributes);
+        }
+        Ok(Self { uvs, ..self })
     }
 
     /// All positions.
@@ -304,6 +353,15 @@ pub trait MeshArrays {
     fn face_normals(&self) -> &[[f32; 3]] {
         &[]
     }
+    /// Each vertex's normal ([`Mesh::vertex_normal`]); empty when none.
+    fn vertex_normals(&self) -> &[[f32; 3]] {
+        &[]
+    }
+    /// Each vertex's texture coordinates ([`Mesh::vertex_uv`]); empty when
+    /// none.
+    fn uvs(&self) -> &[[f32; 2]] {
+        &[]
+    }
 }
 
 impl<T: MeshArrays + ?Sized> Mesh for T {
@@ -337,6 +395,14 @@ impl<T: MeshArrays + ?Sized> Mesh for T {
     fn face_normal(&self, index: usize) -> Option<[f32; 3]> {
         self.face_normals().get(index).copied()
     }
+
+    fn vertex_normal(&self, index: usize) -> Option<[f32; 3]> {
+        self.vertex_normals().get(index).copied()
+    }
+
+    fn vertex_uv(&self, index: usize) -> Option<[f32; 2]> {
+        self.uvs().get(index).copied()
+    }
 }
 
 impl MeshArrays for StaticMesh<'_> {
@@ -362,6 +428,14 @@ impl MeshArrays for StaticMesh<'_> {
 
     fn face_normals(&self) -> &[[f32; 3]] {
         self.normals
+    }
+
+    fn vertex_normals(&self) -> &[[f32; 3]] {
+        self.vertex_normals
+    }
+
+    fn uvs(&self) -> &[[f32; 2]] {
+        self.uvs
     }
 }
 

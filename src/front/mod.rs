@@ -10,7 +10,8 @@
 //! * [`scene`]: [`draw_mesh`](scene::draw_mesh): transform, cull, clip,
 //!   project, shade, and offer each face to the tables.
 //! * [`shade`]: one colour per face, in `f32` or, for quantized meshes,
-//!   in integers.
+//!   in integers, or per vertex ([`rgb8p8`]: colours with 8 bits below
+//!   the 8-bit step).
 //! * [`quantized`]: meshes quantized for the integer front end (`i16`
 //!   positions, unit face normals), kept in flash.
 //! * [`fixed_point`]: the integer front end: transform, clip tests,
@@ -25,5 +26,6 @@ pub(crate) mod geometry;
 pub(crate) mod mesh;
 pub mod obj;
 pub(crate) mod quantized;
+pub(crate) mod rgb8p8;
 pub(crate) mod scene;
 pub(crate) mod shade;

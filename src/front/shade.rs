@@ -9,7 +9,8 @@
 
 use crate::front::fixed_point::{fraction_bits, unit_q15};
 use crate::front::geometry::Vec3;
-use crate::front::scene::FaceInfo;
+use crate::front::rgb8p8::Rgb8p8;
+use crate::front::scene::{FaceInfo, VertexInfo};
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 
 /// How faces are coloured.
@@ -107,6 +108,17 @@ impl Lambert {
         let k = self.ambient + (1.0 - self.ambient) * d.max(0.0);
         scale(self.base, k)
     }
+
+    /// The colour of one vertex, for Gouraud shading, in 8.8 fixed point
+    /// (the 8 bits below the 8-bit step are kept for the interpolation):
+    /// lit by its normal ([`VertexInfo::normal`]) one-sided, as a surface
+    /// whose normals point out; a vertex with no normal is lit as if it
+    /// faced the light.
+    pub fn vertex_color(&self, vertex: &VertexInfo) -> Rgb8p8 {
+        let d = vertex.normal().map_or(1.0, |n| n.dot(self.light));
+        let k = self.ambient + (1.0 - self.ambient) * d.max(0.0);
+        scale_8p8(self.base, k)
+    }
 }
 
 /// `n·l` for a view normal `n` from
@@ -142,6 +154,32 @@ impl Shading {
             Shading::FaceId => face_id_color(face.face),
         }
     }
+
+    /// The colour of one vertex, for Gouraud shading (in 8.8 fixed point):
+    /// [`Lambert::vertex_color`]; the flat colour; grey by the vertex's
+    /// view distance; or a false colour per vertex id.
+    pub fn vertex_color(&self, vertex: &VertexInfo) -> Rgb8p8 {
+        match *self {
+            Shading::Flat(c) => Rgb8p8::from_rgb888(c),
+            Shading::Lambert(ref lambert) => lambert.vertex_color(vertex),
+            Shading::Depth { near, far } => {
+                let t = ((far - vertex.view_depth()) / (far - near)).clamp(0.0, 1.0);
+                scale_8p8(Rgb888::WHITE, t)
+            }
+            Shading::FaceId => Rgb8p8::from_rgb888(face_id_color(vertex.vertex)),
+        }
+    }
+}
+
+/// `c · k` in 8.8 fixed point, `k` clamped to `[0, 1]` (NaN as 0).
+fn scale_8p8(c: Rgb888, k: f32) -> Rgb8p8 {
+    let k = if k.is_finite() {
+        k.clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let channel = |v: u8| f32::from(v) / 255.0 * k;
+    Rgb8p8::from_unit([channel(c.r()), channel(c.g()), channel(c.b())])
 }
 
 fn scale(c: Rgb888, k: f32) -> Rgb888 {

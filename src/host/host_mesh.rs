@@ -1,9 +1,11 @@
 //! A mesh in `std` vectors, for OBJ files of any size on the host.
 
+use std::collections::HashMap;
 use std::vec::Vec;
 
+use crate::front::geometry::{Vec3, newell_normal, unit};
 use crate::front::mesh::{Mesh, MeshArrays, SharedPlane, face_normals, planar_face_bits};
-use crate::front::obj::{ObjError, ObjReader, Statement};
+use crate::front::obj::{ObjCorner, ObjError, ObjErrorKind, ObjReader, Statement};
 use crate::limits::MAX_FACE_CORNERS;
 use crate::limits::{MAX_POLYGON_CORNERS, MAX_POLYGONS};
 use crate::raster::Capacities;
@@ -32,7 +34,20 @@ pub struct HostMesh {
     /// instead of the corners; empty or short, the faces past its end
     /// compute theirs each frame. [`Self::from_obj`] computes them.
     pub face_normals: Vec<[f32; 3]>,
+    /// Each vertex's unit normal, for smooth shading
+    /// ([`Mesh::vertex_normal`](crate::Mesh::vertex_normal)); empty when
+    /// the mesh has none ([`Self::from_obj_smooth`] and
+    /// [`Self::with_vertex_normals`] give every vertex one).
+    pub vertex_normals: Vec<[f32; 3]>,
+    /// Each vertex's texture coordinates
+    /// ([`Mesh::vertex_uv`](crate::Mesh::vertex_uv)); empty when the mesh
+    /// has none.
+    pub uvs: Vec<[f32; 2]>,
 }
+
+/// The crease angle the tools give [`HostMesh::from_obj_smooth`] unless
+/// told otherwise: faces meeting at a sharper angle keep a hard edge.
+pub const DEFAULT_CREASE_DEGREES: f32 = 60.0;
 
 impl HostMesh {
     /// Capacities for drawing this mesh whole into frames `width` pixels
@@ -122,6 +137,64 @@ impl HostMesh {
         Ok(mesh.with_face_analysis())
     }
 
+    /// Reads an OBJ file for smooth shading and textures: a vertex for each
+    /// different position, texture coordinate and normal its faces' corners
+    /// name together (as a GPU's vertex buffer has them), with the file's
+    /// normals (normalised) and texture coordinates. A corner with no
+    /// normal in the file gets its position's normal from the faces
+    /// around it ([`Self::with_vertex_normals`]); a corner with no
+    /// texture coordinate, `(0, 0)` when others have one. More than 65,536
+    /// such vertices is [`ObjErrorKind::TooManyVertices`] at the face that
+    /// passes the limit.
+    pub fn from_obj_smooth(bytes: &[u8], crease_degrees: f32) -> Result<Self, ObjError> {
+        let mut file = AttributedFaces::default();
+        let mut reader = ObjReader::<MAX_FACE_CORNERS>::new(bytes);
+        while let Some(statement) = reader.next() {
+            match statement? {
+                Statement::Vertex(p) => file.positions.push(p),
+                Statement::TexCoord(uv) => file.texcoords.push(uv),
+                Statement::Normal(n) => file.normals.push(n),
+                Statement::Face(corners) => {
+                    file.face_starts.push(file.corners.len() as u32);
+                    file.corners.extend_from_slice(&corners);
+                    file.face_lines.push(reader.line());
+                }
+                Statement::Other(_) => {}
+            }
+        }
+        file.build(crease_degrees)
+    }
+
+    /// The same mesh with a normal for every vertex, for smooth shading:
+    /// at each corner, the sum of the normals of the faces around its
+    /// position (every position with the same coordinates), each weighted by its area (Newell's vector), over the
+    /// faces within `crease_degrees` of the corner's own face, normalised.
+    /// So a smooth surface shades smoothly and an edge sharper than the
+    /// crease angle stays hard: a position whose corners get different
+    /// normals becomes one vertex per normal. Texture coordinates are
+    /// kept. Fails as [`Self::from_obj_smooth`] does when the vertices
+    /// pass 65,536.
+    pub fn with_vertex_normals(self, crease_degrees: f32) -> Result<Self, ObjError> {
+        let has_uvs = !self.uvs.is_empty();
+        let file = AttributedFaces {
+            corners: self
+                .corners
+                .iter()
+                .map(|&vertex| ObjCorner {
+                    vertex,
+                    texcoord: has_uvs.then_some(u32::from(vertex)),
+                    normal: None,
+                })
+                .collect(),
+            face_lines: std::vec![0; self.face_starts.len()],
+            face_starts: self.face_starts,
+            texcoords: self.uvs,
+            normals: Vec::new(),
+            positions: self.positions,
+        };
+        file.build(crease_degrees)
+    }
+
     /// The mesh with what its faces' geometry tells the pipeline found
     /// again: which faces are planar ([`Self::planar_faces`], so that no
     /// frame tests them), their normals ([`Self::face_normals`]) and which
@@ -134,6 +207,115 @@ impl HostMesh {
         self.face_normals = face_normals(&self).collect();
         self.shared_planes = crate::host::coplanar::shared_planes(&self);
         self
+    }
+}
+
+/// Faces whose corners name positions, texture coordinates and normals
+/// each by their own index, as an OBJ file has them.
+#[derive(Default)]
+struct AttributedFaces {
+    positions: Vec<[f32; 3]>,
+    texcoords: Vec<[f32; 2]>,
+    normals: Vec<[f32; 3]>,
+    corners: Vec<ObjCorner>,
+    face_starts: Vec<u32>,
+    /// Each face's line in the file, for errors.
+    face_lines: Vec<u32>,
+}
+
+impl AttributedFaces {
+    /// Face `f`'s corners.
+    fn face(&self, f: usize) -> &[ObjCorner] {
+        let start = self.face_starts[f] as usize;
+        let end = self
+            .face_starts
+            .get(f + 1)
+            .map_or(self.corners.len(), |&e| e as usize);
+        &self.corners[start..end]
+    }
+
+    /// The mesh of one vertex per different (position, texture
+    /// coordinate, normal) of the corners; see
+    /// [`HostMesh::from_obj_smooth`].
+    fn build(self, crease_degrees: f32) -> Result<HostMesh, ObjError> {
+        let faces = self.face_starts.len();
+        // Each face's Newell vector (its area times its unit normal).
+        let area_normals: Vec<Vec3> = (0..faces)
+            .map(|f| {
+                newell_normal(
+                    self.face(f)
+                        .iter()
+                        .map(|c| self.positions[usize::from(c.vertex)]),
+                )
+            })
+            .collect();
+        // Positions with the same coordinates are one point of the surface
+        // (files often repeat a position at a texture seam): each position's
+        // first index with its coordinates.
+        let mut first: HashMap<[u32; 3], u32> = HashMap::new();
+        let weld: Vec<u32> = (0..self.positions.len() as u32)
+            .map(|k| {
+                let bits = self.positions[k as usize].map(|c| (c + 0.0).to_bits());
+                *first.entry(bits).or_insert(k)
+            })
+            .collect();
+        let point = |c: &ObjCorner| weld[usize::from(c.vertex)] as usize;
+        // The faces around each point.
+        let mut around: Vec<Vec<u32>> = std::vec![Vec::new(); self.positions.len()];
+        for f in 0..faces {
+            for c in self.face(f) {
+                let list = &mut around[point(c)];
+                if list.last() != Some(&(f as u32)) {
+                    list.push(f as u32);
+                }
+            }
+        }
+        let cos_crease = crease_degrees.to_radians().cos();
+        let has_uvs = self.corners.iter().any(|c| c.texcoord.is_some());
+        let mut mesh = HostMesh::default();
+        let mut index: HashMap<(u16, Option<u32>, [u32; 3]), u16> = HashMap::new();
+        for f in 0..faces {
+            mesh.face_starts.push(mesh.corners.len() as u32);
+            let own = unit(area_normals[f]);
+            for c in self.face(f) {
+                let normal = match c.normal.and_then(|n| self.normals.get(n as usize)) {
+                    Some(&n) => unit(Vec3::from_array(n)),
+                    None => {
+                        let mut sum = Vec3::default();
+                        for &g in &around[point(c)] {
+                            let n = area_normals[g as usize];
+                            let smooth = own.dot(unit(n)) >= cos_crease;
+                            if smooth || g as usize == f {
+                                sum = sum + n;
+                            }
+                        }
+                        unit(sum)
+                    }
+                };
+                let normal = [normal.x, normal.y, normal.z];
+                let key = (c.vertex, c.texcoord, normal.map(f32::to_bits));
+                let next = mesh.positions.len();
+                let id = match index.get(&key) {
+                    Some(&id) => id,
+                    None => {
+                        let id = u16::try_from(next).map_err(|_| ObjError {
+                            line: self.face_lines[f],
+                            kind: ObjErrorKind::TooManyVertices,
+                        })?;
+                        index.insert(key, id);
+                        mesh.positions.push(self.positions[usize::from(c.vertex)]);
+                        mesh.vertex_normals.push(normal);
+                        if has_uvs {
+                            let uv = c.texcoord.and_then(|t| self.texcoords.get(t as usize));
+                            mesh.uvs.push(uv.copied().unwrap_or([0.0; 2]));
+                        }
+                        id
+                    }
+                };
+                mesh.corners.push(id);
+            }
+        }
+        Ok(mesh.with_face_analysis())
     }
 }
 
@@ -172,6 +354,14 @@ impl MeshArrays for HostMesh {
 
     fn face_normals(&self) -> &[[f32; 3]] {
         &self.face_normals
+    }
+
+    fn vertex_normals(&self) -> &[[f32; 3]] {
+        &self.vertex_normals
+    }
+
+    fn uvs(&self) -> &[[f32; 2]] {
+        &self.uvs
     }
 }
 
@@ -224,5 +414,102 @@ mod tests {
         for f in 32..40 {
             assert_eq!(mesh.face_is_planar(f), f % 3 != 0, "face {f}");
         }
+    }
+
+    /// A cube of quads.
+    const CUBE: &[u8] = b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n\
+f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
+
+    /// A cube's edges are sharper than 60 degrees: each corner keeps its
+    /// face's normal (24 vertices); past 90 degrees every corner is
+    /// smoothed along the cube's diagonal (8 vertices).
+    #[test]
+    fn creases_keep_hard_edges_hard() {
+        let hard = HostMesh::from_obj_smooth(CUBE, 60.0).unwrap();
+        assert_eq!((hard.positions.len(), hard.vertex_normals.len()), (24, 24));
+        assert!(hard.uvs.is_empty());
+        for f in 0..6 {
+            for &v in hard.face(f) {
+                assert_eq!(
+                    hard.vertex_normals[usize::from(v)],
+                    hard.face_normals[f],
+                    "face {f}"
+                );
+            }
+        }
+        let smooth = HostMesh::from_obj_smooth(CUBE, 100.0).unwrap();
+        assert_eq!(smooth.positions.len(), 8);
+        let third = 1.0 / 3.0f32.sqrt();
+        for (p, n) in smooth.positions.iter().zip(&smooth.vertex_normals) {
+            for k in 0..3 {
+                let want = if p[k] > 0.5 { third } else { -third };
+                assert!((n[k] - want).abs() < 1e-6, "{p:?}: {n:?}");
+            }
+        }
+        // Drawn flat, the cube is the same: the same faces, positions and
+        // face normals as the positions-only mesh's.
+        let flat = HostMesh::from_obj(CUBE).unwrap();
+        assert_eq!(hard.face_normals, flat.face_normals);
+        for f in 0..6 {
+            let at = |m: &HostMesh, k: usize| m.positions[usize::from(m.face(f)[k])];
+            assert!((0..4).all(|k| at(&hard, k) == at(&flat, k)));
+        }
+    }
+
+    /// A file's normals are used, normalised; texture coordinates split
+    /// vertices at seams, and a corner without one gets (0, 0).
+    #[test]
+    fn file_normals_and_texture_coordinates_are_kept() {
+        let obj = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0.5 0.25\nvt 1 1\nvn 0 0 3\n\
+f 1/1/1 2/1/1 3/2/1\nf 1/2/1 3/2/1 2//1\n";
+        let mesh = HostMesh::from_obj_smooth(obj, 60.0).unwrap();
+        // (v1, vt1), (v2, vt1), (v3, vt2), (v1, vt2), (v2, none).
+        assert_eq!(mesh.positions.len(), 5);
+        assert!(mesh.vertex_normals.iter().all(|&n| n == [0.0, 0.0, 1.0]));
+        assert_eq!(
+            mesh.uvs,
+            [[0.5, 0.25], [0.5, 0.25], [1.0, 1.0], [1.0, 1.0], [0.0, 0.0]]
+        );
+        assert_eq!(mesh.face(1), &[3, 2, 4]);
+        assert_eq!(mesh.vertex_uv(2), Some([1.0, 1.0]));
+        assert_eq!(mesh.vertex_normal(4), Some([0.0, 0.0, 1.0]));
+    }
+
+    /// Positions repeated with the same coordinates (a texture seam) are
+    /// one point for the normals: both sides of the seam get the same
+    /// normal, as with one shared position.
+    #[test]
+    fn seams_share_their_normals() {
+        let shared = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0.5\nf 1 2 3\nf 2 4 3\n";
+        let seam = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0.5\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 5 4 6\n";
+        let shared = HostMesh::from_obj_smooth(shared, 60.0).unwrap();
+        let seam = HostMesh::from_obj_smooth(seam, 60.0).unwrap();
+        let normals = |m: &HostMesh| -> Vec<[f32; 3]> {
+            m.corners
+                .iter()
+                .map(|&v| m.vertex_normals[usize::from(v)])
+                .collect()
+        };
+        assert_eq!(normals(&shared), normals(&seam));
+        // Smoothed: the corners on the shared edge are not face normals.
+        assert_ne!(normals(&shared)[1], shared.face_normals[0]);
+    }
+
+    /// More than 65,536 vertices after the split is an error at the face
+    /// that passes the limit.
+    #[test]
+    fn too_many_split_vertices_is_an_error() {
+        let mut obj = String::from("v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+        for k in 0..21_846 {
+            let _ = writeln!(obj, "vt {k} 0");
+        }
+        for k in 0..21_846 {
+            let t = k + 1;
+            let _ = writeln!(obj, "f 1/{t} 2/{t} 3/{t}");
+        }
+        let error = HostMesh::from_obj_smooth(obj.as_bytes(), 60.0).unwrap_err();
+        assert_eq!(error.kind, ObjErrorKind::TooManyVertices);
+        // 21,845 faces of 3 new vertices fit (65,535); the next passes.
+        assert_eq!(error.line, 3 + 21_846 + 21_846);
     }
 }

@@ -11,6 +11,8 @@ mod storage;
 pub use bands::{
     BandTables, BandTiming, BandedRenderer, MESH_VERTICES, ONE_THREAD_BELOW, SharedSteps,
 };
-pub use host_mesh::HostMesh;
+pub use host_mesh::{DEFAULT_CREASE_DEGREES, HostMesh};
 pub use quantize::QuantizedHostMesh;
-pub use storage::{HostRenderer, ScanVecs, TableVecs, host_renderer};
+pub use storage::{
+    HostPaintedRenderer, HostRenderer, PaintVecs, ScanVecs, TableVecs, host_renderer,
+};

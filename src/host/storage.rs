@@ -7,7 +7,9 @@ use std::vec::Vec;
 
 use crate::error::Error;
 use crate::host::HostMesh;
+use crate::paint::{PaintMode, PaintParts, PaintStorage, PaintedRenderer, SlotPlanes};
 use crate::raster::depth::DepthFormat;
+use crate::raster::paint::NO_SLOT;
 use crate::raster::scan::{ScanParts, ScanStorage};
 use crate::raster::tables::{PolygonEntry, TableParts, TablePartsRef, TableStorage};
 use crate::raster::vertex::ScreenVertex;
@@ -156,5 +158,102 @@ impl<C: Copy, D: DepthFormat> HostRenderer<C, D> {
         background: C,
     ) -> Result<Self, Error> {
         host_renderer(&mesh.capacities(width), width, height, background)
+    }
+}
+
+/// A painted renderer's own storage in `Vec`s: values for the vertex
+/// table, planes for the active polygons and the painted row.
+pub struct PaintVecs<M: PaintMode> {
+    vertices: Vec<M::Vertex>,
+    slots: Vec<SlotPlanes<M::Planes>>,
+    row: Vec<M::Color>,
+}
+
+impl<M: PaintMode> PaintVecs<M> {
+    /// Storage for `caps.vertices` vertices, `caps.active_polygons` active
+    /// polygons and rows of `caps.width` pixels; `color` fills the row.
+    pub fn new(caps: &Capacities, color: M::Color) -> Self {
+        Self {
+            vertices: vec![M::VERTEX_FILLER; caps.vertices.min(1 << 16)],
+            slots: vec![SlotPlanes::filler(M::PLANES_FILLER); caps.active_polygons],
+            row: vec![color; caps.width],
+        }
+    }
+}
+
+impl<M: PaintMode> PaintStorage for PaintVecs<M> {
+    type Mode = M;
+
+    fn parts_mut(&mut self) -> PaintParts<'_, M> {
+        PaintParts {
+            vertices: &mut self.vertices,
+            slots: &mut self.slots,
+            row: &mut self.row,
+        }
+    }
+}
+
+/// A [`PaintedRenderer`] in `Vec`s: tables, scanner, vertex cache and
+/// paint storage, painting with mode `M`.
+pub type HostPaintedRenderer<M, D> =
+    PaintedRenderer<TableVecs<u16>, ScanVecs<u16, D>, Vec<u16>, PaintVecs<M>>;
+
+impl<M: PaintMode, D: DepthFormat> HostPaintedRenderer<M, D> {
+    /// A painted renderer over `Vec` storage with capacities `caps` for
+    /// frames `width` x `height`, painting with `mode` and clearing to
+    /// `background`.
+    pub fn with_capacities(
+        caps: &Capacities,
+        (width, height): (u16, u16),
+        mode: M,
+        background: M::Color,
+    ) -> Result<Self, Error> {
+        PaintedRenderer::from_storage(
+            (
+                TableVecs::new(caps, 0),
+                ScanVecs::new(caps, NO_SLOT),
+                vec![0; caps.mesh_vertices],
+                PaintVecs::new(caps, background),
+            ),
+            (width, height),
+            mode,
+            background,
+        )
+    }
+
+    /// A painted renderer for frames `width` x `height` of `mesh`, from
+    /// any view, culled or not, sized as [`HostRenderer::for_mesh`] sizes
+    /// a flat one.
+    ///
+    /// ```
+    /// use embedded_graphics_core::pixelcolor::Rgb565;
+    /// use zline::host::{DEFAULT_CREASE_DEGREES, HostMesh, HostPaintedRenderer};
+    /// use zline::paint::Gouraud;
+    /// use zline::{Camera, Cull, Depth16, FnSink, Shading, reference_model};
+    ///
+    /// let obj = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    /// let mesh = HostMesh::from_obj_smooth(obj, DEFAULT_CREASE_DEGREES)?;
+    /// let black = Rgb565::new(0, 0, 0);
+    /// let mut renderer =
+    ///     HostPaintedRenderer::<Gouraud<Rgb565>, Depth16>::for_mesh(&mesh, 64, 48, Gouraud::new(), black)?;
+    /// let model = reference_model(&mesh, 0.0, 0.0)?;
+    /// let shading = Shading::lambert();
+    /// renderer.draw_mesh(&mesh, &model, &Camera::reference(64, 48), Cull::Back, |v| shading.vertex_color(v))?;
+    /// let mut lit = 0;
+    /// renderer.render(&mut FnSink(|_: u16, row: &[Rgb565], _: &[u16]| {
+    ///     lit += row.iter().filter(|&&c| c != black).count();
+    ///     Ok::<(), ()>(())
+    /// }))?;
+    /// assert!(lit > 100);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn for_mesh(
+        mesh: &HostMesh,
+        width: u16,
+        height: u16,
+        mode: M,
+        background: M::Color,
+    ) -> Result<Self, Error> {
+        Self::with_capacities(&mesh.capacities(width), (width, height), mode, background)
     }
 }

@@ -8,8 +8,7 @@ use embedded_graphics_core::pixelcolor::{
     Bgr555, Bgr565, Bgr666, Bgr888, Rgb555, Rgb565, Rgb666, Rgb888,
 };
 
-/// 255.0 in a painted channel's 8.8 fixed point.
-pub const CHANNEL_MAX: u32 = 255 << 8;
+pub use crate::front::rgb8p8::CHANNEL_MAX;
 
 /// The rounding offset of a channel quantised without dither: half a
 /// level, so a channel rounds to the nearest level (ties up). An exact

@@ -6,67 +6,13 @@
 
 use core::marker::PhantomData;
 
-use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
-
+pub use crate::front::rgb8p8::Rgb8p8;
 use crate::paint::PaintMode;
 use crate::paint::color::{CHANNEL_MAX, PaintColor, bayer_threshold};
 use crate::raster::attribute::{
     ATTRIBUTE_FRAC_BITS, AttributePlane, attribute_planes, exact_value_at,
 };
 use crate::raster::vertex::ScreenVertex;
-
-/// A vertex colour in 8.8 fixed point per channel: `0x0000` is 0 and
-/// `0xFF00` is 255 (values above are taken as 255), so shading computed
-/// per vertex keeps 8 bits below the 8-bit step.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
-pub struct Rgb8p8 {
-    /// Red.
-    pub r: u16,
-    /// Green.
-    pub g: u16,
-    /// Blue.
-    pub b: u16,
-}
-
-impl Rgb8p8 {
-    /// Black.
-    pub const BLACK: Self = Self { r: 0, g: 0, b: 0 };
-
-    /// An 8-bit colour, exactly.
-    pub fn from_rgb888(c: Rgb888) -> Self {
-        Self {
-            r: (c.r() as u16) << 8,
-            g: (c.g() as u16) << 8,
-            b: (c.b() as u16) << 8,
-        }
-    }
-
-    /// Channels in `[0, 1]` (values beyond are clamped; NaN is 0), rounded
-    /// to the nearest 1/256 of an 8-bit step.
-    pub fn from_unit(rgb: [f32; 3]) -> Self {
-        let channel = |v: f32| {
-            let scaled = v.clamp(0.0, 1.0) * CHANNEL_MAX as f32 + 0.5;
-            // `as` saturates, and NaN becomes 0.
-            scaled as u16
-        };
-        Self {
-            r: channel(rgb[0]),
-            g: channel(rgb[1]),
-            b: channel(rgb[2]),
-        }
-    }
-
-    /// The channels as attribute values.
-    fn values(self) -> [u32; 3] {
-        [u32::from(self.r), u32::from(self.g), u32::from(self.b)]
-    }
-}
-
-impl From<Rgb888> for Rgb8p8 {
-    fn from(c: Rgb888) -> Self {
-        Self::from_rgb888(c)
-    }
-}
 
 /// The planes of a Gouraud-shaded polygon: one per channel.
 pub type GouraudPlanes = [AttributePlane; 3];
@@ -115,11 +61,16 @@ fn channel(value: i64) -> u32 {
 }
 
 impl<C: PaintColor> PaintMode for Gouraud<C> {
+    type Source = Rgb8p8;
     type Vertex = Rgb8p8;
     type Planes = GouraudPlanes;
     type Color = C;
     const VERTEX_FILLER: Rgb8p8 = Rgb8p8::BLACK;
     const PLANES_FILLER: GouraudPlanes = [AttributePlane::ZERO; 3];
+
+    fn vertex(&self, source: Rgb8p8) -> Rgb8p8 {
+        source
+    }
 
     fn planes(
         &self,

@@ -23,6 +23,7 @@ pub use gouraud::{Gouraud, GouraudPlanes, Rgb8p8};
 pub use renderer::PaintedRenderer;
 pub use storage::{PaintArrays, PaintParts, PaintStorage, SlotPlanes};
 
+use crate::front::clip::ClipValue;
 use crate::raster::paint::{NO_SLOT, RowPainter};
 use crate::raster::tables::Prepared;
 use crate::raster::tables::entry::entry_corner_ids;
@@ -30,6 +31,10 @@ use crate::raster::vertex::ScreenVertex;
 
 /// A way of painting polygons from values at their corners.
 pub trait PaintMode {
+    /// What a mesh's vertex shading gives each vertex
+    /// ([`PaintedRenderer::draw_mesh`]), interpolated where clipping cuts
+    /// an edge.
+    type Source: ClipValue;
     /// What each vertex of the vertex table carries.
     type Vertex: Copy;
     /// What an active polygon holds to paint its pixels: its planes.
@@ -40,6 +45,9 @@ pub trait PaintMode {
     const VERTEX_FILLER: Self::Vertex;
     /// A value of [`Self::Planes`] to fill storage with.
     const PLANES_FILLER: Self::Planes;
+
+    /// A vertex's value from its source.
+    fn vertex(&self, source: Self::Source) -> Self::Vertex;
 
     /// The planes of a polygon, from its corners (position and value, in
     /// order), in a frame `width` x `height`. A polygon of zero area (never

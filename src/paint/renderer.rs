@@ -3,7 +3,12 @@
 //! of its active polygons and a [`PaintMode`] that paints each row.
 
 use crate::error::{Error, RenderError};
-use crate::front::scene::CacheStorage;
+use crate::front::geometry::Mat4;
+use crate::front::mesh::Mesh;
+use crate::front::scene::{
+    CacheStorage, Camera, Cull, DrawError, DrawStats, VertexInfo, VertexValues,
+    draw_mesh_with_values,
+};
 use crate::paint::{PaintArrays, PaintMode, PaintStorage, Painter};
 use crate::raster::depth::DepthFormat;
 use crate::raster::paint::{NO_SLOT, scan_painted};
@@ -18,6 +23,8 @@ use crate::sink::RowSink;
 type ColorOf<A> = <<A as PaintStorage>::Mode as PaintMode>::Color;
 /// The vertex value of a painted renderer's mode.
 type VertexOf<A> = <<A as PaintStorage>::Mode as PaintMode>::Vertex;
+/// The vertex source of a painted renderer's mode.
+type SourceOf<A> = <<A as PaintStorage>::Mode as PaintMode>::Source;
 
 /// A renderer that shades after visibility: its polygons carry values at
 /// their corners (a colour per vertex for [`Gouraud`](crate::paint::Gouraud)
@@ -271,4 +278,67 @@ macro_rules! painted_renderer_type {
             >,
         >
     };
+}
+
+impl<T, S, K, A> PaintedRenderer<T, S, K, A>
+where
+    T: TableStorage<Color = u16>,
+    S: ScanStorage<Color = u16>,
+    K: CacheStorage,
+    A: PaintStorage,
+{
+    /// Draws `mesh` with the `model` matrix through `camera` into the
+    /// tables, as [`Renderer::draw_mesh`] does, each vertex getting its
+    /// value from `shade` (for [`Gouraud`](crate::paint::Gouraud), its
+    /// colour, for example
+    /// [`Shading::vertex_color`](crate::Shading::vertex_color)); a corner
+    /// that clipping makes gets its edge's values interpolated. Call
+    /// [`Self::render`] afterwards.
+    pub fn draw_mesh<M: Mesh>(
+        &mut self,
+        mesh: &M,
+        model: &Mat4,
+        camera: &Camera,
+        cull: Cull,
+        shade: impl Fn(&VertexInfo<'_>) -> SourceOf<A>,
+    ) -> Result<DrawStats, DrawError> {
+        let parts = self.paint.parts_mut();
+        let mut values = PaintValues {
+            mode: &self.mode,
+            shade,
+            vertices: parts.vertices,
+        };
+        let Renderer { tables, cache, .. } = &mut self.renderer;
+        draw_mesh_with_values(tables, cache, mesh, (model, camera, cull), &mut values)
+    }
+}
+
+/// A painted draw's vertex values: each vertex's source from `shade`, its
+/// value stored at its vertex-table index.
+struct PaintValues<'a, M: PaintMode, F> {
+    mode: &'a M,
+    shade: F,
+    vertices: &'a mut [M::Vertex],
+}
+
+impl<M: PaintMode, F: Fn(&VertexInfo<'_>) -> M::Source> VertexValues for PaintValues<'_, M, F> {
+    type Source = M::Source;
+    const STORES: bool = true;
+
+    fn split(
+        &mut self,
+    ) -> (
+        impl Fn(&VertexInfo<'_>) -> M::Source + '_,
+        impl FnMut(u16, M::Source) -> Result<(), Error> + '_,
+    ) {
+        let (shade, mode, vertices) = (&self.shade, self.mode, &mut *self.vertices);
+        let store = move |id: u16, source: M::Source| {
+            let slot = vertices
+                .get_mut(usize::from(id))
+                .ok_or(Error::PaintStorageTooSmall)?;
+            *slot = mode.vertex(source);
+            Ok(())
+        };
+        (shade, store)
+    }
 }

@@ -4,7 +4,7 @@
 //! clipper in `f64` and projected.
 
 use crate::error::Error;
-use crate::front::clip::{self, ClipPoint, ClipVertex, Clipper};
+use crate::front::clip::{self, ClipPoint, ClipValue, ClipVertex, Clipper};
 use crate::front::mesh::Mesh;
 use crate::front::scene::cache::NEEDS_CLIP;
 use crate::front::scene::transform::Frame;
@@ -102,17 +102,19 @@ impl Frame {
     }
 }
 
-/// Runs a face's corners through the guard-band clipper into `out`.
-/// Corners the cache holds as stored vertices go in tagged with their index
-/// and known to be inside.
-pub(super) fn clip_face<M: Mesh + ?Sized>(
+/// Runs a face's corners through the guard-band clipper into `out`, each
+/// with its value from `value` (of the mesh vertex's index; `()` for
+/// none). Corners the cache holds as stored vertices go in tagged with
+/// their index and known to be inside.
+pub(super) fn clip_face<M: Mesh + ?Sized, S: ClipValue>(
     frame: &Frame,
     mesh: &M,
     slots: &[u16],
     corners: &[u16],
-    out: &mut dyn FnMut(ClipVertex) -> Result<(), Error>,
+    mut value: impl FnMut(usize) -> S,
+    out: &mut dyn FnMut(ClipVertex<S>) -> Result<(), Error>,
 ) -> Result<(), Error> {
-    let mut clipper = Clipper::new(frame.guard_planes());
+    let mut clipper = Clipper::<6, S>::new(frame.guard_planes());
     for &index in corners {
         let index = usize::from(index);
         let tag = match slots[index] {
@@ -120,7 +122,8 @@ pub(super) fn clip_face<M: Mesh + ?Sized>(
             id => Some(id),
         };
         let point = frame.clip_position64(mesh, index);
-        clipper.push(ClipVertex::corner(point, tag, tag.is_some()), out)?;
+        let corner = ClipVertex::with_value(point, tag, tag.is_some(), value(index));
+        clipper.push(corner, out)?;
     }
     clipper.finish(out)
 }

@@ -9,7 +9,7 @@ use core::fmt;
 use crate::arith::wide::cross;
 use crate::error::Error;
 use crate::front::backface::{EyeTest, Side};
-use crate::front::clip::ClipVertex;
+use crate::front::clip::{ClipValue, ClipVertex};
 use crate::front::geometry::Mat4;
 use crate::front::mesh::{Mesh, SharedPlane};
 use crate::front::scene::cache::{CacheStorage, EMPTY, NEEDS_CLIP, NON_FINITE};
@@ -18,6 +18,7 @@ use crate::front::scene::clipping::clip_face;
 use crate::front::scene::cull::Cull;
 use crate::front::scene::face_info::FaceInfo;
 use crate::front::scene::transform::{Frame, ProjectedVertex, TransformEach, VertexSource};
+use crate::front::scene::vertex_info::VertexInfo;
 use crate::limits::{MAX_FACE_CORNERS, MAX_POLYGON_CORNERS};
 use crate::raster::vertex::{Outline, OutlineBuilder, ScreenVertex};
 use crate::raster::{Admission, PolygonTables};
@@ -102,6 +103,59 @@ enum Corner {
     NonFinite,
 }
 
+/// What a draw stores beside each vertex it adds to the vertex table: a
+/// painted renderer's vertex values ([`crate::paint`]), or nothing
+/// ([`NoValues`], flat shading, whose draw runs none of this).
+pub(crate) trait VertexValues {
+    /// The value a mesh vertex gets before projection, carried through
+    /// clipping.
+    type Source: ClipValue;
+    /// Whether anything is stored.
+    const STORES: bool;
+    /// The value of a mesh vertex, and where the value of a vertex-table
+    /// entry is stored: apart, so that a clipped face can ask for its
+    /// corners' values while it stores those of the corners cuts make.
+    #[allow(clippy::type_complexity)] // two closures, named where they are used
+    fn split(
+        &mut self,
+    ) -> (
+        impl Fn(&VertexInfo<'_>) -> Self::Source + '_,
+        impl FnMut(u16, Self::Source) -> Result<(), Error> + '_,
+    );
+}
+
+impl<T: VertexValues> VertexValues for &mut T {
+    type Source = T::Source;
+    const STORES: bool = T::STORES;
+    #[inline(always)]
+    #[allow(clippy::type_complexity)]
+    fn split(
+        &mut self,
+    ) -> (
+        impl Fn(&VertexInfo<'_>) -> Self::Source + '_,
+        impl FnMut(u16, Self::Source) -> Result<(), Error> + '_,
+    ) {
+        (**self).split()
+    }
+}
+
+/// Nothing stored beside the vertices: flat shading.
+pub(crate) struct NoValues;
+
+impl VertexValues for NoValues {
+    type Source = ();
+    const STORES: bool = false;
+    #[inline(always)]
+    fn split(
+        &mut self,
+    ) -> (
+        impl Fn(&VertexInfo<'_>) + '_,
+        impl FnMut(u16, ()) -> Result<(), Error> + '_,
+    ) {
+        (|_: &VertexInfo<'_>| (), |_: u16, (): ()| Ok(()))
+    }
+}
+
 /// Draws `mesh` with the `model` matrix through `camera` into `tables`:
 /// culls, clips, projects and shades every face, and offers the survivors
 /// to the polygon table. Call the renderer's `render` afterwards.
@@ -144,7 +198,40 @@ where
         mesh,
         TransformEach,
         (model, camera, cull),
-        shade,
+        (shade, NoValues),
+        None,
+    )
+}
+
+/// [`draw_mesh`] storing each vertex's value in `values` as it enters the
+/// vertex table (a painted renderer's draw); faces get colour 0.
+pub(crate) fn draw_mesh_with_values<T, M, K, V>(
+    tables: &mut T,
+    cache: &mut K,
+    mesh: &M,
+    (model, camera, cull): (&Mat4, &Camera, Cull),
+    values: &mut V,
+) -> Result<DrawStats, DrawError>
+where
+    T: PolygonTables<u16> + ?Sized,
+    M: Mesh,
+    K: CacheStorage,
+    V: VertexValues,
+{
+    let Some(slots) = cache.slots_mut().get_mut(..mesh.vertex_count()) else {
+        return Err(DrawError {
+            face: None,
+            error: Error::VertexCacheTooSmall,
+        });
+    };
+    slots.fill(EMPTY);
+    draw_faces(
+        tables,
+        slots,
+        mesh,
+        TransformEach,
+        (model, camera, cull),
+        (|_: &FaceInfo| 0u16, values),
         None,
     )
 }
@@ -247,7 +334,7 @@ where
         mesh,
         projected,
         (model, camera, cull),
-        shade,
+        (shade, NoValues),
         faces,
     )
 }
@@ -271,13 +358,13 @@ fn store_vertex<C, T: PolygonTables<C> + ?Sized>(
 /// and the first `projected.len()` vertices projected beforehand (see
 /// [`draw_mesh_projected`]).
 #[inline(always)]
-fn draw_faces<C, T, M, P>(
+fn draw_faces<C, T, M, P, V>(
     tables: &mut T,
     slots: &mut [u16],
     mesh: &M,
     projected: P,
     (model, camera, cull): (&Mat4, &Camera, Cull),
-    mut shade: impl FnMut(&FaceInfo) -> C,
+    (mut shade, values): (impl FnMut(&FaceInfo) -> C, V),
     faces: Option<&[u32]>,
 ) -> Result<DrawStats, DrawError>
 where
@@ -285,6 +372,7 @@ where
     T: PolygonTables<C> + ?Sized,
     M: Mesh,
     P: VertexSource,
+    V: VertexValues,
 {
     let quantized = mesh.quantized();
     let frame = Frame::new(model, camera, cull, quantized.as_ref());
@@ -313,6 +401,7 @@ where
         shade: &mut shade,
         planes: mesh.shared_planes(),
         face_corners: 0,
+        values,
     };
     let mut draw_face = |face: usize| {
         draw.face(face).map_err(|error| DrawError {
@@ -331,7 +420,7 @@ where
 }
 
 /// The state of one [`draw_mesh`].
-struct Draw<'a, T: ?Sized, M: ?Sized, S, P> {
+struct Draw<'a, T: ?Sized, M: ?Sized, S, P, V> {
     tables: &'a mut T,
     /// Where each mesh vertex went in the vertex table this draw.
     slots: &'a mut [u16],
@@ -354,15 +443,18 @@ struct Draw<'a, T: ?Sized, M: ?Sized, S, P> {
     /// The number of corners of the face being drawn: a polygon of fewer
     /// is a triangle of its fan.
     face_corners: usize,
+    /// Where each vertex's value goes (nothing for flat shading).
+    values: V,
 }
 
-impl<C, T, M, S, P> Draw<'_, T, M, S, P>
+impl<C, T, M, S, P, V> Draw<'_, T, M, S, P, V>
 where
     C: Copy,
     T: PolygonTables<C> + ?Sized,
     M: Mesh,
     S: FnMut(&FaceInfo) -> C,
     P: VertexSource,
+    V: VertexValues,
 {
     fn face(&mut self, face: usize) -> Result<(), Error> {
         let corners = self.mesh.face(face);
@@ -657,8 +749,20 @@ where
             };
         }
         let fates = (NEEDS_CLIP, NON_FINITE);
-        self.frame
-            .vertex(self.mesh, self.positions, index, store, fates)
+        if !V::STORES {
+            return self
+                .frame
+                .vertex(self.mesh, self.positions, index, store, fates);
+        }
+        let slot = self
+            .frame
+            .vertex(self.mesh, self.positions, index, store, fates)?;
+        if slot < NON_FINITE {
+            let info = VertexInfo::of_mesh(self.mesh, self.frame, index);
+            let (source, mut store) = self.values.split();
+            store(slot, source(&info))?;
+        }
+        Ok(slot)
     }
 
     /// The slow path for faces that cross the near or far plane or the
@@ -666,7 +770,9 @@ where
     /// the clipped polygon (corners, area, bounding box, back face) without
     /// storing anything; only a polygon that will be queued is streamed
     /// into the tables by the second, identical pass. Corners that need no
-    /// clipping keep their shared vertex.
+    /// clipping keep their shared vertex. Out of line: rare, and its
+    /// clipper's state stays off the common path's stack.
+    #[inline(never)]
     fn clipped_part(&mut self, face: usize, corners: &[u16]) -> Result<(), Error> {
         let frame = self.frame;
         if frame.wholly_outside(self.mesh, corners)? {
@@ -685,6 +791,7 @@ where
             self.mesh,
             slots,
             corners,
+            |_| (),
             &mut |v: ClipVertex| -> Result<(), Error> {
                 let screen = match v.tag {
                     Some(id) => tables.get_vertex(id),
@@ -735,25 +842,32 @@ where
 
         // Pass 2: the same corners, into the tables.
         self.tables.begin_polygon();
-        let tables = &mut *self.tables;
+        let (tables, mesh) = (&mut *self.tables, self.mesh);
+        let (source, mut store) = self.values.split();
         let slots = &self.slots[..];
         let streamed = clip_face(
             frame,
-            self.mesh,
+            mesh,
             slots,
             corners,
-            &mut |v: ClipVertex| -> Result<(), Error> {
+            |index| source(&VertexInfo::of_mesh(mesh, frame, index)),
+            &mut |v: ClipVertex<V::Source>| -> Result<(), Error> {
                 let id = match v.tag {
                     Some(id) => id,
                     // Projectable: pass 1 projected the same point.
                     None => match frame.project64(v.point) {
-                        Some(screen) => tables.add_vertex(screen)?,
+                        Some(screen) => {
+                            let id = tables.add_vertex(screen)?;
+                            store(id, v.value)?;
+                            id
+                        }
                         None => return Err(Error::OutsideGuardBand),
                     },
                 };
                 tables.add_corner(id)
             },
         );
+        drop((source, store));
         if let Err(e) = streamed {
             self.tables.discard_polygon();
             return Err(e);

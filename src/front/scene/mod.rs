@@ -74,6 +74,7 @@ mod cull;
 mod face_info;
 mod faces;
 mod transform;
+mod vertex_info;
 
 pub use cache::{CacheStorage, NoVertexCache, VertexCache};
 pub use camera::{Camera, RADIUS_RANGE, bounding_sphere, reference_model, reference_model_around};
@@ -82,6 +83,10 @@ pub use cull::Cull;
 pub use face_info::FaceInfo;
 pub use faces::{DrawError, DrawStats, draw_mesh, draw_mesh_projected};
 pub use transform::{ProjectedVertex, project_vertices};
+pub use vertex_info::VertexInfo;
+
+// What a painted renderer draws through.
+pub(crate) use faces::{VertexValues, draw_mesh_with_values};
 
 // What the host's banded renderer draws through.
 #[cfg(feature = "std")]

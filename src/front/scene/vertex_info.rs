@@ -1,0 +1,96 @@
+//! What a vertex shading closure knows about a vertex ([`VertexInfo`]):
+//! its index at once, its normal and texture coordinates when asked for.
+
+use crate::front::geometry::Vec3;
+use crate::front::mesh::Mesh;
+use crate::front::scene::transform::Frame;
+
+/// What a vertex shading closure knows about a mesh vertex, for smooth
+/// shading ([`PaintedRenderer::draw_mesh`](crate::paint::PaintedRenderer::draw_mesh)):
+/// its index at hand, its view-space normal and its texture coordinates
+/// computed only when asked for.
+#[derive(Clone, Copy)]
+pub struct VertexInfo<'a> {
+    /// Index of the vertex in the mesh.
+    pub vertex: u32,
+    geometry: VertexGeometry<'a>,
+}
+
+/// Where a [`VertexInfo`]'s normal and texture coordinates come from.
+#[derive(Clone, Copy)]
+enum VertexGeometry<'a> {
+    /// From the mesh, on demand.
+    Mesh {
+        mesh: &'a dyn Mesh,
+        frame: &'a Frame,
+    },
+    /// Given.
+    Known {
+        normal: Option<Vec3>,
+        uv: Option<[f32; 2]>,
+    },
+}
+
+impl core::fmt::Debug for VertexInfo<'_> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("VertexInfo")
+            .field("vertex", &self.vertex)
+            .field("normal", &self.normal())
+            .field("uv", &self.uv())
+            .finish()
+    }
+}
+
+impl VertexInfo<'static> {
+    /// A vertex whose normal (unit, view space) and texture coordinates
+    /// are known.
+    pub const fn new(vertex: u32, normal: Option<Vec3>, uv: Option<[f32; 2]>) -> Self {
+        Self {
+            vertex,
+            geometry: VertexGeometry::Known { normal, uv },
+        }
+    }
+}
+
+impl<'a> VertexInfo<'a> {
+    /// Vertex `index` of `mesh` in `frame`.
+    pub(super) fn of_mesh(mesh: &'a dyn Mesh, frame: &'a Frame, index: usize) -> Self {
+        Self {
+            vertex: index as u32,
+            geometry: VertexGeometry::Mesh { mesh, frame },
+        }
+    }
+
+    /// The vertex's unit normal in view space, from the mesh's
+    /// ([`Mesh::vertex_normal`]); `None` when the mesh has none.
+    pub fn normal(&self) -> Option<Vec3> {
+        match self.geometry {
+            VertexGeometry::Mesh { mesh, frame } => mesh
+                .vertex_normal(self.vertex as usize)
+                .map(|n| frame.view_normal(Vec3::from_array(n))),
+            VertexGeometry::Known { normal, .. } => normal,
+        }
+    }
+
+    /// View-space distance of the vertex along the view axis (0 for a
+    /// vertex made with [`Self::new`]).
+    pub fn view_depth(&self) -> f32 {
+        match self.geometry {
+            VertexGeometry::Mesh { mesh, frame } => {
+                let p = mesh.position(self.vertex as usize);
+                let row = frame.model_view.m[2];
+                -(row[0] * p[0] + row[1] * p[1] + row[2] * p[2] + row[3])
+            }
+            VertexGeometry::Known { .. } => 0.0,
+        }
+    }
+
+    /// The vertex's texture coordinates ([`Mesh::vertex_uv`]); `None` when
+    /// the mesh has none.
+    pub fn uv(&self) -> Option<[f32; 2]> {
+        match self.geometry {
+            VertexGeometry::Mesh { mesh, .. } => mesh.vertex_uv(self.vertex as usize),
+            VertexGeometry::Known { uv, .. } => uv,
+        }
+    }
+}
