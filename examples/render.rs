@@ -12,7 +12,10 @@
 //! Options (defaults in brackets):
 //! * `--size WxH` [320x240]
 //! * `--yaw DEG` [30] and `--pitch DEG` [20]
-//! * `--shade flat|lambert|depth|id` [lambert]
+//! * `--shade flat|lambert|depth|id|gouraud` [lambert]: `gouraud` is
+//!   Lambert per vertex, interpolated (a painted renderer's colours, the
+//!   scanline method's face ids; the reference interpolates the same
+//!   vertex colours)
 //! * `--cull none|back` [none]
 //! * `--depth z16|z24` [z24]
 //! * `--method scanline|zbuffer|bands:K|interval|painter|reference`
@@ -39,13 +42,15 @@ use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use embedded_graphics_simulator::{OutputSettings, SimulatorDisplay};
+use zline::FnSink;
 use zline::Shading;
-use zline::host::HostMesh;
+use zline::host::{HostMesh, HostPaintedRenderer};
+use zline::paint::Gouraud;
 use zline::{Camera, Cull, reference_model};
 use zline::{Depth16, Depth24, DepthFormat};
-use zline_lab::cli::load_model;
 use zline_lab::cli::parse_size;
 use zline_lab::cli::{help_requested, run_tool};
+use zline_lab::cli::{load_model, load_model_smooth};
 use zline_lab::methods::{BACKGROUND, Method, MethodRenderer, ReferenceView};
 
 /// Parsed command line.
@@ -57,6 +62,7 @@ struct Options {
     yaw: f32,
     pitch: f32,
     shade: Shading,
+    gouraud: bool,
     cull: Cull,
     depth: String,
     method: Method,
@@ -74,6 +80,7 @@ fn parse_args(args: &[String]) -> Result<Options, String> {
         yaw: 30.0,
         pitch: 20.0,
         shade: Shading::lambert(),
+        gouraud: false,
         cull: Cull::None,
         depth: "z24".into(),
         method: Method::Scanline,
@@ -99,7 +106,15 @@ fn parse_args(args: &[String]) -> Result<Options, String> {
                         far: 4.0,
                     },
                     "id" => Shading::FaceId,
-                    s => return Err(format!("--shade: unknown '{s}' (flat, lambert, depth, id)")),
+                    "gouraud" => {
+                        o.gouraud = true;
+                        Shading::lambert()
+                    }
+                    s => {
+                        return Err(format!(
+                            "--shade: unknown '{s}' (flat, lambert, depth, id, gouraud)"
+                        ));
+                    }
                 }
             }
             "--cull" => {
@@ -193,7 +208,44 @@ where
         }
         last = Some(frame);
     }
-    let f = last.ok_or("no frame rendered")?;
+    let mut f = last.ok_or("no frame rendered")?;
+    if o.gouraud {
+        if o.method != Method::Scanline {
+            return Err(format!(
+                "--shade gouraud: drawn by the scanline method only, not {}",
+                o.method.name()
+            ));
+        }
+        // The painted renderer's colours and times; the face ids above.
+        times.clear();
+        let mut painted = HostPaintedRenderer::<Gouraud<Rgb888>, D>::for_mesh(
+            mesh,
+            o.width,
+            o.height,
+            Gouraud::new(),
+            Rgb888::BLACK,
+        )
+        .map_err(|e| e.to_string())?;
+        let mut colors = Vec::new();
+        for k in 0..warm_up + frames {
+            colors.clear();
+            let start = Instant::now();
+            painted.clear();
+            painted
+                .draw_mesh(mesh, &model, &camera, o.cull, |v| o.shade.vertex_color(v))
+                .map_err(|e| e.to_string())?;
+            painted
+                .render(&mut FnSink(|_: u16, row: &[Rgb888], _: &[D::Value]| {
+                    colors.extend_from_slice(row);
+                    Ok::<(), ()>(())
+                }))
+                .map_err(|e| format!("{e:?}"))?;
+            if k >= warm_up {
+                times.push(start.elapsed().as_secs_f64() * 1e3);
+            }
+        }
+        f.colors = colors;
+    }
     let s = |k: &str, v: &dyn ToString| (k.to_string(), v.to_string());
     let cache_bytes = 2 * mesh.positions.len();
     let m = f.memory;
@@ -271,7 +323,12 @@ fn write_outputs(o: &Options, out: &Output) -> Result<(), String> {
 
 fn run(args: &[String]) -> Result<(), String> {
     let o = parse_args(args)?;
-    let mesh = load_model(&o.model.to_string_lossy())?;
+    let spec = o.model.to_string_lossy();
+    let mesh = if o.gouraud {
+        load_model_smooth(&spec)?
+    } else {
+        load_model(&spec)?
+    };
     let mut out = match o.depth.as_str() {
         "z16" => run_method::<Depth16>(&o, &mesh)?,
         _ => run_method::<Depth24>(&o, &mesh)?,
@@ -318,4 +375,4 @@ fn main() -> ExitCode {
     run_tool("render", USAGE, move || run(&args))
 }
 
-const USAGE: &str = "usage: render MODEL.obj|shape:NAME [--size WxH] [--yaw DEG] [--pitch DEG] [--shade flat|lambert|depth|id] [--cull none|back] [--depth z16|z24] [--method scanline|zbuffer|bands:K|interval|painter|reference] [--out FILE.png] [--ids FILE.bin] [--stats] [--frames N]";
+const USAGE: &str = "usage: render MODEL.obj|shape:NAME [--size WxH] [--yaw DEG] [--pitch DEG] [--shade flat|lambert|depth|id|gouraud] [--cull none|back] [--depth z16|z24] [--method scanline|zbuffer|bands:K|interval|painter|reference] [--out FILE.png] [--ids FILE.bin] [--stats] [--frames N]";

@@ -12,6 +12,19 @@ use zline::host::HostMesh;
 /// An OBJ file, or `shape:NAME` for a built-in mesh (see [`shapes::NAMES`]).
 /// Errors name the file and, for a malformed OBJ, the line.
 pub fn load_model(spec: &str) -> Result<HostMesh, String> {
+    load_model_as(spec, false)
+}
+
+/// [`load_model`] for smooth shading: an OBJ file read with its normals
+/// and texture coordinates ([`HostMesh::from_obj_smooth`]), a shape given
+/// normals; each at the default crease angle
+/// ([`zline::host::DEFAULT_CREASE_DEGREES`]).
+pub fn load_model_smooth(spec: &str) -> Result<HostMesh, String> {
+    load_model_as(spec, true)
+}
+
+fn load_model_as(spec: &str, smooth: bool) -> Result<HostMesh, String> {
+    let crease = zline::host::DEFAULT_CREASE_DEGREES;
     let mesh = match spec.strip_prefix("shape:") {
         Some(name) => shapes::by_name(name).ok_or_else(|| {
             format!(
@@ -26,8 +39,19 @@ pub fn load_model(spec: &str) -> Result<HostMesh, String> {
                     "{spec}: a binary file, not a Wavefront OBJ mesh (text: `v x y z` and `f a b c` lines)"
                 ));
             }
-            HostMesh::from_obj(&bytes).map_err(|e| format!("{spec}: {e}"))?
+            let mesh = if smooth {
+                HostMesh::from_obj_smooth(&bytes, crease)
+            } else {
+                HostMesh::from_obj(&bytes)
+            };
+            mesh.map_err(|e| format!("{spec}: {e}"))?
         }
+    };
+    let mesh = if smooth && mesh.vertex_normals.is_empty() {
+        mesh.with_vertex_normals(crease)
+            .map_err(|e| format!("{spec}: {e}"))?
+    } else {
+        mesh
     };
     if mesh.positions.is_empty() && mesh.face_starts.is_empty() {
         return Err(format!(
