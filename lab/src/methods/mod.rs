@@ -17,7 +17,7 @@ mod reference;
 mod run;
 mod scanline_host;
 
-pub use accuracy::{Comparison, compare};
-pub use reference::{BACKGROUND, ReferenceCamera, ReferenceFrame, ReferenceView};
+pub use accuracy::{Comparison, EDGE_TOLERANCE, compare};
+pub use reference::{BACKGROUND, ReferenceCamera, ReferenceFrame, ReferenceView, rotate};
 pub use run::{Memory, Method, MethodFrame, MethodRenderer};
 pub use scanline_host::{HOST_CAPACITIES, HostFrame, HostPixel, HostRenderer, HostScanline};

@@ -16,7 +16,17 @@
 //!   meets the face's plane (Newell normal in view space); the nearest
 //!   face wins, and on an exact tie the lower face id;
 //! * a face that is not planar ([`Mesh::face_is_planar`], the same test the pipeline
-//!   uses) is the fan of triangles from its first corner.
+//!   uses) is the fan of triangles from its first corner;
+//! * values given at the vertices ([`ReferenceFrame::render_with_values`],
+//!   e.g. Gouraud's vertex colours) are carried through clipping (linear
+//!   in view space) and interpolated over each drawn part as Gouraud
+//!   shading in this library is defined ([`ReferenceFrame::interpolated`]):
+//!   over a triangle, the screen-space interpolation of its corners'
+//!   values; a quad strictly convex on screen (not cut by clipping) is the
+//!   two triangles `0 1 2` and `0 2 3`, each interpolated so; any other
+//!   polygon takes the plane in screen space through its first projected
+//!   corner with the Newell normal of its corners `(x, y, value)` (exact
+//!   when those are coplanar).
 
 use std::vec;
 use std::vec::Vec;
@@ -88,11 +98,18 @@ pub struct ReferenceView {
 
 type V3 = [f64; 3];
 
+/// Three values carried by a vertex (a colour's channels).
+pub type Values = [f64; 3];
+
 /// A face as the reference sees it.
 #[derive(Debug, Clone)]
 struct Face {
     /// Projected corners after near/far clipping, in pixels.
     screen: Vec<[f64; 2]>,
+    /// The values at those corners.
+    values: Vec<Values>,
+    /// Whether clipping left the face whole.
+    whole: bool,
     /// View-space plane: `normal · p = offset`.
     normal: V3,
     offset: f64,
@@ -145,6 +162,17 @@ impl ReferenceFrame {
         view: &ReferenceView,
         camera: &ReferenceCamera,
     ) -> Self {
+        Self::render_with_values(mesh, view, camera, &|_| [0.0; 3])
+    }
+
+    /// [`Self::render_with`] with `values(v)` at each vertex `v`, for
+    /// [`Self::interpolated`].
+    pub fn render_with_values<M: Mesh + ?Sized>(
+        mesh: &M,
+        view: &ReferenceView,
+        camera: &ReferenceCamera,
+        values: &dyn Fn(usize) -> Values,
+    ) -> Self {
         let positions = view_positions(mesh, view, camera.eye_distance);
         let mut frame = Self {
             width: view.width,
@@ -157,12 +185,12 @@ impl ReferenceFrame {
             aspect: view.width as f64 / view.height as f64,
         };
         for f in 0..mesh.face_count() {
-            let corners: Vec<V3> = mesh
+            let corners: Vec<(V3, Values)> = mesh
                 .face(f)
                 .iter()
-                .map(|&i| positions[usize::from(i)])
+                .map(|&i| (positions[usize::from(i)], values(usize::from(i))))
                 .collect();
-            let outlines: Vec<Vec<V3>> = if corners.len() > 3 && !mesh.face_is_planar(f) {
+            let outlines: Vec<Vec<(V3, Values)>> = if corners.len() > 3 && !mesh.face_is_planar(f) {
                 (1..corners.len() - 1)
                     .map(|k| vec![corners[0], corners[k], corners[k + 1]])
                     .collect()
@@ -182,10 +210,10 @@ impl ReferenceFrame {
     }
 
     /// Clips, projects and culls one face.
-    fn face(&self, corners: &[V3], cull_back: bool) -> Option<Face> {
+    fn face(&self, corners: &[(V3, Values)], cull_back: bool) -> Option<Face> {
         let mut normal = [0.0; 3];
-        for (k, &p) in corners.iter().enumerate() {
-            let q = corners[(k + 1) % corners.len()];
+        for (k, &(p, _)) in corners.iter().enumerate() {
+            let q = corners[(k + 1) % corners.len()].0;
             normal[0] += (p[1] - q[1]) * (p[2] + q[2]);
             normal[1] += (p[2] - q[2]) * (p[0] + q[0]);
             normal[2] += (p[0] - q[0]) * (p[1] + q[1]);
@@ -194,7 +222,9 @@ impl ReferenceFrame {
         if clipped.len() < 3 {
             return None;
         }
-        let screen: Vec<[f64; 2]> = clipped.iter().map(|&p| self.project(p)).collect();
+        let screen: Vec<[f64; 2]> = clipped.iter().map(|&(p, _)| self.project(p)).collect();
+        let values = clipped.iter().map(|&(_, v)| v).collect();
+        let whole = clipped == corners;
         let area: f64 = (0..screen.len())
             .map(|k| {
                 let (a, b) = (screen[k], screen[(k + 1) % screen.len()]);
@@ -206,10 +236,12 @@ impl ReferenceFrame {
         }
         Some(Face {
             screen,
+            values,
+            whole,
             normal,
-            offset: dot(normal, corners[0]),
+            offset: dot(normal, corners[0].0),
             front: area < 0.0,
-            mean_depth: -corners.iter().map(|p| p[2]).sum::<f64>() / corners.len() as f64,
+            mean_depth: -corners.iter().map(|(p, _)| p[2]).sum::<f64>() / corners.len() as f64,
         })
     }
 
@@ -267,6 +299,67 @@ impl ReferenceFrame {
                 .iter()
                 .min_by(|a, b| part_distance(a, x, y).total_cmp(&part_distance(b, x, y)))
         })
+    }
+
+    /// The values of face `id` at pixel `(i, j)`'s sample (see the
+    /// module's notes), whether or not the face covers it; `None` for
+    /// culled or clipped-away faces and parts of no area.
+    pub fn interpolated(&self, id: u32, i: usize, j: usize) -> Option<Values> {
+        let (x, y) = (i as f64 + 0.5, j as f64 + 0.5);
+        // The nearest of the parts that hold the sample (the triangles of a
+        // folded face's fan can overlap on screen), else the nearest part.
+        let ray = self.ray(i, j);
+        let depth = |p: &Face| plane_depth(p, ray).unwrap_or(f64::INFINITY);
+        let part = self
+            .faces
+            .get(id as usize)?
+            .iter()
+            .filter(|p| inside(&p.screen, x, y))
+            .min_by(|a, b| depth(a).total_cmp(&depth(b)))
+            .or_else(|| self.part(id, i, j))?;
+        let corners: Vec<usize> = if part.whole && strictly_convex(&part.screen) {
+            // The triangle of the two that holds the sample (or is
+            // nearer to it).
+            let half = |t: [usize; 3]| {
+                let screen = t.map(|k| part.screen[k]);
+                let distance = (0..3)
+                    .map(|m| segment_distance([x, y], screen[m], screen[(m + 1) % 3]))
+                    .fold(f64::INFINITY, f64::min);
+                (inside(&screen, x, y), distance)
+            };
+            let (first, second) = ([0, 1, 2], [0, 2, 3]);
+            let (a, b) = (half(first), half(second));
+            let take_first = a.0 || (!b.0 && a.1 <= b.1);
+            if take_first {
+                first.to_vec()
+            } else {
+                second.to_vec()
+            }
+        } else {
+            (0..part.screen.len()).collect()
+        };
+        let n = corners.len();
+        let o = part.screen[corners[0]];
+        let mut out = [0.0; 3];
+        for (k, out) in out.iter_mut().enumerate() {
+            // Newell's normal of the corners (x, y, value).
+            let (mut a, mut b, mut c) = (0.0, 0.0, 0.0);
+            for m in 0..n {
+                let (p, q) = (part.screen[corners[m]], part.screen[corners[(m + 1) % n]]);
+                let (pv, qv) = (
+                    part.values[corners[m]][k],
+                    part.values[corners[(m + 1) % n]][k],
+                );
+                a += (p[1] - q[1]) * (pv + qv);
+                b += (pv - qv) * (p[0] + q[0]);
+                c += (p[0] - q[0]) * (p[1] + q[1]);
+            }
+            if c == 0.0 {
+                return None;
+            }
+            *out = part.values[corners[0]][k] - (a * (x - o[0]) + b * (y - o[1])) / c;
+        }
+        Some(out)
     }
 
     /// Each pixel's colour: `shading` of its face, black where none.
@@ -328,6 +421,14 @@ fn part_distance(face: &Face, x: f64, y: f64) -> f64 {
         .fold(f64::INFINITY, f64::min)
 }
 
+/// `v` turned as the reference view turns the mesh: `Rx(pitch) · Ry(yaw)`.
+pub fn rotate(view: &ReferenceView, v: [f64; 3]) -> [f64; 3] {
+    let (sy, cy) = view.yaw_deg.to_radians().sin_cos();
+    let (sx, cx) = view.pitch_deg.to_radians().sin_cos();
+    let y = [cy * v[0] + sy * v[2], v[1], -sy * v[0] + cy * v[2]];
+    [y[0], cx * y[1] - sx * y[2], sx * y[1] + cx * y[2]]
+}
+
 /// Normalised, rotated, view-space positions of every vertex.
 fn view_positions<M: Mesh + ?Sized>(mesh: &M, view: &ReferenceView, eye: f64) -> Vec<V3> {
     let p = |i: usize| mesh.position(i).map(f64::from);
@@ -349,14 +450,10 @@ fn view_positions<M: Mesh + ?Sized>(mesh: &M, view: &ReferenceView, eye: f64) ->
         .map(|i| dot(sub(p(i), c), sub(p(i), c)).sqrt())
         .fold(0.0f64, f64::max);
     let r = if r > 0.0 { r } else { 1.0 };
-    let (sy, cy) = view.yaw_deg.to_radians().sin_cos();
-    let (sx, cx) = view.pitch_deg.to_radians().sin_cos();
     (0..n)
         .map(|i| {
-            let q = sub(p(i), c).map(|v| v / r);
             // Ry(yaw), then Rx(pitch), then the eye at (0, 0, 3).
-            let y = [cy * q[0] + sy * q[2], q[1], -sy * q[0] + cy * q[2]];
-            let x = [y[0], cx * y[1] - sx * y[2], sx * y[1] + cx * y[2]];
+            let x = rotate(view, sub(p(i), c).map(|v| v / r));
             [x[0], x[1], x[2] - eye]
         })
         .collect()
@@ -364,7 +461,8 @@ fn view_positions<M: Mesh + ?Sized>(mesh: &M, view: &ReferenceView, eye: f64) ->
 
 /// Sutherland-Hodgman against the near (`-z >= near`) and far (`-z <= far`)
 /// planes in view space.
-fn clip_depth(corners: &[V3], (near, far): (f64, f64)) -> Vec<V3> {
+/// Values are interpolated at the cuts as positions are.
+fn clip_depth(corners: &[(V3, Values)], (near, far): (f64, f64)) -> Vec<(V3, Values)> {
     let near = |p: V3| -p[2] - near;
     let far = |p: V3| far + p[2];
     let mut poly = corners.to_vec();
@@ -372,14 +470,11 @@ fn clip_depth(corners: &[V3], (near, far): (f64, f64)) -> Vec<V3> {
         let mut out = Vec::with_capacity(poly.len() + 1);
         for k in 0..poly.len() {
             let (a, b) = (poly[(k + poly.len() - 1) % poly.len()], poly[k]);
-            let (da, db) = (plane(a), plane(b));
+            let (da, db) = (plane(a.0), plane(b.0));
             if (da >= 0.0) != (db >= 0.0) {
                 let t = da / (da - db);
-                out.push([
-                    a[0] + (b[0] - a[0]) * t,
-                    a[1] + (b[1] - a[1]) * t,
-                    a[2] + (b[2] - a[2]) * t,
-                ]);
+                let lerp = |p: V3, q: V3| core::array::from_fn(|m| p[m] + (q[m] - p[m]) * t);
+                out.push((lerp(a.0, b.0), lerp(a.1, b.1)));
             }
             if db >= 0.0 {
                 out.push(b);
@@ -391,6 +486,19 @@ fn clip_depth(corners: &[V3], (near, far): (f64, f64)) -> Vec<V3> {
         }
     }
     poly
+}
+
+/// Whether `poly` is a quad whose four turns all have one sign.
+fn strictly_convex(poly: &[[f64; 2]]) -> bool {
+    if poly.len() != 4 {
+        return false;
+    }
+    let turn = |k: usize| {
+        let (a, b, c) = (poly[k], poly[(k + 1) % 4], poly[(k + 2) % 4]);
+        (b[0] - a[0]) * (c[1] - b[1]) - (b[1] - a[1]) * (c[0] - b[0])
+    };
+    let turns = [turn(0), turn(1), turn(2), turn(3)];
+    turns.iter().all(|&t| t > 0.0) || turns.iter().all(|&t| t < 0.0)
 }
 
 /// Even-odd test with the half-open rule: an edge counts when it spans
