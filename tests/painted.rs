@@ -300,3 +300,100 @@ proptest! {
         flat_equals_painted::<Depth24>(&scene)?;
     }
 }
+
+/// A smooth mesh drawn with Gouraud shading as a host mesh (`f32` front
+/// end, `f32` vertex Lambert) and quantized with its vertex normals
+/// (integer front end, Lambert in Q15): every vertex colour agrees within
+/// one 8-bit step, and the frames nearly everywhere (the projections
+/// differ by the quantization of positions). A quantized mesh's vertex
+/// normals are checked: one per vertex, none too long.
+#[test]
+fn quantized_vertex_normals_light_as_the_float_path() {
+    use std::cell::RefCell;
+    use zline::host::{HostMesh, HostPaintedRenderer, QuantizedHostMesh};
+    use zline::{Camera, Cull, MeshError, QuantizedMesh, Shading, VertexInfo, reference_model};
+    type Painted = HostPaintedRenderer<Gouraud<Rgb888>, Depth24>;
+    let obj = std::fs::read("assets/torus_knot.obj").expect("the README's mesh");
+    let host = HostMesh::from_obj_smooth(&obj, 60.0).expect("smooth mesh");
+    let quantized = QuantizedHostMesh::new(&host).expect("quantized");
+    assert_eq!(quantized.vertex_normals.len(), host.positions.len());
+    let mesh = quantized.mesh().expect("valid");
+    let shading = Shading::lambert();
+    let model = reference_model(&host, 30.0, 20.0).expect("model");
+    let camera = Camera::reference(96, 96);
+    let mut frames = Vec::new();
+    let mut colors = Vec::new();
+    for integer in [false, true] {
+        let mut renderer =
+            Painted::for_mesh(&host, 96, 96, Gouraud::new(), Rgb888::BLACK).expect("renderer");
+        let seen = RefCell::new(vec![None; host.positions.len()]);
+        let shade = |v: &VertexInfo| {
+            assert_eq!(v.normal_q15().is_some(), integer, "vertex {}", v.vertex);
+            let c = shading.vertex_color(v);
+            seen.borrow_mut()[v.vertex as usize] = Some(c);
+            c
+        };
+        if integer {
+            renderer.draw_mesh(&mesh, &model, &camera, Cull::Back, shade)
+        } else {
+            renderer.draw_mesh(&host, &model, &camera, Cull::Back, shade)
+        }
+        .expect("draw");
+        frames.push(frame(|sink| {
+            renderer.render(sink).expect("render");
+        }));
+        colors.push(seen.into_inner());
+    }
+    let mut compared = 0;
+    for (f, i) in colors[0].iter().zip(&colors[1]) {
+        if let (Some(f), Some(i)) = (f, i) {
+            compared += 1;
+            for (a, b) in [(f.r, i.r), (f.g, i.g), (f.b, i.b)] {
+                assert!((i32::from(a) - i32::from(b)).abs() <= 256, "{f:?} {i:?}");
+            }
+        }
+    }
+    assert!(compared > 100, "{compared} vertices shaded both ways");
+    let (mut lit, mut far) = (0, 0);
+    for (ra, rb) in frames[0].iter().zip(&frames[1]) {
+        for (&pa, &pb) in ra.iter().zip(rb) {
+            if pa != Rgb888::BLACK && pb != Rgb888::BLACK {
+                lit += 1;
+                let d = |x: u8, y: u8| (i32::from(x) - i32::from(y)).abs();
+                if d(pa.r(), pb.r())
+                    .max(d(pa.g(), pb.g()))
+                    .max(d(pa.b(), pb.b()))
+                    > 4
+                {
+                    far += 1;
+                }
+            }
+        }
+    }
+    assert!(
+        lit > 1000 && far * 50 < lit,
+        "{far} of {lit} pixels more than 4 steps apart"
+    );
+    let view = mesh.view();
+    let bare = QuantizedMesh::new(
+        view.positions,
+        view.normals,
+        mesh.corners(),
+        mesh.face_starts(),
+        &quantized.planar,
+        view.centre,
+        view.radius,
+    )
+    .expect("mesh");
+    let short = [[0i16, 0, 32767]; 1];
+    assert_eq!(
+        bare.with_vertex_normals(&short).err(),
+        Some(MeshError::BadVertexAttributes)
+    );
+    let long = vec![[32767i16, 32767, 0]; view.positions.len()];
+    assert_eq!(
+        bare.with_vertex_normals(&long).err(),
+        Some(MeshError::BadVertexAttributes)
+    );
+    assert!(bare.with_vertex_normals(view.vertex_normals).is_ok());
+}

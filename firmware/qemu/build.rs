@@ -9,7 +9,8 @@
 //! 4. the renderer's capacities: the exact largest needs over all scenes,
 //!    as measured on the host.
 //!
-//! `ZLINE_QEMU_SCENE=K` keeps only scene K (for profiling one frame);
+//! `ZLINE_QEMU_SCENE=K` keeps only flat scene K, `ZLINE_QEMU_SCENE=gouraud`
+//! only the Gouraud scenes (for profiling one frame);
 //! `ZLINE_QEMU_BAD_CRC=1` corrupts one expected CRC (a self-test of the
 //! failure path).
 
@@ -24,10 +25,16 @@ use zline::Mesh;
 use zline::QuantizedMesh;
 use zline::VertexCache;
 use zline::host::host_renderer;
+use zline::host::{DEFAULT_CREASE_DEGREES, HostPaintedRenderer};
 use zline::host::{HostMesh, QuantizedHostMesh};
+use zline::paint::Gouraud;
 use zline::{Capacities, Crc32Sink, Depth16, Depth24, DepthFormat, FrameStats};
 use zline_lab::rust_source::quantized_mesh_source;
 use zline_lab::shapes;
+
+/// (shape, yaw, pitch) drawn with Gouraud shading (z16), the shape read
+/// smooth (vertex normals within a 60° crease).
+const GOURAUD_SCENES: [(&str, f32, f32); 1] = [("torus-knot", 30.0, 20.0)];
 
 /// (shape, yaw, pitch): each is rendered with both depth formats.
 const SCENES: [(&str, f32, f32); 4] = [
@@ -96,9 +103,14 @@ fn const_name(shape: &str) -> String {
 
 fn generate() -> String {
     // ZLINE_QEMU_SCENE=K keeps only scene K (for profiling one frame).
-    let only: Option<usize> = std::env::var("ZLINE_QEMU_SCENE")
-        .ok()
-        .and_then(|v| v.parse().ok());
+    // ZLINE_QEMU_SCENE=gouraud keeps only the Gouraud scenes.
+    let gouraud_only = std::env::var("ZLINE_QEMU_SCENE").is_ok_and(|v| v == "gouraud");
+    let only: Option<usize> = match gouraud_only {
+        true => Some(usize::MAX),
+        false => std::env::var("ZLINE_QEMU_SCENE")
+            .ok()
+            .and_then(|v| v.parse().ok()),
+    };
     let scene_list: Vec<(&str, f32, f32)> = SCENES
         .iter()
         .enumerate()
@@ -153,6 +165,7 @@ fn generate() -> String {
         "/// Every scene, with its CRC as rendered on the host.\nstatic SCENES: [Scene; {}] = [\n{scenes}];\n",
         scene_list.len() * 2
     );
+    gouraud_scenes(&mut out, only.is_none() || gouraud_only);
     let _ = writeln!(
         out,
         "// Capacities: the exact largest needs over all scenes, measured on the host.\n\
@@ -166,6 +179,82 @@ fn generate() -> String {
         needs.mesh_vertices
     );
     out
+}
+
+/// The Gouraud scenes (all of them, or none when one flat scene is
+/// kept): their smooth meshes, `GOURAUD_SCENES` with the host's CRCs, and
+/// `GOURAUD_CAPS`, the painted renderer's capacities measured on the host.
+fn gouraud_scenes(out: &mut String, all: bool) {
+    let list: &[(&str, f32, f32)] = if all { &GOURAUD_SCENES } else { &[] };
+    let mut needs = Needs::default();
+    let mut scenes = String::new();
+    let mut meshes: Vec<&str> = Vec::new();
+    // The painted renderer holds its vertex cache.
+    let caps = Capacities {
+        mesh_vertices: 65_536,
+        ..HOST_CAPACITIES
+    };
+    let mut painted = HostPaintedRenderer::<Gouraud<Rgb565>, Depth16>::with_capacities(
+        &caps,
+        (frame::SIZE, frame::SIZE),
+        Gouraud::new(),
+        Rgb565::BLACK,
+    )
+    .expect("painted renderer");
+    for &(shape, yaw, pitch) in list {
+        let name = format!("{}_SMOOTH", const_name(shape));
+        let host = shapes::by_name(shape)
+            .expect("known shape")
+            .with_vertex_normals(DEFAULT_CREASE_DEGREES)
+            .expect("smooth mesh");
+        if !meshes.contains(&shape) {
+            let source = quantized_mesh_source(
+                &host,
+                &name,
+                &format!("zline_lab::shapes `{shape}`, smooth"),
+            )
+            .expect("mesh source");
+            out.push_str(&source);
+            out.push('\n');
+            meshes.push(shape);
+        }
+        needs.mesh_vertices = needs.mesh_vertices.max(host.vertex_count());
+        let quantized = QuantizedHostMesh::new(&host).expect("quantizable mesh");
+        let mesh = quantized.mesh().expect("valid mesh");
+        let mut crc = Crc32Sink::new();
+        let (_, stats) = frame::render_frame_gouraud(
+            &mut painted,
+            &mesh,
+            zline::bounding_sphere(&mesh).expect("mesh size"),
+            (yaw, pitch),
+            &mut crc,
+        )
+        .expect("host render");
+        needs.add(&stats);
+        let _ = writeln!(
+            scenes,
+            "    Scene {{ name: {shape:?}, mesh: &{name}, yaw: {yaw:?}, pitch: {pitch:?}, depth: DepthKind::Z16, expected_crc: 0x{:08X} }},",
+            crc.value()
+        );
+    }
+    let _ = writeln!(
+        out,
+        "/// The Gouraud scenes (z16), with their CRCs as rendered on the host.\n\
+         static GOURAUD_SCENES: [Scene; {}] = [\n{scenes}];\n\n\
+         /// The painted renderer's capacities: the largest needs of the Gouraud\n\
+         /// scenes, measured on the host.\n\
+         const GOURAUD_CAPS: zline::Capacities = zline::Capacities {{\n    \
+         width: {},\n    vertices: {},\n    polygons: {},\n    corners: {},\n    \
+         active_polygons: {},\n    pooled_edges: {},\n    mesh_vertices: {},\n}};",
+        list.len(),
+        frame::SIZE,
+        needs.vertices.max(1),
+        needs.polygons.max(1),
+        needs.corners.max(1),
+        needs.active_polygons.max(1),
+        needs.pooled_edges,
+        needs.mesh_vertices
+    );
 }
 
 fn expected<D: DepthFormat>(

@@ -150,6 +150,25 @@ pub fn quantized_mesh_source(mesh: &HostMesh, name: &str, origin: &str) -> Resul
         q.exact_normals.len(),
         rows(&q.exact_normals, 4, triple)
     );
+    // A mesh with vertex normals (smooth shading) gets them too.
+    let vertex_normals = if q.vertex_normals.is_empty() {
+        ""
+    } else {
+        let _ = writeln!(
+            out,
+            "// Each vertex's unit normal, for smooth shading.\n\
+             static {name}_VERTEX_NORMALS: [[i16; 3]; {}] = [\n{}];\n",
+            q.vertex_normals.len(),
+            rows(&q.vertex_normals, 4, triple)
+        );
+        "match mesh.with_vertex_normals(&NAME_VERTEX_NORMALS) {\n                \
+         Ok(mesh) => mesh,\n                Err(_) => panic!(\"NAME: invalid vertex normals\"),\n            }"
+    };
+    let last = if vertex_normals.is_empty() {
+        "mesh".to_string()
+    } else {
+        vertex_normals.replace("NAME", name)
+    };
     let _ = writeln!(
         out,
         "/// Mesh from {origin}, quantized, checked at compile time.\n\
@@ -158,7 +177,7 @@ pub fn quantized_mesh_source(mesh: &HostMesh, name: &str, origin: &str) -> Resul
          [{:?}, {:?}, {:?}],\n    {:?},\n) {{\n    \
          Ok(mesh) => match mesh.with_shared_planes(&{name}_SHARED) {{\n        \
          Ok(mesh) => match mesh.with_exact_normals(&{name}_EXACT_NORMALS) {{\n            \
-         Ok(mesh) => mesh,\n            Err(_) => panic!(\"{name}: invalid exact normals\"),\n        }},\n        \
+         Ok(mesh) => {last},\n            Err(_) => panic!(\"{name}: invalid exact normals\"),\n        }},\n        \
          Err(_) => panic!(\"{name}: invalid shared planes\"),\n    }},\n    \
          Err(_) => panic!(\"{name}: invalid mesh\"),\n}};",
         q.centre[0], q.centre[1], q.centre[2], q.radius

@@ -540,6 +540,10 @@ pub struct QuantizedView<'a> {
     /// zero for a face that is not a triangle), or empty: the model-space
     /// back-face test then works them out.
     pub exact_normals: &'a [[i16; 3]],
+    /// One unit normal per vertex, `n / NORMAL_SCALE`, for smooth shading
+    /// ([`QuantizedMesh::with_vertex_normals`](crate::front::quantized::QuantizedMesh::with_vertex_normals)),
+    /// or empty.
+    pub vertex_normals: &'a [[i16; 3]],
 }
 
 impl QuantizedView<'_> {

@@ -117,6 +117,7 @@ impl<'a> QuantizedMesh<'a> {
                 centre,
                 radius,
                 exact_normals: &[],
+                vertex_normals: &[],
             },
             corners,
             face_starts,
@@ -185,6 +186,30 @@ impl<'a> QuantizedMesh<'a> {
         Ok(Self { view, ..self })
     }
 
+    /// The same mesh with one unit normal per vertex, `n /
+    /// NORMAL_SCALE` (each of length at most `NORMAL_SCALE · (1 + 2^-12)`,
+    /// as face normals), for smooth shading: the integer front end rotates
+    /// them with no floating point
+    /// ([`VertexInfo::normal_q15`](crate::VertexInfo::normal_q15)).
+    /// `const`, so a flash mesh's normals are checked at compile time.
+    pub const fn with_vertex_normals(self, normals: &'a [[i16; 3]]) -> Result<Self, MeshError> {
+        if normals.len() != self.view.positions.len() {
+            return Err(MeshError::BadVertexAttributes);
+        }
+        let mut k = 0;
+        while k < normals.len() {
+            let [x, y, z] = normals[k];
+            let (x, y, z) = (x as i64, y as i64, z as i64);
+            if x * x + y * y + z * z > NORMAL_LENGTH2_MAX {
+                return Err(MeshError::BadVertexAttributes);
+            }
+            k += 1;
+        }
+        let mut view = self.view;
+        view.vertex_normals = normals;
+        Ok(Self { view, ..self })
+    }
+
     /// The integer data.
     pub const fn view(&self) -> QuantizedView<'a> {
         self.view
@@ -229,6 +254,11 @@ impl Mesh for QuantizedMesh<'_> {
         Some(self.view)
     }
 
+    fn vertex_normal(&self, index: usize) -> Option<[f32; 3]> {
+        let n = self.view.vertex_normals.get(index)?;
+        Some(n.map(|c| f32::from(c) / NORMAL_SCALE as f32))
+    }
+
     fn shared_planes(&self) -> &[SharedPlane] {
         self.shared
     }
@@ -245,6 +275,18 @@ pub(crate) fn quantize_position(p: [f64; 3], centre: [f64; 3], radius: f64) -> [
         let v = libm::round((p[k] - centre[k]) * scale);
         v.clamp(-f64::from(POSITION_SCALE), f64::from(POSITION_SCALE)) as i16
     })
+}
+
+/// A unit vector quantized to [`NORMAL_SCALE`] (normalised in `f64`
+/// first); zero for a zero or non-finite vector.
+#[cfg(any(test, feature = "std"))]
+pub(crate) fn quantize_unit(n: [f64; 3]) -> [i16; 3] {
+    let length = libm::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if !(length > 0.0 && length.is_finite()) {
+        return [0; 3];
+    }
+    let s = f64::from(NORMAL_SCALE) / length;
+    n.map(|v| libm::round(v * s) as i16)
 }
 
 /// A face's unit normal, quantized: Newell's normal of `corners` in `f64`,

@@ -113,8 +113,24 @@ impl Lambert {
     /// (the 8 bits below the 8-bit step are kept for the interpolation):
     /// lit by its normal ([`VertexInfo::normal`]) one-sided, as a surface
     /// whose normals point out; a vertex with no normal is lit as if it
-    /// faced the light.
+    /// faced the light. A quantized mesh's stored normal
+    /// ([`VertexInfo::normal_q15`]) is lit in integers, as
+    /// [`Self::color`] lights its faces: the same colour on every target.
     pub fn vertex_color(&self, vertex: &VertexInfo) -> Rgb8p8 {
+        if let Some(n) = vertex.normal_q15() {
+            // As in `color`: the dot product below 2^30 · (1 + 2^-10), `d`
+            // and `k` in Q15, each channel `base · k` below 2^23.
+            let d = (dot_q15(n, self.light_q15).max(0) >> 15).min(1 << 15) as i32;
+            let a = self.ambient_q15;
+            let k = a + (((32768 - a) * d) >> 15);
+            // base · k / 2^15 in 8.8: (base · k · 2^8 + 2^14) >> 15.
+            let ch = |v: u8| ((i32::from(v) * k + (1 << 6)) >> 7) as u16;
+            return Rgb8p8 {
+                r: ch(self.base.r()),
+                g: ch(self.base.g()),
+                b: ch(self.base.b()),
+            };
+        }
         let d = vertex.normal().map_or(1.0, |n| n.dot(self.light));
         let k = self.ambient + (1.0 - self.ambient) * d.max(0.0);
         scale_8p8(self.base, k)

@@ -5,7 +5,7 @@
 use crate::error::Error;
 use crate::front::backface::exact_normal;
 use crate::front::mesh::{Mesh, MeshError, SharedPlane, planar_face_bits};
-use crate::front::quantized::{QuantizedMesh, quantize_normal, quantize_position};
+use crate::front::quantized::{QuantizedMesh, quantize_normal, quantize_position, quantize_unit};
 use crate::front::scene::bounding_sphere;
 use crate::host::HostMesh;
 use std::vec::Vec;
@@ -32,6 +32,9 @@ pub struct QuantizedHostMesh {
     /// Each face's [`QuantizedMesh::exact_normal`](crate::QuantizedMesh::exact_normal) from the quantized positions (zero for
     /// a face that is not a triangle).
     pub exact_normals: Vec<[i16; 3]>,
+    /// One quantized unit normal per vertex (the original mesh's vertex
+    /// normals), or empty when it has none.
+    pub vertex_normals: Vec<[i16; 3]>,
 }
 
 impl QuantizedHostMesh {
@@ -61,8 +64,14 @@ impl QuantizedHostMesh {
             })
             .collect();
         let exact_normals = exact_normals(mesh, &positions);
+        let vertex_normals = mesh
+            .vertex_normals
+            .iter()
+            .map(|n| quantize_unit(n.map(f64::from)))
+            .collect();
         Ok(Self {
             exact_normals,
+            vertex_normals,
             positions,
             normals,
             corners: mesh.corners.clone(),
@@ -87,6 +96,10 @@ impl QuantizedHostMesh {
         )?
         .with_shared_planes(&self.shared_planes)?
         .with_exact_normals(&self.exact_normals)
+        .and_then(|m| match self.vertex_normals.is_empty() {
+            true => Ok(m),
+            false => m.with_vertex_normals(&self.vertex_normals),
+        })
     }
 }
 

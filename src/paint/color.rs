@@ -31,12 +31,18 @@ pub trait PaintColor: Copy {
 }
 
 /// `v` (8.8, at most [`CHANNEL_MAX`]) quantised to `0..=max` with the
-/// offset `t` (`0..65,280`): `floor((v·max + t) / 65,280)`.
+/// offset `t` (`0..65,280`): `floor((v·max + t) / 65,280)`, with no
+/// division (a core without a divider, the Cortex-M0+, would call one per
+/// channel and pixel): `65,280 = 256 · 255`, so the quotient is
+/// `floor(floor(x / 256) / 255)`, and `floor(y / 255) = (257·y + 257) >>
+/// 16` for every `y < 2^16` (the tests check all of them).
 ///
-/// Ranges: `v·max <= 65,280·255 < 2^24`, plus `t < 2^16`.
+/// Ranges: `x = v·max + t <= 65,280·255 + 65,279 < 2^24`, so `y < 2^16`
+/// and `257·y + 257 < 2^25`.
 #[inline(always)]
 fn level(v: u32, max: u32, t: u32) -> u32 {
-    (v.min(CHANNEL_MAX) * max + t) / CHANNEL_MAX
+    let y = (v.min(CHANNEL_MAX) * max + t) >> 8;
+    (257 * y + 257) >> 16
 }
 
 /// The ordered-dither threshold of pixel `(x, y)`: the 4x4 Bayer matrix's
@@ -83,6 +89,29 @@ paint_color! {
 mod tests {
     use super::*;
     use embedded_graphics_core::pixelcolor::RgbColor;
+
+    /// The division-free quotient by 255 is exact for every 16-bit `y`,
+    /// and `level` is the division it stands for over its whole range
+    /// (every level count, every `v` at a stride, every threshold the
+    /// dither gives and the rounding offset).
+    #[test]
+    fn levels_are_the_division() {
+        for y in 0..1u32 << 16 {
+            assert_eq!((257 * y + 257) >> 16, y / 255, "{y}");
+        }
+        let thresholds = (0..16).map(|b| (2 * b + 1) * (CHANNEL_MAX / 32));
+        for t in thresholds.chain([0, NEAREST, CHANNEL_MAX - 1]) {
+            for max in [31, 63, 255] {
+                for v in (0..=CHANNEL_MAX).step_by(3).chain([CHANNEL_MAX]) {
+                    assert_eq!(
+                        level(v, max, t),
+                        (v * max + t) / CHANNEL_MAX,
+                        "{v} {max} {t}"
+                    );
+                }
+            }
+        }
+    }
 
     /// Without dither, an exact 8-bit channel converts as
     /// embedded-graphics converts `Rgb888`, for every value.

@@ -6,6 +6,7 @@
 
 use core::marker::PhantomData;
 
+use crate::arith::wide::mul_i64_small;
 pub use crate::front::rgb8p8::Rgb8p8;
 use crate::paint::PaintMode;
 use crate::paint::color::{CHANNEL_MAX, PaintColor, bayer_threshold};
@@ -94,11 +95,52 @@ impl<C: PaintColor> PaintMode for Gouraud<C> {
             return self.paint_steep(planes, corners, x0, y, out);
         }
         let [r, g, b] = planes;
-        let (mut vr, mut vg, mut vb) = (r.value_at(x0, y), g.value_at(x0, y), b.value_at(x0, y));
+        let (vr, vg, vb) = (r.value_at(x0, y), g.value_at(x0, y), b.value_at(x0, y));
+        // The run's last values: the values are linear along it, so when
+        // both ends of each channel lie in `0..RUN_LIMIT`, every value
+        // between does, and 32-bit wrapping steps give them exactly.
+        let steps = out.len().saturating_sub(1) as i32;
+        let in_range = |v: i64, dx: i64| {
+            let last = v + mul_i64_small(dx, steps);
+            (0..RUN_LIMIT).contains(&v) && (0..RUN_LIMIT).contains(&last)
+        };
+        if in_range(vr, r.dx) && in_range(vg, g.dx) && in_range(vb, b.dx) {
+            return self.paint_run_32([vr, vg, vb], [r.dx, g.dx, b.dx], x0, y, out);
+        }
+        let (mut vr, mut vg, mut vb) = (vr, vg, vb);
         for (x, pixel) in (x0..).zip(out) {
             let threshold = self.dither.then(|| bayer_threshold(x, y));
             *pixel = C::from_channels([channel(vr), channel(vg), channel(vb)], threshold);
             (vr, vg, vb) = (vr + r.dx, vg + g.dx, vb + b.dx);
+        }
+    }
+}
+
+/// Values (plane units) below which a run is stepped in 32 bits: rounding
+/// adds `2^15`, which must not carry out of 32 bits.
+const RUN_LIMIT: i64 = (1 << 32) - (1 << (ATTRIBUTE_FRAC_BITS - 1));
+
+impl<C: PaintColor> Gouraud<C> {
+    /// A run whose values all lie in `0..RUN_LIMIT` (`start`, the values at
+    /// its first pixel, and the run's last, checked by the caller): each
+    /// value and step taken modulo `2^32`, which gives the exact values,
+    /// rounded as [`channel`] rounds them (no clamp at 0 is needed). The
+    /// same pixels as the `i64` loop, in a third of the registers (the
+    /// Cortex-M0+ has eight it can add in).
+    #[inline(always)]
+    fn paint_run_32(&self, start: [i64; 3], dx: [i64; 3], x0: u16, y: u16, out: &mut [C]) {
+        let [mut vr, mut vg, mut vb] = start.map(|v| v as u32);
+        let [dr, dg, db] = dx.map(|d| d as u32);
+        let half = 1u32 << (ATTRIBUTE_FRAC_BITS - 1);
+        let ch = |v: u32| ((v + half) >> ATTRIBUTE_FRAC_BITS).min(CHANNEL_MAX);
+        let thresholds: [Option<u32>; 4] =
+            core::array::from_fn(|k| self.dither.then(|| bayer_threshold(k as u16, y)));
+        for (x, pixel) in (x0..).zip(out) {
+            let threshold = thresholds[usize::from(x & 3)];
+            *pixel = C::from_channels([ch(vr), ch(vg), ch(vb)], threshold);
+            vr = vr.wrapping_add(dr);
+            vg = vg.wrapping_add(dg);
+            vb = vb.wrapping_add(db);
         }
     }
 }

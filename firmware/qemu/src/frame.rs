@@ -84,3 +84,33 @@ where
     )?;
     Ok((draw, stats))
 }
+
+/// [`render_frame`] with Gouraud shading: the same view and light, each
+/// vertex lit by its normal (the quantized mesh's, rotated in integers)
+/// and the colours interpolated over each polygon, dithered to `Rgb565`.
+#[allow(dead_code)] // Each side uses its own subset of this file.
+pub fn render_frame_gouraud<T, S, C, A, K, M>(
+    renderer: &mut zline::paint::PaintedRenderer<T, S, C, A>,
+    mesh: &M,
+    (centre, radius): (Vec3, f32),
+    (yaw, pitch): (f32, f32),
+    sink: &mut K,
+) -> Result<(DrawStats, FrameStats), RenderError<K::Error>>
+where
+    T: TableStorage<Color = u16>,
+    S: ScanStorage<Color = u16>,
+    C: zline::CacheStorage,
+    A: zline::paint::PaintStorage<Mode = zline::paint::Gouraud<Rgb565>>,
+    K: RowSink<Rgb565, <S::Depth as DepthFormat>::Value>,
+    M: Mesh,
+{
+    renderer.clear();
+    let model = reference_model_around(centre, radius, yaw, pitch);
+    let camera = Camera::reference(SIZE, SIZE);
+    let shading = Shading::lambert();
+    let draw = renderer.draw_mesh(mesh, &model, &camera, Cull::Back, |v| {
+        shading.vertex_color(v)
+    })?;
+    let frame = renderer.render(sink)?;
+    Ok((draw, frame))
+}

@@ -25,6 +25,7 @@ use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use static_cell::ConstStaticCell;
 use zline::QuantizedMesh;
 use zline::VertexCache;
+use zline::paint::Gouraud;
 use zline::zbuffer::BandBuffers;
 use zline::{ActiveEdge, ActivePolygon, ScanArrays, ScanStorage, TableArrays};
 use zline::{Crc32Sink, Depth16, Depth24, DepthFormat, FnSink, FrameStats, Renderer};
@@ -70,6 +71,15 @@ static RENDERER24: ConstStaticCell<Renderer24> = ConstStaticCell::new(Renderer24
     Rgb565::BLACK,
 ));
 static CACHE: ConstStaticCell<VertexCache<VM>> = ConstStaticCell::new(VertexCache::new());
+
+/// The Gouraud renderer (z16): slots in its rows, colours painted after.
+type Gouraud16 = zline::painted_renderer_type!(Gouraud<Rgb565>, Depth16, GOURAUD_CAPS);
+static GOURAUD16: ConstStaticCell<Gouraud16> = ConstStaticCell::new(Gouraud16::new_in_static(
+    frame::SIZE,
+    frame::SIZE,
+    Gouraud::new(),
+    Rgb565::BLACK,
+));
 
 /// Pixels of a frame.
 const FRAME_PIXELS: usize = frame::SIZE as usize * frame::SIZE as usize;
@@ -216,6 +226,29 @@ fn run<S: ScanStorage<Color = Rgb565>>(
     })
 }
 
+/// A Gouraud scene: its CRC and the instructions of a second, discarded
+/// frame.
+fn run_gouraud(
+    renderer: &mut Gouraud16,
+    scene: &Scene,
+    syst: &mut SYST,
+) -> Result<Outcome, zline::RenderError<Infallible>> {
+    let mut crc = Crc32Sink::new();
+    let sphere = zline::bounding_sphere(scene.mesh)?;
+    let view = (scene.yaw, scene.pitch);
+    frame::render_frame_gouraud(renderer, scene.mesh, sphere, view, &mut crc)?;
+    let mut discard = FnSink(|_: u16, _: &[Rgb565], _: &[u16]| Ok::<(), Infallible>(()));
+    let (result, ticks) = ticks(syst, || {
+        frame::render_frame_gouraud(renderer, scene.mesh, sphere, view, &mut discard)
+    });
+    let (_, stats) = result?;
+    Ok(Outcome {
+        crc: crc.value(),
+        ticks,
+        stats,
+    })
+}
+
 #[entry]
 fn main() -> ! {
     let stack_floor = stack::paint();
@@ -272,6 +305,31 @@ fn main() -> ! {
             }
         }
     }
+    let gouraud = GOURAUD16.take();
+    for scene in &GOURAUD_SCENES {
+        match run_gouraud(gouraud, scene, syst) {
+            Ok(o) => {
+                let ok = o.crc == scene.expected_crc;
+                all_ok &= ok;
+                hprintln!(
+                    "shade=gouraud scene={} yaw={} pitch={} depth=z16 crc32={:08X} expected={:08X} {} instructions={} polygons={} peak_active_polygons={}",
+                    scene.name,
+                    scene.yaw,
+                    scene.pitch,
+                    o.crc,
+                    scene.expected_crc,
+                    if ok { "ok" } else { "MISMATCH" },
+                    u64::from(o.ticks) * u64::from(per_tick),
+                    o.stats.polygons,
+                    o.stats.peak_active_polygons
+                );
+            }
+            Err(e) => {
+                all_ok = false;
+                hprintln!("shade=gouraud scene={} error: {}", scene.name, e);
+            }
+        }
+    }
     // The same z16 scenes by the full-frame z-buffer: the same frames (the
     // CRCs the scanline must match), 230 KB of depth and colour.
     let mut z = ZBuffer {
@@ -308,9 +366,10 @@ fn main() -> ! {
         + core::mem::size_of::<Renderer24>()
         + core::mem::size_of::<VertexCache<VM>>();
     hprintln!(
-        "stack_high_water_bytes={} renderer_static_bytes={}",
+        "stack_high_water_bytes={} renderer_static_bytes={} gouraud_renderer_static_bytes={}",
         stack::high_water(stack_floor),
-        renderer_bytes
+        renderer_bytes,
+        core::mem::size_of::<Gouraud16>()
     );
     finish(all_ok)
 }

@@ -142,7 +142,7 @@ fn mesh_normal(mesh: &dyn Mesh, corners: &[u16], model_view: &Mat4) -> Vec3 {
 }
 
 /// An integer normal in units of `1/32767` as a `f32` vector.
-fn normal_vector_i32(n: [i32; 3]) -> Vec3 {
+pub(super) fn normal_vector_i32(n: [i32; 3]) -> Vec3 {
     let s = 1.0 / NORMAL_SCALE as f32;
     Vec3::new(n[0] as f32 * s, n[1] as f32 * s, n[2] as f32 * s)
 }

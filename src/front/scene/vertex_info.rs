@@ -3,6 +3,7 @@
 
 use crate::front::geometry::Vec3;
 use crate::front::mesh::Mesh;
+use crate::front::scene::face_info::normal_vector_i32;
 use crate::front::scene::transform::Frame;
 
 /// What a vertex shading closure knows about a mesh vertex, for smooth
@@ -62,13 +63,36 @@ impl<'a> VertexInfo<'a> {
     }
 
     /// The vertex's unit normal in view space, from the mesh's
-    /// ([`Mesh::vertex_normal`]); `None` when the mesh has none.
+    /// ([`Mesh::vertex_normal`]); `None` when the mesh has none. For a
+    /// quantized mesh's stored normals, [`Self::normal_q15`] as a `f32`
+    /// vector.
     pub fn normal(&self) -> Option<Vec3> {
+        if let Some(n) = self.normal_q15() {
+            return Some(normal_vector_i32(n));
+        }
         match self.geometry {
             VertexGeometry::Mesh { mesh, frame } => mesh
                 .vertex_normal(self.vertex as usize)
                 .map(|n| frame.view_normal(Vec3::from_array(n))),
             VertexGeometry::Known { normal, .. } => normal,
+        }
+    }
+
+    /// The unit normal in view space in integers, units of `1/32767`, when
+    /// the vertex is a [quantized mesh](crate::QuantizedMesh)'s with a
+    /// stored normal
+    /// ([`QuantizedMesh::with_vertex_normals`](crate::QuantizedMesh::with_vertex_normals))
+    /// drawn by the integer front end: rotated with no floating point, the
+    /// same on every target. `None` otherwise.
+    #[inline]
+    pub fn normal_q15(&self) -> Option<[i32; 3]> {
+        match self.geometry {
+            VertexGeometry::Mesh { mesh, frame } => {
+                let fixed = frame.fixed.as_ref()?;
+                let n = *mesh.quantized()?.vertex_normals.get(self.vertex as usize)?;
+                fixed.view_normal(n)
+            }
+            VertexGeometry::Known { .. } => None,
         }
     }
 
