@@ -2,7 +2,7 @@
 //! [`StaticMesh`](zline::StaticMesh) static:
 //!
 //! ```sh
-//! cargo run --example obj2rust -- [--quantized] MODEL.obj NAME > name.rs
+//! cargo run --example obj2rust -- [--quantized [--smooth]] MODEL.obj NAME > name.rs
 //! ```
 //!
 //! With `--quantized` it writes a
@@ -10,7 +10,10 @@
 //! `i16` positions in the mesh's bounding sphere and a unit normal per
 //! face (6 bytes a vertex and 6 a face), which `draw_mesh` transforms,
 //! projects and shades with integers only: the choice for a core without
-//! an FPU.
+//! an FPU. With `--smooth` as well it adds a unit normal per vertex
+//! (the file's `vn`, or computed with a 60° crease angle; a vertex for
+//! each different position and normal) for Gouraud shading
+//! ([`zline::paint::Gouraud`]), lit with integers too.
 //!
 //! `name.rs` defines `pub static NAME: zline::StaticMesh<'static>`
 //! over three `const` arrays (positions, corners, face starts). Include it
@@ -30,7 +33,7 @@ use std::process::ExitCode;
 
 use zline_lab::cli::help_requested;
 
-use zline::host::HostMesh;
+use zline::host::{DEFAULT_CREASE_DEGREES, HostMesh};
 use zline_lab::rust_source::quantized_mesh_source;
 use zline_lab::rust_source::static_mesh_source;
 
@@ -39,11 +42,21 @@ fn run(args: &[String]) -> Result<(), String> {
         Some("--quantized") => (true, &args[1..]),
         _ => (false, args),
     };
+    let (smooth, rest) = match rest.first().map(String::as_str) {
+        Some("--smooth") if quantized => (true, &rest[1..]),
+        Some("--smooth") => return Err("--smooth needs --quantized (before it)".into()),
+        _ => (false, rest),
+    };
     let [path, name] = rest else {
-        return Err("usage: obj2rust [--quantized] MODEL.obj NAME > name.rs".into());
+        return Err("usage: obj2rust [--quantized [--smooth]] MODEL.obj NAME > name.rs".into());
     };
     let bytes = std::fs::read(path).map_err(|e| format!("cannot read {path}: {e}"))?;
-    let mesh = HostMesh::from_obj(&bytes).map_err(|e| format!("{path}: {e}"))?;
+    let mesh = if smooth {
+        HostMesh::from_obj_smooth(&bytes, DEFAULT_CREASE_DEGREES)
+    } else {
+        HostMesh::from_obj(&bytes)
+    }
+    .map_err(|e| format!("{path}: {e}"))?;
     let origin = std::path::Path::new(path)
         .file_name()
         .map_or(path.clone(), |f| f.to_string_lossy().into_owned());
@@ -60,9 +73,10 @@ fn run(args: &[String]) -> Result<(), String> {
         .map_err(|e| format!("cannot write the output: {e}"))
 }
 
-const USAGE: &str = "usage: obj2rust [--quantized] MODEL.obj NAME > name.rs
+const USAGE: &str = "usage: obj2rust [--quantized [--smooth]] MODEL.obj NAME > name.rs
 Writes Rust source for MODEL.obj as a StaticMesh static named NAME (with --quantized, a
-QuantizedMesh: i16 positions and unit face normals, drawn with integers only).";
+QuantizedMesh: i16 positions and unit face normals, drawn with integers only; with --smooth
+too, i16 vertex normals for Gouraud shading).";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
