@@ -16,6 +16,8 @@ use embedded_graphics_simulator::SimulatorDisplay;
 use zline::Shading;
 use zline::host::HostMesh;
 use zline::host::host_renderer;
+use zline::host::{DEFAULT_CREASE_DEGREES, HostPaintedRenderer};
+use zline::paint::Gouraud;
 use zline::{Camera, Cull, VertexCache, draw_mesh, reference_model};
 use zline::{Depth16, Depth24, DepthFormat, DrawTargetSink, RenderError};
 use zline::{Mat4, Vec3};
@@ -28,6 +30,8 @@ pub const MAX_MESH_VERTICES: usize = 65_536;
 /// table vertices, 262,144 polygons, 786,432 corners, 32,768 active
 /// polygons, 65,536 pooled edges, 32 corners per polygon.
 type WindowRenderer<D> = zline::host::HostRenderer<Rgb888, D>;
+/// The scanline core's Gouraud renderer.
+type GouraudRenderer<D> = HostPaintedRenderer<Gouraud<Rgb888>, D>;
 
 /// Which method draws the frame: the core straight to the window, or any
 /// of the comparison methods ([`zline_lab::methods::Method`]).
@@ -116,8 +120,22 @@ impl DepthChoice {
     }
 }
 
-/// The shadings key `s` cycles through, by name (see [`shading`]).
-pub const SHADINGS: [&str; 4] = ["lambert", "flat", "depth", "id"];
+/// The shadings key `s` cycles through, by name (see [`shading`]):
+/// `gouraud` is Lambert per vertex, interpolated (the scanline core's
+/// painted renderer; the other methods draw Lambert per face).
+pub const SHADINGS: [&str; 5] = ["lambert", "flat", "depth", "id", "gouraud"];
+
+/// Index of `gouraud` in [`SHADINGS`].
+const GOURAUD: usize = 4;
+
+/// The overlay's name of `view`'s shading.
+pub fn shading_name(view: &View) -> &'static str {
+    match (view.shading % SHADINGS.len(), view.method) {
+        (GOURAUD, Method::Scanline) => "gouraud",
+        (GOURAUD, _) => "lambert (gouraud: scanline only)",
+        (k, _) => SHADINGS[k],
+    }
+}
 
 /// The shading at `index` into [`SHADINGS`], as the render tool's
 /// `--shade` makes them.
@@ -129,7 +147,8 @@ pub fn shading(index: usize) -> Shading {
             near: 2.0,
             far: 4.0,
         },
-        _ => Shading::FaceId,
+        3 => Shading::FaceId,
+        _ => Shading::lambert(),
     }
 }
 
@@ -216,6 +235,11 @@ pub struct Renderers {
     /// The comparison methods' renderers, made on first use.
     methods16: Option<Box<MethodRenderer<Depth16>>>,
     methods24: Option<Box<MethodRenderer<Depth24>>>,
+    /// The Gouraud renderers and the mesh with vertex normals (keyed by
+    /// the flat mesh's address and sizes), made on first use.
+    gouraud16: Option<Box<GouraudRenderer<Depth16>>>,
+    gouraud24: Option<Box<GouraudRenderer<Depth24>>>,
+    smooth: Option<((usize, usize, usize), HostMesh)>,
 }
 
 impl Renderers {
@@ -236,6 +260,9 @@ impl Renderers {
             reference: None,
             methods16: None,
             methods24: None,
+            gouraud16: None,
+            gouraud24: None,
+            smooth: None,
         })
     }
 
@@ -246,6 +273,9 @@ impl Renderers {
         view: &View,
         display: &mut SimulatorDisplay<Rgb888>,
     ) -> Result<FrameReport, String> {
+        if view.method == Method::Scanline && view.shading % SHADINGS.len() == GOURAUD {
+            return self.gouraud(mesh, view, display);
+        }
         match (view.method, view.depth) {
             (Method::Scanline, DepthChoice::Z16) => {
                 scanline(&mut self.z16, &mut self.cache, mesh, view, display)
@@ -273,6 +303,69 @@ impl Renderers {
                         compared(r, comparison, mesh, view, display)
                     }
                 }
+            }
+        }
+    }
+
+    /// A Gouraud frame by the scanline core's painted renderer, of the
+    /// mesh with vertex normals (60° crease).
+    fn gouraud(
+        &mut self,
+        mesh: &HostMesh,
+        view: &View,
+        display: &mut SimulatorDisplay<Rgb888>,
+    ) -> Result<FrameReport, String> {
+        let key = (
+            mesh as *const HostMesh as usize,
+            mesh.positions.len(),
+            mesh.corners.len(),
+        );
+        if self.smooth.as_ref().is_none_or(|(k, _)| *k != key) {
+            let smooth = mesh
+                .clone()
+                .with_vertex_normals(DEFAULT_CREASE_DEGREES)
+                .map_err(|e| format!("vertex normals: {e}"))?;
+            self.smooth = Some((key, smooth));
+        }
+        let Some((_, smooth)) = &self.smooth else {
+            return Err("no smooth mesh".into());
+        };
+        let caps = zline::Capacities {
+            mesh_vertices: MAX_MESH_VERTICES,
+            ..zline_lab::methods::HOST_CAPACITIES
+        };
+        let size = (self.width, self.height);
+        let e = |e: zline::Error| format!("renderer: {e}");
+        match view.depth {
+            DepthChoice::Z16 => {
+                let r = match &mut self.gouraud16 {
+                    Some(r) => r,
+                    slot => slot.insert(Box::new(
+                        GouraudRenderer::with_capacities(
+                            &caps,
+                            size,
+                            Gouraud::new(),
+                            Rgb888::BLACK,
+                        )
+                        .map_err(e)?,
+                    )),
+                };
+                gouraud_frame(r, smooth, view, display)
+            }
+            DepthChoice::Z24 => {
+                let r = match &mut self.gouraud24 {
+                    Some(r) => r,
+                    slot => slot.insert(Box::new(
+                        GouraudRenderer::with_capacities(
+                            &caps,
+                            size,
+                            Gouraud::new(),
+                            Rgb888::BLACK,
+                        )
+                        .map_err(e)?,
+                    )),
+                };
+                gouraud_frame(r, smooth, view, display)
             }
         }
     }
@@ -374,6 +467,36 @@ where
     })
 }
 
+/// One Gouraud frame by the scanline core's painted renderer: clear,
+/// draw with vertex Lambert, render through a [`DrawTargetSink`].
+fn gouraud_frame<D: DepthFormat>(
+    renderer: &mut GouraudRenderer<D>,
+    mesh: &HostMesh,
+    view: &View,
+    display: &mut SimulatorDisplay<Rgb888>,
+) -> Result<FrameReport, String> {
+    let camera = Camera::reference(renderer.width(), renderer.height());
+    let model = view.model(mesh)?;
+    let shade = Shading::lambert();
+    let start = Instant::now();
+    renderer.clear();
+    renderer
+        .draw_mesh(mesh, &model, &camera, view.cull, |v| shade.vertex_color(v))
+        .map_err(|e| format!("draw_mesh: {e}"))?;
+    let stats = renderer
+        .render(&mut DrawTargetSink::new(display))
+        .map_err(|e| match e {
+            RenderError::Table(e) => format!("render: {e}"),
+            RenderError::Sink(never) => match never {},
+        })?;
+    let ms = start.elapsed().as_secs_f64() * 1e3;
+    Ok(FrameReport {
+        ms,
+        polygons: stats.polygons,
+        ram_bytes: None,
+    })
+}
+
 /// One frame by the scanline core: clear, [`draw_mesh`], render through a
 /// [`DrawTargetSink`] (one `fill_contiguous` per row).
 fn scanline<D: DepthFormat>(
@@ -437,7 +560,11 @@ mod tests {
                                 let mut display = SimulatorDisplay::<Rgb888>::new(size);
                                 let report = r.draw(&mesh, &view, &mut display).unwrap();
                                 assert!(report.polygons > 0);
-                                assert_eq!(report.ram_bytes.is_some(), method != Method::Reference);
+                                let gouraud = method == Method::Scanline && shading == GOURAUD;
+                                assert_eq!(
+                                    report.ram_bytes.is_some(),
+                                    method != Method::Reference && !gouraud
+                                );
                                 frames.push((view, display));
                             }
                         }

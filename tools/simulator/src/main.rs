@@ -21,7 +21,7 @@
 //!
 //! Keys: arrows rotate (left/right yaw, up/down pitch, 5° steps), `+`/`-`
 //! zoom (×1.1 per step), space toggles auto-spin (on at start), `s` cycles
-//! shading (lambert, flat, depth, id), `c` toggles back-face culling, `d`
+//! shading (lambert, flat, depth, id, gouraud: the scanline core only), `c` toggles back-face culling, `d`
 //! cycles the depth format (z16, z24), `m` cycles the method (scanline,
 //! zbuffer, bands:8, interval, painter, the float64 reference), `q` or Esc
 //! quits.

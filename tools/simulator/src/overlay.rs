@@ -9,7 +9,7 @@ use embedded_graphics::text::{Baseline, Text};
 use embedded_graphics_simulator::SimulatorDisplay;
 use zline::Cull;
 
-use crate::frame::{FrameReport, Method, SHADINGS, View};
+use crate::frame::{FrameReport, Method, View, shading_name};
 
 /// Height of one text line in pixels.
 const LINE: i32 = 10;
@@ -42,10 +42,7 @@ pub fn lines(view: &View, report: &FrameReport) -> Vec<String> {
         Cull::None => "none",
         Cull::Back => "back",
     };
-    lines.push(format!(
-        "{}  cull {cull}",
-        SHADINGS[view.shading % SHADINGS.len()]
-    ));
+    lines.push(format!("{}  cull {cull}", shading_name(view)));
     let zoom = if view.zoom != 0 && view.method == Method::Reference {
         " (not the reference)"
     } else {
