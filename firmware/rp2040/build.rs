@@ -24,8 +24,10 @@ use std::process::ExitCode;
 
 use zline::Shading;
 use zline::bounding_sphere;
+use zline::host::{DEFAULT_CREASE_DEGREES, HostPaintedRenderer};
 use zline::host::{HostMesh, HostRenderer, QuantizedHostMesh, host_renderer};
 use zline::limits::MAX_FACE_CORNERS;
+use zline::paint::Gouraud;
 use zline::{Capacities, Crc32Sink, Depth16, FrameStats, RowSink};
 use zline::{Mesh, StaticMesh};
 use zline_lab::rust_source::quantized_mesh_source;
@@ -129,6 +131,15 @@ fn run() -> Result<(), String> {
         ),
     };
     check_mesh(&mesh, &origin)?;
+    // The `gouraud` feature draws the mesh with vertex normals (the file's,
+    // or computed with a 60° crease).
+    let gouraud = env::var_os("CARGO_FEATURE_GOURAUD").is_some();
+    let mesh = if gouraud {
+        mesh.with_vertex_normals(DEFAULT_CREASE_DEGREES)
+            .map_err(|e| format!("{origin}: vertex normals: {e}"))?
+    } else {
+        mesh
+    };
     // Quantized, so the firmware's integer front end draws it with no
     // floating point per vertex or face.
     let source = quantized_mesh_source(&mesh, "MESH", &origin)?;
@@ -211,15 +222,52 @@ impl RowSink<frame::WireColor, u16> for WireCrc {
     }
 }
 
+impl RowSink<frame::WirePixel, u16> for WireCrc {
+    type Error = core::convert::Infallible;
+
+    fn write_row(
+        &mut self,
+        _y: u16,
+        colors: &[frame::WirePixel],
+        _depths: &[u16],
+    ) -> Result<(), Self::Error> {
+        for c in colors {
+            self.0.update(&c.0.to_ne_bytes());
+        }
+        Ok(())
+    }
+}
+
+/// A host renderer of the firmware's: flat, or Gouraud (the `gouraud`
+/// feature).
+enum Host {
+    Flat(Box<HostRenderer<frame::WireColor, Depth16>>),
+    Gouraud(Box<HostPaintedRenderer<Gouraud<frame::WirePixel>, Depth16>>),
+}
+
 fn measure_views(mesh: &HostMesh, origin: &str) -> Result<String, String> {
     // The very arrays the firmware's statics hold.
     let quantized = QuantizedHostMesh::new(mesh).map_err(|e| format!("{origin}: {e}"))?;
     let quantized = quantized
         .mesh()
         .map_err(|e| format!("{origin}: invalid quantized mesh: {e:?}"))?;
-    let mut host: HostRenderer<frame::WireColor, Depth16> =
-        host_renderer(&HOST_CAPACITIES, WIDTH, HEIGHT, frame::WIRE_BLACK)
-            .map_err(|e| format!("host renderer: {e}"))?;
+    let gouraud = env::var_os("CARGO_FEATURE_GOURAUD").is_some();
+    let mut host = if gouraud {
+        Host::Gouraud(Box::new(
+            HostPaintedRenderer::with_capacities(
+                &HOST_CAPACITIES,
+                (WIDTH, HEIGHT),
+                Gouraud::new(),
+                frame::WirePixel(frame::WIRE_BLACK),
+            )
+            .map_err(|e| format!("host renderer: {e}"))?,
+        ))
+    } else {
+        Host::Flat(Box::new(
+            host_renderer(&HOST_CAPACITIES, WIDTH, HEIGHT, frame::WIRE_BLACK)
+                .map_err(|e| format!("host renderer: {e}"))?,
+        ))
+    };
     // The firmware computes the sphere once at start-up, the same way.
     let sphere = bounding_sphere(&quantized).map_err(|e| format!("{origin}: {e}"))?;
     let shading = Shading::lambert();
@@ -227,14 +275,13 @@ fn measure_views(mesh: &HostMesh, origin: &str) -> Result<String, String> {
     let mut crcs = Vec::new();
     for step in 0..YAW_STEPS {
         let mut crc = WireCrc(Crc32Sink::new());
-        let (_, s) = frame::render_frame(
-            &mut host,
-            &quantized,
-            &shading,
-            sphere,
-            (yaw_deg(step), PITCH_DEG),
-            &mut crc,
-        )
+        let view = (yaw_deg(step), PITCH_DEG);
+        let (_, s) = match &mut host {
+            Host::Flat(r) => frame::render_frame(r, &quantized, &shading, sphere, view, &mut crc),
+            Host::Gouraud(r) => {
+                frame::render_frame_gouraud(r, &quantized, &shading, sphere, view, &mut crc)
+            }
+        }
         .map_err(|e| format!("{origin}: view {step} does not render on the host: {e:?}"))?;
         crcs.push(crc.0.value());
         peak.vertices = peak.vertices.max(s.vertices);
@@ -262,7 +309,12 @@ fn measure_views(mesh: &HostMesh, origin: &str) -> Result<String, String> {
         peak_pooled_edges: pooled_edges as u32,
         ..FrameStats::default()
     };
-    let renderer = sized.ram_bytes::<frame::WireColor, Depth16>(usize::from(WIDTH));
+    let mut renderer = sized.ram_bytes::<frame::WireColor, Depth16>(usize::from(WIDTH));
+    if gouraud {
+        // A colour per vertex (3 x u16), the planes of each active polygon
+        // (3 x 24 bytes and its position) and the painted row.
+        renderer += 6 * vertices + 76 * active_polygons + 2 * usize::from(WIDTH);
+    }
     let ram = renderer + 2 * mesh_vertices + SPI_BUFFER + ROW_BUFFERS * 2 * usize::from(WIDTH);
     // The renderer is built at compile time in its static
     // (`Renderer::new_in_static`), so it needs room once.

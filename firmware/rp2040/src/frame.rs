@@ -32,6 +32,7 @@ pub fn wire(c: Rgb565) -> WireColor {
 /// culled, and sends the frame to `sink` row by row, in wire order
 /// ([`WireColor`]).
 #[allow(clippy::too_many_arguments)]
+#[cfg_attr(feature = "gouraud", allow(dead_code))]
 pub fn render_frame<T, S, C, K, M>(
     renderer: &mut Renderer<T, S, C>,
     mesh: &M,
@@ -52,6 +53,61 @@ where
     let camera = Camera::reference(renderer.width(), renderer.height());
     let draw = renderer.draw_mesh(mesh, &model, &camera, Cull::Back, |f| {
         wire(Rgb565::from(shading.color(f)))
+    })?;
+    let frame = renderer.render(sink)?;
+    Ok((draw, frame))
+}
+
+/// A Gouraud-painted pixel in wire order: the bytes of a [`WireColor`].
+/// (The `gouraud` feature's colour: `zline::paint` quantises into any
+/// [`PaintColor`](zline::paint::PaintColor), and this one is the LCD's.)
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[repr(transparent)]
+#[allow(dead_code)] // The flat build uses the rest of this file only.
+pub struct WirePixel(pub WireColor);
+
+// SAFETY: a `repr(transparent)` wrapper of a `u16`: every bit pattern is
+// valid, there is no padding, and zero is a valid value.
+unsafe impl bytemuck::Zeroable for WirePixel {}
+// SAFETY: as above; `u16` is `Pod` and the wrapper adds nothing.
+unsafe impl bytemuck::Pod for WirePixel {}
+
+impl zline::paint::PaintColor for WirePixel {
+    const COARSE: bool = true;
+
+    #[inline(always)]
+    fn from_channels(rgb: [u32; 3], threshold: Option<u32>) -> Self {
+        WirePixel(wire(<Rgb565 as zline::paint::PaintColor>::from_channels(
+            rgb, threshold,
+        )))
+    }
+}
+
+/// [`render_frame`] with Gouraud shading: each vertex lit by its normal
+/// (the quantized mesh's, rotated and lit in integers), the colours
+/// interpolated over each polygon and dithered to Rgb565.
+#[allow(dead_code)] // The flat build uses the rest of this file only.
+pub fn render_frame_gouraud<T, S, C, A, K, M>(
+    renderer: &mut zline::paint::PaintedRenderer<T, S, C, A>,
+    mesh: &M,
+    shading: &Shading,
+    (centre, radius): (Vec3, f32),
+    (yaw, pitch): (f32, f32),
+    sink: &mut K,
+) -> Result<(DrawStats, FrameStats), RenderError<K::Error>>
+where
+    T: TableStorage<Color = u16>,
+    S: ScanStorage<Color = u16>,
+    C: CacheStorage,
+    A: zline::paint::PaintStorage<Mode = zline::paint::Gouraud<WirePixel>>,
+    K: RowSink<WirePixel, <S::Depth as DepthFormat>::Value>,
+    M: Mesh,
+{
+    renderer.clear();
+    let model = reference_model_around(centre, radius, yaw, pitch);
+    let camera = Camera::reference(renderer.width(), renderer.height());
+    let draw = renderer.draw_mesh(mesh, &model, &camera, Cull::Back, |v| {
+        shading.vertex_color(v)
     })?;
     let frame = renderer.render(sink)?;
     Ok((draw, frame))

@@ -377,6 +377,26 @@ impl LcdRows {
     }
 }
 
+/// Gouraud rows (the `gouraud` feature): the painted renderer's row,
+/// copied into a buffer as the flat rows are.
+#[cfg(feature = "gouraud")]
+impl RowSink<crate::frame::WirePixel, u16> for LcdRows {
+    type Error = LcdError;
+
+    fn write_row(
+        &mut self,
+        y: u16,
+        colors: &[crate::frame::WirePixel],
+        _depths: &[u16],
+    ) -> Result<(), LcdError> {
+        let (buf, at) = self.row_slot(y)?;
+        let bytes: &[u8] = bytemuck::cast_slice(colors);
+        let len = bytes.len().min(ROW_BYTES);
+        buf[at..at + len].copy_from_slice(&bytes[..len]);
+        self.row_done()
+    }
+}
+
 impl RowSink<WireColor, u16> for LcdRows {
     type Error = LcdError;
 
