@@ -29,4 +29,6 @@ mod book {
     struct Drawing;
     #[doc = include_str!("../../docs/guide/capacities.md")]
     struct Capacities;
+    #[doc = include_str!("../../docs/guide/shading.md")]
+    struct Shading;
 }
