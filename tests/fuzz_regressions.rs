@@ -39,3 +39,8 @@ fn core_scene_inputs() {
 fn pipeline_inputs() {
     replay("pipeline", zline_lab::fuzz_checks::pipeline);
 }
+
+#[test]
+fn painted_inputs() {
+    replay("painted", zline_lab::fuzz_checks::painted);
+}

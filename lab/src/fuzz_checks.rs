@@ -27,6 +27,9 @@
 //!   method is); and the same scene from vertices projected beforehand
 //!   ([`draw_mesh_projected`]) and in two bands on two threads
 //!   ([`zline::host::BandedRenderer::render_mesh`]) gives the same rows.
+//! * [`painted`]: Gouraud shading on [`core_scene`]'s polygons with a
+//!   colour at each corner: uniform corners paint the flat frame, a
+//!   triangle's pixels stay within its corners' colours.
 
 use std::boxed::Box;
 use std::format;
@@ -1087,5 +1090,145 @@ impl<T: PolygonTables<u32>> PolygonTables<u32> for Recording<'_, T> {
             self.queued.push((corners, color));
         }
         Ok(admission)
+    }
+}
+
+/// Gouraud shading ([`zline::paint`]) on arbitrary screen-space polygons
+/// (as [`core_scene`] decodes them, each corner with a colour anywhere in
+/// `0..=65,535` per channel, values above 255.0 included): with one colour
+/// at every corner of each polygon the painted frame is the flat frame
+/// (the same admissions, visibility and background); with the decoded
+/// colours every pixel of a visible triangle lies within its corners'
+/// range, rounded (a plane between its corners' values, within its
+/// bound), and nothing panics or overflows (the fuzzers run with overflow
+/// checks).
+pub fn painted(data: &[u8]) {
+    /// A sink that keeps every row.
+    fn collector<Z>(
+        rows: &mut Vec<Vec<embedded_graphics_core::pixelcolor::Rgb888>>,
+    ) -> FnSink<
+        impl FnMut(u16, &[embedded_graphics_core::pixelcolor::Rgb888], &[Z]) -> Result<(), ()> + '_,
+    > {
+        FnSink(
+            move |_: u16, row: &[embedded_graphics_core::pixelcolor::Rgb888], _: &[Z]| {
+                rows.push(row.to_vec());
+                Ok(())
+            },
+        )
+    }
+    use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
+    use zline::host::HostPaintedRenderer;
+    use zline::paint::{CHANNEL_MAX, Gouraud, Rgb8p8};
+    let mut bytes = Bytes(data);
+    let width = 1 + u16::from(bytes.u8()) % CORE_WIDTH as u16;
+    let height = 1 + u16::from(bytes.u8()) % 40;
+    let z24 = bytes.u8() % 2 == 0;
+    let mut polygons: Vec<(Vec<ScreenVertex>, Vec<Rgb8p8>)> = Vec::new();
+    while !bytes.is_empty() && polygons.len() < CORE_POLYGONS {
+        let corners = 3 + usize::from(bytes.u8() % 6);
+        let mut poly = Vec::new();
+        let mut colors = Vec::new();
+        for _ in 0..corners {
+            let x = coordinate(&mut bytes, width);
+            let y = coordinate(&mut bytes, height);
+            poly.push(ScreenVertex::new(x, y, depth(&mut bytes)).expect("inside the guard band"));
+            let mut channel = || match bytes.u8() % 4 {
+                0 => 0,
+                1 => CHANNEL_MAX as u16,
+                _ => bytes.u16(),
+            };
+            colors.push(Rgb8p8 {
+                r: channel(),
+                g: channel(),
+                b: channel(),
+            });
+        }
+        polygons.push((poly, colors));
+    }
+    let corners: usize = polygons.iter().map(|(p, _)| p.len()).sum();
+    let caps = Capacities {
+        width: CORE_WIDTH,
+        vertices: corners,
+        polygons: CORE_POLYGONS,
+        corners,
+        active_polygons: CORE_POLYGONS,
+        pooled_edges: corners,
+        mesh_vertices: 0,
+    };
+    let background = Rgb888::new(1, 2, 3);
+    let uniform = |k: usize| Rgb888::new((k * 37 + 11) as u8, (k * 91 + 5) as u8, 200 + k as u8);
+    let run = |flat_rows: &mut Vec<Vec<Rgb888>>, painted_rows: &mut Vec<Vec<Rgb888>>, z24: bool| {
+        macro_rules! frames {
+            ($d:ty) => {{
+                let mut flat =
+                    host_renderer::<Rgb888, $d>(&caps, width, height, background).expect("size");
+                let mut uniform_painted =
+                    HostPaintedRenderer::<Gouraud<Rgb888>, $d>::with_capacities(
+                        &caps,
+                        (width, height),
+                        Gouraud::new(),
+                        background,
+                    )
+                    .expect("size");
+                let mut painted = HostPaintedRenderer::<Gouraud<Rgb888>, $d>::with_capacities(
+                    &caps,
+                    (width, height),
+                    Gouraud::new(),
+                    background,
+                )
+                .expect("size");
+                for (k, (poly, colors)) in polygons.iter().enumerate() {
+                    let a = flat.push_polygon_vertices(poly, uniform(k));
+                    let same = vec![Rgb8p8::from_rgb888(uniform(k)); poly.len()];
+                    let b = uniform_painted.push_polygon_vertices(poly, &same);
+                    let c = painted.push_polygon_vertices(poly, colors);
+                    assert_eq!(a, b, "{poly:?}");
+                    assert_eq!(a, c, "{poly:?}");
+                }
+                let collect = collector::<<$d as DepthFormat>::Value>;
+                flat.render(&mut collect(flat_rows)).expect("flat frame");
+                let mut uniform_rows = Vec::new();
+                uniform_painted
+                    .render(&mut collect(&mut uniform_rows))
+                    .expect("painted frame");
+                assert_eq!(
+                    &uniform_rows, flat_rows,
+                    "uniform corners paint the flat frame"
+                );
+                painted
+                    .render(&mut collect(painted_rows))
+                    .expect("painted frame");
+            }};
+        }
+        if z24 {
+            frames!(Depth24)
+        } else {
+            frames!(Depth16)
+        }
+    };
+    let (mut flat_rows, mut painted_rows) = (Vec::new(), Vec::new());
+    run(&mut flat_rows, &mut painted_rows, z24);
+    // Which polygon each pixel shows, from the flat frame's colours.
+    for (flat_row, painted_row) in flat_rows.iter().zip(&painted_rows) {
+        for (&f, &p) in flat_row.iter().zip(painted_row) {
+            let Some(k) = (0..polygons.len()).find(|&k| uniform(k) == f) else {
+                assert_eq!(p, background);
+                continue;
+            };
+            let (poly, colors) = &polygons[k];
+            if poly.len() != 3 {
+                continue;
+            }
+            let channel = |c: &Rgb8p8, i: usize| [c.r, c.g, c.b][i].min(CHANNEL_MAX as u16);
+            let got = [p.r(), p.g(), p.b()];
+            for (i, &value) in got.iter().enumerate() {
+                let lo = colors.iter().map(|c| channel(c, i)).min().unwrap_or(0) >> 8;
+                let hi = (colors.iter().map(|c| channel(c, i)).max().unwrap_or(0) + 255) >> 8;
+                assert!(
+                    u16::from(value) + 1 >= lo && u16::from(value) <= hi + 1,
+                    "{poly:?} {colors:?}: channel {i} = {value} outside {lo}..={hi}"
+                );
+            }
+        }
     }
 }
