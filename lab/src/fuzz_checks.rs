@@ -1093,6 +1093,23 @@ impl<T: PolygonTables<u32>> PolygonTables<u32> for Recording<'_, T> {
     }
 }
 
+/// A sink that keeps every row.
+struct KeepRows<'a>(&'a mut Vec<Vec<embedded_graphics_core::pixelcolor::Rgb888>>);
+
+impl<Z> zline::RowSink<embedded_graphics_core::pixelcolor::Rgb888, Z> for KeepRows<'_> {
+    type Error = ();
+
+    fn write_row(
+        &mut self,
+        _y: u16,
+        colors: &[embedded_graphics_core::pixelcolor::Rgb888],
+        _depths: &[Z],
+    ) -> Result<(), ()> {
+        self.0.push(colors.to_vec());
+        Ok(())
+    }
+}
+
 /// Gouraud shading ([`zline::paint`]) on arbitrary screen-space polygons
 /// (as [`core_scene`] decodes them, each corner with a colour anywhere in
 /// `0..=65,535` per channel, values above 255.0 included): with one colour
@@ -1103,19 +1120,6 @@ impl<T: PolygonTables<u32>> PolygonTables<u32> for Recording<'_, T> {
 /// bound), and nothing panics or overflows (the fuzzers run with overflow
 /// checks).
 pub fn painted(data: &[u8]) {
-    /// A sink that keeps every row.
-    fn collector<Z>(
-        rows: &mut Vec<Vec<embedded_graphics_core::pixelcolor::Rgb888>>,
-    ) -> FnSink<
-        impl FnMut(u16, &[embedded_graphics_core::pixelcolor::Rgb888], &[Z]) -> Result<(), ()> + '_,
-    > {
-        FnSink(
-            move |_: u16, row: &[embedded_graphics_core::pixelcolor::Rgb888], _: &[Z]| {
-                rows.push(row.to_vec());
-                Ok(())
-            },
-        )
-    }
     use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
     use zline::host::HostPaintedRenderer;
     use zline::paint::{CHANNEL_MAX, Gouraud, Rgb8p8};
@@ -1185,18 +1189,17 @@ pub fn painted(data: &[u8]) {
                     assert_eq!(a, b, "{poly:?}");
                     assert_eq!(a, c, "{poly:?}");
                 }
-                let collect = collector::<<$d as DepthFormat>::Value>;
-                flat.render(&mut collect(flat_rows)).expect("flat frame");
+                flat.render(&mut KeepRows(flat_rows)).expect("flat frame");
                 let mut uniform_rows = Vec::new();
                 uniform_painted
-                    .render(&mut collect(&mut uniform_rows))
+                    .render(&mut KeepRows(&mut uniform_rows))
                     .expect("painted frame");
                 assert_eq!(
                     &uniform_rows, flat_rows,
                     "uniform corners paint the flat frame"
                 );
                 painted
-                    .render(&mut collect(painted_rows))
+                    .render(&mut KeepRows(painted_rows))
                     .expect("painted frame");
             }};
         }
