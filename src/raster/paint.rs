@@ -101,14 +101,7 @@ fn painted_rows<D: DepthFormat, P: RowPainter, K: RowSink<P::Color, D::Value>>(
         tables,
         active: OrderedSlots::new(parts.active, parts.order),
         pool: EdgePool::new(Slots::new(parts.pool, &mut pool_len)),
-        stats: FrameStats {
-            vertices: tables.vertices.len() as u32,
-            corners: tables.corners.len() as u32,
-            polygons: tables.polygons.len() as u32,
-            off_screen: tables.off_screen,
-            degenerate: tables.degenerate,
-            ..FrameStats::default()
-        },
+        stats: tables.frame_stats(),
         small_triangles: SMALL_TRIANGLES,
     };
     let (depth_row, slot_row, key_row, own_row) = (

@@ -225,14 +225,7 @@ fn scan_rows<C: Copy, D: DepthFormat, K: RowSink<C, D::Value>>(
         tables,
         active: OrderedSlots::new(parts.active, parts.order),
         pool: EdgePool::new(Slots::new(parts.pool, &mut pool_len)),
-        stats: FrameStats {
-            vertices: tables.vertices.len() as u32,
-            corners: tables.corners.len() as u32,
-            polygons: tables.polygons.len() as u32,
-            off_screen: tables.off_screen,
-            degenerate: tables.degenerate,
-            ..FrameStats::default()
-        },
+        stats: tables.frame_stats(),
         small_triangles,
     };
     let (depth_row, own_colors, key_row) = (

@@ -4,6 +4,7 @@
 
 use crate::raster::edge::EdgeEntry;
 use crate::raster::fixed::first_sample_at_or_after;
+use crate::raster::stats::FrameStats;
 use crate::raster::tables::entry::{PolygonEntry, entry_corner_ids};
 use crate::raster::tables::state::{Tables, TablesMut};
 use crate::raster::tables::storage::{TableEdge, TableStorage};
@@ -22,6 +23,20 @@ pub struct Prepared<'a, C> {
     pub(crate) height: u16,
     pub(crate) off_screen: u32,
     pub(crate) degenerate: u32,
+}
+
+impl<C> Prepared<'_, C> {
+    /// A frame's statistics before its scan: the tables' own counts.
+    pub(crate) fn frame_stats(&self) -> FrameStats {
+        FrameStats {
+            vertices: self.vertices.len() as u32,
+            corners: self.corners.len() as u32,
+            polygons: self.polygons.len() as u32,
+            off_screen: self.off_screen,
+            degenerate: self.degenerate,
+            ..FrameStats::default()
+        }
+    }
 }
 
 impl<S: TableStorage> Tables<S> {

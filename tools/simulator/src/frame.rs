@@ -335,36 +335,13 @@ impl Renderers {
             ..zline_lab::methods::HOST_CAPACITIES
         };
         let size = (self.width, self.height);
-        let e = |e: zline::Error| format!("renderer: {e}");
         match view.depth {
             DepthChoice::Z16 => {
-                let r = match &mut self.gouraud16 {
-                    Some(r) => r,
-                    slot => slot.insert(Box::new(
-                        GouraudRenderer::with_capacities(
-                            &caps,
-                            size,
-                            Gouraud::new(),
-                            Rgb888::BLACK,
-                        )
-                        .map_err(e)?,
-                    )),
-                };
+                let r = gouraud_renderer(&mut self.gouraud16, &caps, size)?;
                 gouraud_frame(r, smooth, view, display)
             }
             DepthChoice::Z24 => {
-                let r = match &mut self.gouraud24 {
-                    Some(r) => r,
-                    slot => slot.insert(Box::new(
-                        GouraudRenderer::with_capacities(
-                            &caps,
-                            size,
-                            Gouraud::new(),
-                            Rgb888::BLACK,
-                        )
-                        .map_err(e)?,
-                    )),
-                };
+                let r = gouraud_renderer(&mut self.gouraud24, &caps, size)?;
                 gouraud_frame(r, smooth, view, display)
             }
         }
@@ -465,6 +442,21 @@ where
         polygons: frame.draw.queued,
         ram_bytes: Some(frame.memory.total() + 2 * mesh.positions.len()),
     })
+}
+
+/// The Gouraud renderer in `slot`, made on first use.
+fn gouraud_renderer<'a, D: DepthFormat>(
+    slot: &'a mut Option<Box<GouraudRenderer<D>>>,
+    caps: &zline::Capacities,
+    size: (u16, u16),
+) -> Result<&'a mut GouraudRenderer<D>, String> {
+    if slot.is_none() {
+        let renderer = GouraudRenderer::with_capacities(caps, size, Gouraud::new(), Rgb888::BLACK)
+            .map_err(|e| format!("renderer: {e}"))?;
+        *slot = Some(Box::new(renderer));
+    }
+    slot.as_deref_mut()
+        .ok_or_else(|| "no Gouraud renderer".to_string())
 }
 
 /// One Gouraud frame by the scanline core's painted renderer: clear,
