@@ -12,10 +12,13 @@
 //! Options (defaults in brackets):
 //! * `--size WxH` [320x240]
 //! * `--yaw DEG` [30] and `--pitch DEG` [20]
-//! * `--shade flat|lambert|depth|id|gouraud` [lambert]: `gouraud` is
-//!   Lambert per vertex, interpolated (a painted renderer's colours, the
-//!   scanline method's face ids; the reference interpolates the same
-//!   vertex colours)
+//! * `--shade flat|lambert|depth|id|gouraud|texture` [lambert]: `gouraud`
+//!   is Lambert per vertex, interpolated; `texture` maps `--texture`
+//!   perspective-correctly by the mesh's `vt` coordinates (both a painted
+//!   renderer's colours, the scanline method's face ids)
+//! * `--texture FILE.png`: the texture for `--shade texture`, read as
+//!   Rgb565 texels; `--filter nearest|bilinear` [nearest], `--wrap
+//!   repeat|clamp` [repeat]
 //! * `--cull none|back` [none]
 //! * `--depth z16|z24` [z24]
 //! * `--method scanline|zbuffer|bands:K|interval|painter|reference`
@@ -45,13 +48,15 @@ use embedded_graphics_simulator::{OutputSettings, SimulatorDisplay};
 use zline::FnSink;
 use zline::Shading;
 use zline::host::{HostMesh, HostPaintedRenderer};
-use zline::paint::Gouraud;
+use zline::paint::{Filter, Gouraud, PaintMode, Textured, Wrap};
 use zline::{Camera, Cull, reference_model};
 use zline::{Depth16, Depth24, DepthFormat};
+use zline::{DrawStats, VertexInfo};
 use zline_lab::cli::parse_size;
 use zline_lab::cli::{help_requested, run_tool};
 use zline_lab::cli::{load_model, load_model_smooth};
 use zline_lab::methods::{BACKGROUND, Method, MethodRenderer, ReferenceView};
+use zline_lab::texture_png::PngTexture;
 
 /// Parsed command line.
 #[derive(Debug)]
@@ -62,7 +67,10 @@ struct Options {
     yaw: f32,
     pitch: f32,
     shade: Shading,
-    gouraud: bool,
+    painted: Painted,
+    texture: Option<PathBuf>,
+    filter: Filter,
+    wrap: Wrap,
     cull: Cull,
     depth: String,
     method: Method,
@@ -80,7 +88,10 @@ fn parse_args(args: &[String]) -> Result<Options, String> {
         yaw: 30.0,
         pitch: 20.0,
         shade: Shading::lambert(),
-        gouraud: false,
+        painted: Painted::No,
+        texture: None,
+        filter: Filter::Nearest,
+        wrap: Wrap::Repeat,
         cull: Cull::None,
         depth: "z24".into(),
         method: Method::Scanline,
@@ -107,12 +118,16 @@ fn parse_args(args: &[String]) -> Result<Options, String> {
                     },
                     "id" => Shading::FaceId,
                     "gouraud" => {
-                        o.gouraud = true;
+                        o.painted = Painted::Gouraud;
+                        Shading::lambert()
+                    }
+                    "texture" => {
+                        o.painted = Painted::Texture;
                         Shading::lambert()
                     }
                     s => {
                         return Err(format!(
-                            "--shade: unknown '{s}' (flat, lambert, depth, id, gouraud)"
+                            "--shade: unknown '{s}' (flat, lambert, depth, id, gouraud, texture)"
                         ));
                     }
                 }
@@ -133,6 +148,21 @@ fn parse_args(args: &[String]) -> Result<Options, String> {
             "--method" => {
                 o.method = Method::parse(value()?).map_err(|e| format!("--method: {e}"))?
             }
+            "--texture" => o.texture = Some(value()?.into()),
+            "--filter" => {
+                o.filter = match value()?.as_str() {
+                    "nearest" => Filter::Nearest,
+                    "bilinear" => Filter::Bilinear,
+                    s => return Err(format!("--filter: unknown '{s}' (nearest, bilinear)")),
+                }
+            }
+            "--wrap" => {
+                o.wrap = match value()?.as_str() {
+                    "repeat" => Wrap::Repeat,
+                    "clamp" => Wrap::Clamp,
+                    s => return Err(format!("--wrap: unknown '{s}' (repeat, clamp)")),
+                }
+            }
             "--out" => o.out = Some(value()?.into()),
             "--ids" => o.ids = Some(value()?.into()),
             "--frames" => {
@@ -151,7 +181,18 @@ fn parse_args(args: &[String]) -> Result<Options, String> {
         }
     }
     o.model = model.ok_or("missing MODEL.obj")?;
+    if (o.painted == Painted::Texture) != o.texture.is_some() {
+        return Err("--shade texture and --texture FILE.png go together".into());
+    }
     Ok(o)
+}
+
+/// Which painted renderer draws the colours, if any.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Painted {
+    No,
+    Gouraud,
+    Texture,
 }
 
 fn parse_angle(name: &str, s: &str) -> Result<f32, String> {
@@ -176,6 +217,47 @@ const MAX_FRAMES: usize = 100_000;
 fn median(times: &mut [f64]) -> f64 {
     times.sort_by(f64::total_cmp);
     times.get(times.len() / 2).copied().unwrap_or(f64::NAN)
+}
+
+/// Frames of a painted renderer with `mode`, each vertex's value from
+/// `value`: the last frame's colours and each timed frame's time (ms).
+fn painted_frames<M, D>(
+    mode: M,
+    (model, camera, cull, mesh): (zline::Mat4, Camera, Cull, &HostMesh),
+    (warm_up, frames): (usize, usize),
+    value: impl Fn(&VertexInfo<'_>) -> M::Source,
+) -> Result<(Vec<Rgb888>, Vec<f64>), String>
+where
+    M: PaintMode<Color = Rgb888>,
+    D: DepthFormat,
+{
+    let mut painted = HostPaintedRenderer::<M, D>::for_mesh(
+        mesh,
+        camera.width,
+        camera.height,
+        mode,
+        Rgb888::BLACK,
+    )
+    .map_err(|e| e.to_string())?;
+    let (mut colors, mut times) = (Vec::new(), Vec::new());
+    for k in 0..warm_up + frames {
+        colors.clear();
+        let start = Instant::now();
+        painted.clear();
+        let _: DrawStats = painted
+            .draw_mesh(mesh, &model, &camera, cull, &value)
+            .map_err(|e| e.to_string())?;
+        painted
+            .render(&mut FnSink(|_: u16, row: &[Rgb888], _: &[D::Value]| {
+                colors.extend_from_slice(row);
+                Ok::<(), ()>(())
+            }))
+            .map_err(|e| format!("{e:?}"))?;
+        if k >= warm_up {
+            times.push(start.elapsed().as_secs_f64() * 1e3);
+        }
+    }
+    Ok((colors, times))
 }
 
 fn run_method<D: DepthFormat>(o: &Options, mesh: &HostMesh) -> Result<Output, String>
@@ -209,41 +291,35 @@ where
         last = Some(frame);
     }
     let mut f = last.ok_or("no frame rendered")?;
-    if o.gouraud {
+    if o.painted != Painted::No {
         if o.method != Method::Scanline {
             return Err(format!(
-                "--shade gouraud: drawn by the scanline method only, not {}",
+                "--shade gouraud|texture: drawn by the scanline method only, not {}",
                 o.method.name()
             ));
         }
         // The painted renderer's colours and times; the face ids above.
-        times.clear();
-        let mut painted = HostPaintedRenderer::<Gouraud<Rgb888>, D>::for_mesh(
-            mesh,
-            o.width,
-            o.height,
-            Gouraud::new(),
-            Rgb888::BLACK,
-        )
-        .map_err(|e| e.to_string())?;
-        let mut colors = Vec::new();
-        for k in 0..warm_up + frames {
-            colors.clear();
-            let start = Instant::now();
-            painted.clear();
-            painted
-                .draw_mesh(mesh, &model, &camera, o.cull, |v| o.shade.vertex_color(v))
-                .map_err(|e| e.to_string())?;
-            painted
-                .render(&mut FnSink(|_: u16, row: &[Rgb888], _: &[D::Value]| {
-                    colors.extend_from_slice(row);
-                    Ok::<(), ()>(())
-                }))
-                .map_err(|e| format!("{e:?}"))?;
-            if k >= warm_up {
-                times.push(start.elapsed().as_secs_f64() * 1e3);
+        let draw = (model, camera, o.cull, mesh);
+        let (colors, painted_times) = match o.painted {
+            Painted::Texture => {
+                let path = o
+                    .texture
+                    .as_ref()
+                    .ok_or("--shade texture needs --texture")?;
+                let png = PngTexture::read(path, 1)?;
+                let texture = png.texture()?.with_filter(o.filter).with_wrap(o.wrap);
+                painted_frames::<_, D>(
+                    Textured::<Rgb888>::new(texture),
+                    draw,
+                    (warm_up, frames),
+                    |v| v.tex_coord(),
+                )?
             }
-        }
+            _ => painted_frames::<_, D>(Gouraud::<Rgb888>::new(), draw, (warm_up, frames), |v| {
+                o.shade.vertex_color(v)
+            })?,
+        };
+        times = painted_times;
         f.colors = colors;
     }
     let s = |k: &str, v: &dyn ToString| (k.to_string(), v.to_string());
@@ -324,7 +400,7 @@ fn write_outputs(o: &Options, out: &Output) -> Result<(), String> {
 fn run(args: &[String]) -> Result<(), String> {
     let o = parse_args(args)?;
     let spec = o.model.to_string_lossy();
-    let mesh = if o.gouraud {
+    let mesh = if o.painted != Painted::No {
         load_model_smooth(&spec)?
     } else {
         load_model(&spec)?
@@ -375,4 +451,4 @@ fn main() -> ExitCode {
     run_tool("render", USAGE, move || run(&args))
 }
 
-const USAGE: &str = "usage: render MODEL.obj|shape:NAME [--size WxH] [--yaw DEG] [--pitch DEG] [--shade flat|lambert|depth|id|gouraud] [--cull none|back] [--depth z16|z24] [--method scanline|zbuffer|bands:K|interval|painter|reference] [--out FILE.png] [--ids FILE.bin] [--stats] [--frames N]";
+const USAGE: &str = "usage: render MODEL.obj|shape:NAME [--size WxH] [--yaw DEG] [--pitch DEG] [--shade flat|lambert|depth|id|gouraud|texture] [--texture FILE.png] [--filter nearest|bilinear] [--wrap repeat|clamp] [--cull none|back] [--depth z16|z24] [--method scanline|zbuffer|bands:K|interval|painter|reference] [--out FILE.png] [--ids FILE.bin] [--stats] [--frames N]";

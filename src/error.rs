@@ -79,6 +79,10 @@ pub enum Error {
     /// A polygon was given a different number of corner values than
     /// corners.
     ValueCountMismatch,
+    /// A [`Texture`](crate::paint::Texture)'s width or height is 0 or
+    /// above [`TEXTURE_SIZE_MAX`](crate::paint::TEXTURE_SIZE_MAX), or its
+    /// texels are not `width · height`.
+    BadTextureSize,
 }
 
 impl fmt::Display for Error {
@@ -127,6 +131,11 @@ impl fmt::Display for Error {
             Error::ValueCountMismatch => {
                 f.write_str("a polygon's corner values are not one per corner")
             }
+            Error::BadTextureSize => write!(
+                f,
+                "texture size out of 1..={} or not its texel count",
+                crate::paint::TEXTURE_SIZE_MAX
+            ),
         }
     }
 }

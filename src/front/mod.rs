@@ -21,6 +21,7 @@
 
 pub(crate) mod backface;
 pub(crate) mod clip;
+pub(crate) mod clip_w;
 pub(crate) mod fixed_point;
 pub(crate) mod geometry;
 pub(crate) mod mesh;
@@ -29,3 +30,4 @@ pub(crate) mod quantized;
 pub(crate) mod rgb8p8;
 pub(crate) mod scene;
 pub(crate) mod shade;
+pub(crate) mod tex_coord;

@@ -6,7 +6,9 @@
 //!
 //! * [`PaintMode`]: what a vertex carries, the planes a polygon gets from
 //!   its corners, and how a run of pixels is painted from them;
-//!   [`Gouraud`] (a colour per vertex, interpolated);
+//!   [`Gouraud`] (a colour per vertex, interpolated) and [`Textured`]
+//!   (texture coordinates per vertex, perspective-correct, sampling a
+//!   [`Texture`]);
 //! * [`PaintColor`]: the colours a painted row can hold, quantised from
 //!   8.8 fixed-point channels, with an ordered dither ([`bayer_threshold`]);
 //! * [`PaintStorage`] and [`PaintArrays`]: the values of the vertex table,
@@ -17,11 +19,18 @@ mod color;
 mod gouraud;
 mod renderer;
 mod storage;
+mod texture;
+mod textured;
 
 pub use color::{CHANNEL_MAX, PaintColor, bayer_threshold};
 pub use gouraud::{Gouraud, GouraudPlanes, Rgb8p8};
 pub use renderer::PaintedRenderer;
 pub use storage::{PaintArrays, PaintParts, PaintStorage, SlotPlanes};
+pub use texture::{Filter, TEXEL_FRAC_BITS, TEXTURE_SIZE_MAX, Texture, Wrap};
+pub use textured::{CHORD_TOLERANCE, SPAN, Textured, TexturedPlanes};
+
+pub use crate::front::clip_w::ClipW;
+pub use crate::front::tex_coord::{TexCoord, UV_ONE};
 
 use crate::front::clip::ClipValue;
 use crate::raster::paint::{NO_SLOT, RowPainter};

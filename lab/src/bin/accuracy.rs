@@ -44,7 +44,7 @@ use zline::Mesh;
 use zline::Shading;
 use zline::host::HostPaintedRenderer;
 use zline::host::{HostMesh, QuantizedHostMesh};
-use zline::paint::{CHANNEL_MAX, Gouraud, PaintColor};
+use zline::paint::{CHANNEL_MAX, Filter, Gouraud, PaintColor, Texture, Textured};
 use zline::{Camera, Cull, reference_model};
 use zline::{Depth16, Depth24, DepthFormat};
 use zline::{FnSink, Lambert};
@@ -56,6 +56,7 @@ use zline_lab::methods::{
     BACKGROUND, Comparison, Method, MethodRenderer, ReferenceCamera, ReferenceFrame, ReferenceView,
     compare, rotate,
 };
+use zline_lab::texture_png::PngTexture;
 
 /// (yaw, pitch) of the three views, degrees.
 const VIEWS: [(f32, f32); 3] = [(30.0, 20.0), (135.0, -30.0), (250.0, 65.0)];
@@ -410,6 +411,256 @@ fn gouraud(o: &Options) -> Result<bool, String> {
     Ok(ok)
 }
 
+/// How far (texels) the core's texture coordinates may be from the exact
+/// ones: its stated bound (`CHORD_TOLERANCE + 2` units of `2^-8` texel,
+/// see `zline::paint::Textured`) and the rounding of each vertex's
+/// coordinates to `2^-16` of the texture (`2^-17 · 1024` texels for
+/// Spot's), below `1/32`.
+const TEXEL_TOLERANCE: f64 = 1.0 / 32.0;
+
+/// Colour errors of one textured frame over its matched pixels.
+#[derive(Default)]
+struct TextureErrors {
+    matched: u64,
+    /// Pixels whose nearest texel is not the one holding the exact
+    /// coordinates.
+    other_texel: u64,
+    /// Largest and summed 8-bit error (largest channel) against the
+    /// nearest texel closest in colour among those within
+    /// [`TEXEL_TOLERANCE`] of the exact coordinates.
+    max_nearest: f64,
+    sum_nearest: f64,
+    /// Pixels more than 1 step off by that measure.
+    over_one: u64,
+    /// Largest and summed error of bilinear sampling (8.8 values, in 8-bit
+    /// steps) against the exact coordinates' bilinear blend in `f64`.
+    max_bilinear: f64,
+    sum_bilinear: f64,
+}
+
+impl TextureErrors {
+    fn add(&mut self, other: &Self) {
+        self.matched += other.matched;
+        self.other_texel += other.other_texel;
+        self.max_nearest = self.max_nearest.max(other.max_nearest);
+        self.sum_nearest += other.sum_nearest;
+        self.over_one += other.over_one;
+        self.max_bilinear = self.max_bilinear.max(other.max_bilinear);
+        self.sum_bilinear += other.sum_bilinear;
+    }
+
+    fn within_one(&self) -> f64 {
+        1.0 - self.over_one as f64 / self.matched.max(1) as f64
+    }
+
+    /// The issue's bar for nearest sampling: at most 1 step on 99.9 % of
+    /// matched pixels and at most 2 on all.
+    fn meets_the_bar(&self) -> bool {
+        self.max_nearest <= 2.0 && self.within_one() >= 0.999
+    }
+}
+
+/// A texel's 8-bit channels as the core widens them (embedded-graphics'
+/// Rgb565 to Rgb888).
+fn texel_rgb(texture: &PngTexture, i: i64, j: i64) -> [f64; 3] {
+    let (w, h) = (i64::from(texture.width), i64::from(texture.height));
+    let t = texture.texels[(j.rem_euclid(h) * w + i.rem_euclid(w)) as usize];
+    let widen = |c: u16, max: u32| f64::from((u32::from(c) * 255 + max / 2) / max);
+    [
+        widen(t >> 11, 31),
+        widen((t >> 5) & 0x3F, 63),
+        widen(t & 0x1F, 31),
+    ]
+}
+
+/// A textured frame's pixels (8.8 channels) drawn by the core.
+fn textured_values(
+    mesh: &HostMesh,
+    texture: Texture<'_>,
+    model: &Mat4,
+    o: &Options,
+) -> Result<Vec<Channels>, String> {
+    let camera = Camera::reference(o.width, o.height);
+    let mut painted = HostPaintedRenderer::<Textured<'_, Channels>, Depth24>::for_mesh(
+        mesh,
+        o.width,
+        o.height,
+        Textured::new(texture),
+        Channels::default(),
+    )
+    .map_err(|e| e.to_string())?;
+    painted
+        .draw_mesh(mesh, model, &camera, o.cull, |v| v.tex_coord())
+        .map_err(|e| e.to_string())?;
+    let mut values = Vec::with_capacity(usize::from(o.width) * usize::from(o.height));
+    painted
+        .render(&mut FnSink(|_: u16, row: &[Channels], _: &[u32]| {
+            values.extend_from_slice(row);
+            Ok::<(), ()>(())
+        }))
+        .map_err(|e| format!("{e:?}"))?;
+    Ok(values)
+}
+
+/// One textured frame of `mesh` against the reference: face ids, and the
+/// colours of nearest and bilinear sampling at the exact
+/// perspective-correct coordinates.
+fn textured_frame(
+    mesh: &HostMesh,
+    png: &PngTexture,
+    view: (f32, f32),
+    reference_view: &ReferenceView,
+    o: &Options,
+    ids_renderer: &mut MethodRenderer<Depth24>,
+) -> Result<(Comparison, TextureErrors), String> {
+    let uv = |v: usize| {
+        let [u, v] = mesh.vertex_uv(v).unwrap_or([0.0; 2]);
+        [f64::from(u), f64::from(v), 0.0]
+    };
+    let reference =
+        ReferenceFrame::render_with_values(mesh, reference_view, &ReferenceCamera::STANDARD, &uv);
+    let model = reference_model(mesh, view.0, view.1).map_err(|e| e.to_string())?;
+    let faces = ids(
+        ids_renderer,
+        Method::Scanline,
+        mesh,
+        &model,
+        o,
+        reference_view,
+    )?;
+    let comparison = compare(&reference, &faces);
+    let texture = png.texture()?;
+    let nearest = textured_values(mesh, texture, &model, o)?;
+    let bilinear = textured_values(mesh, texture.with_filter(Filter::Bilinear), &model, o)?;
+    let (tw, th) = (f64::from(png.width), f64::from(png.height));
+    let mut errors = TextureErrors::default();
+    let width = usize::from(o.width);
+    for (k, &id) in faces.iter().enumerate() {
+        if id == BACKGROUND || id != reference.ids[k] {
+            continue;
+        }
+        let Some([u, v]) = reference.interpolated_perspective(id, k % width, k / width) else {
+            continue;
+        };
+        // Texel units, rows down from the top (OBJ's v is up).
+        let (x, y) = (u * tw, (1.0 - v) * th);
+        let distance = |got: [u32; 3], want: [f64; 3]| {
+            (0..3)
+                .map(|c| (f64::from(got[c]) / 256.0 - want[c]).abs())
+                .fold(0.0, f64::max)
+        };
+        // Nearest: the texel holding the point, or any within the
+        // tolerance of it.
+        let got = nearest[k].0;
+        let exact_texel = texel_rgb(png, x.floor() as i64, y.floor() as i64);
+        let same = distance(got, exact_texel) == 0.0;
+        let mut best = f64::INFINITY;
+        for i in [(x - TEXEL_TOLERANCE).floor(), (x + TEXEL_TOLERANCE).floor()] {
+            for j in [(y - TEXEL_TOLERANCE).floor(), (y + TEXEL_TOLERANCE).floor()] {
+                best = best.min(distance(got, texel_rgb(png, i as i64, j as i64)));
+            }
+        }
+        // Bilinear: the four centres around the point, weighted exactly.
+        let (bx, by) = (x - 0.5, y - 0.5);
+        let (i0, j0) = (bx.floor(), by.floor());
+        let (fx, fy) = (bx - i0, by - j0);
+        let (i0, j0) = (i0 as i64, j0 as i64);
+        let blend: [f64; 3] = std::array::from_fn(|c| {
+            let t = |i, j| texel_rgb(png, i, j)[c];
+            (t(i0, j0) * (1.0 - fx) + t(i0 + 1, j0) * fx) * (1.0 - fy)
+                + (t(i0, j0 + 1) * (1.0 - fx) + t(i0 + 1, j0 + 1) * fx) * fy
+        });
+        let bilinear_error = distance(bilinear[k].0, blend);
+        errors.matched += 1;
+        errors.other_texel += u64::from(!same);
+        errors.max_nearest = errors.max_nearest.max(best);
+        errors.sum_nearest += best;
+        errors.over_one += u64::from(best > 1.0);
+        errors.max_bilinear = errors.max_bilinear.max(bilinear_error);
+        errors.sum_bilinear += bilinear_error;
+    }
+    Ok((comparison, errors))
+}
+
+fn textured_row(name: &str, view: (f32, f32), c: &Comparison, e: &TextureErrors) {
+    let mean = |sum: f64| sum / e.matched.max(1) as f64;
+    println!(
+        "| {name} | {:.0}/{:.0} | {} | {} | {} ({:.4} %) | {:.3} | {:.4} | {:.4} % | {:.3} | {:.4} |",
+        view.0,
+        view.1,
+        c.hard,
+        e.matched,
+        e.other_texel,
+        100.0 * e.other_texel as f64 / e.matched.max(1) as f64,
+        e.max_nearest,
+        mean(e.sum_nearest),
+        100.0 * e.within_one(),
+        e.max_bilinear,
+        mean(e.sum_bilinear),
+    );
+}
+
+/// The texture table: every mesh of the folder with a texture beside it
+/// (`NAME_texture.png` for `NAME.obj`), read smooth (its `vt` kept), at
+/// the three views, z24.
+fn textured(o: &Options) -> Result<bool, String> {
+    let mut ids_renderer = MethodRenderer::<Depth24>::new(o.width, o.height)?;
+    println!();
+    println!(
+        "Textured, perspective-correct, z24: colour error in 8-bit steps (largest channel) over pixels whose face id matches the reference; nearest texels within 1/32 texel of the exact coordinates allowed"
+    );
+    println!();
+    println!(
+        "| mesh | yaw/pitch | hard mismatches | matched pixels | other texel than the exact one | max (nearest) | mean (nearest) | within 1 step (nearest) | max (bilinear) | mean (bilinear) |"
+    );
+    println!("|---|---|---|---|---|---|---|---|---|---|");
+    let (mut ok, mut hard, mut meshes) = (true, 0, 0);
+    let mut all = TextureErrors::default();
+    for path in obj_files(&o.dir)? {
+        let Some(stem) = path.file_stem().map(|s| s.to_string_lossy().into_owned()) else {
+            continue;
+        };
+        let texture_path = path.with_file_name(format!("{stem}_texture.png"));
+        if !texture_path.exists() {
+            continue;
+        }
+        meshes += 1;
+        let png = PngTexture::read(&texture_path, 1)?;
+        let bytes = std::fs::read(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+        let mesh = HostMesh::from_obj_smooth(&bytes, zline::host::DEFAULT_CREASE_DEGREES)
+            .map_err(|e| format!("{}: {e}", path.display()))?;
+        let name = format!("{stem}.obj");
+        for view in VIEWS {
+            let reference_view = ReferenceView {
+                width: usize::from(o.width),
+                height: usize::from(o.height),
+                yaw_deg: f64::from(view.0),
+                pitch_deg: f64::from(view.1),
+                cull_back: o.cull == Cull::Back,
+            };
+            let (c, e) = textured_frame(&mesh, &png, view, &reference_view, o, &mut ids_renderer)?;
+            textured_row(&name, view, &c, &e);
+            ok &= c.hard == 0 && e.meets_the_bar();
+            hard += c.hard;
+            all.add(&e);
+        }
+    }
+    let total = Comparison {
+        hard,
+        ..Comparison::default()
+    };
+    textured_row("**all**", (0.0, 0.0), &total, &all);
+    println!(
+        "textured: meshes {meshes}, hard mismatches {hard}, other texel {:.4} %, largest 8-bit error (nearest) {:.3}, within 1 step {:.4} %, largest bilinear error {:.3} ({})",
+        100.0 * all.other_texel as f64 / all.matched.max(1) as f64,
+        all.max_nearest,
+        100.0 * all.within_one(),
+        all.max_bilinear,
+        if ok { "ok" } else { "FAILED" }
+    );
+    Ok(ok)
+}
+
 fn row(name: &str, view: (f32, f32), format: &str, c: &Comparison) {
     println!(
         "| {name} | {:.0}/{:.0} | {format} | {} | {} | {} | {} | {} |",
@@ -479,7 +730,8 @@ fn run(args: &[String]) -> Result<bool, String> {
         summary.join(", ")
     );
     let gouraud_ok = gouraud(&o)?;
-    Ok(ok && gouraud_ok)
+    let textured_ok = textured(&o)?;
+    Ok(ok && gouraud_ok && textured_ok)
 }
 
 const USAGE: &str = "usage: accuracy MESH_DIR [--size WxH] [--cull none|back]
@@ -493,6 +745,6 @@ fn main() -> ExitCode {
     }
     run_tool("accuracy", USAGE, move || match run(&args)? {
         true => Ok(()),
-        false => Err("hard mismatches, or Gouraud colour errors above the bar".into()),
+        false => Err("hard mismatches, or Gouraud or texture colour errors above the bar".into()),
     })
 }

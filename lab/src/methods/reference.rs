@@ -108,6 +108,8 @@ struct Face {
     screen: Vec<[f64; 2]>,
     /// The values at those corners.
     values: Vec<Values>,
+    /// The view-axis distance of those corners (clip-space `w`).
+    distances: Vec<f64>,
     /// Whether clipping left the face whole.
     whole: bool,
     /// View-space plane: `normal · p = offset`.
@@ -224,6 +226,7 @@ impl ReferenceFrame {
         }
         let screen: Vec<[f64; 2]> = clipped.iter().map(|&(p, _)| self.project(p)).collect();
         let values = clipped.iter().map(|&(_, v)| v).collect();
+        let distances = clipped.iter().map(|&(p, _)| -p[2]).collect();
         let whole = clipped == corners;
         let area: f64 = (0..screen.len())
             .map(|k| {
@@ -237,6 +240,7 @@ impl ReferenceFrame {
         Some(Face {
             screen,
             values,
+            distances,
             whole,
             normal,
             offset: dot(normal, corners[0].0),
@@ -305,6 +309,32 @@ impl ReferenceFrame {
     /// module's notes), whether or not the face covers it; `None` for
     /// culled or clipped-away faces and parts of no area.
     pub fn interpolated(&self, id: u32, i: usize, j: usize) -> Option<Values> {
+        self.interpolate(id, i, j, |part, k| part.values[k])
+    }
+
+    /// The values of face `id` at pixel `(i, j)`'s sample interpolated
+    /// perspective-correctly (as texture coordinates are): `value/w` and
+    /// `1/w` interpolated over the same parts as [`Self::interpolated`]
+    /// (affine in screen space), then divided, which is the value at the
+    /// point of the part's plane the pixel's ray meets. Values 0 and 1
+    /// only (the third is not interpolated).
+    pub fn interpolated_perspective(&self, id: u32, i: usize, j: usize) -> Option<[f64; 2]> {
+        let [u, v, q] = self.interpolate(id, i, j, |part, k| {
+            let w = part.distances[k];
+            [part.values[k][0] / w, part.values[k][1] / w, 1.0 / w]
+        })?;
+        Some([u / q, v / q])
+    }
+
+    /// The screen-affine interpolation of `corner(part, k)` over the part
+    /// of face `id` at pixel `(i, j)` (see [`Self::interpolated`]).
+    fn interpolate(
+        &self,
+        id: u32,
+        i: usize,
+        j: usize,
+        corner: impl Fn(&Face, usize) -> Values,
+    ) -> Option<Values> {
         let (x, y) = (i as f64 + 0.5, j as f64 + 0.5);
         // The nearest of the parts that hold the sample (the triangles of a
         // folded face's fan can overlap on screen), else the nearest part.
@@ -347,8 +377,8 @@ impl ReferenceFrame {
             for m in 0..n {
                 let (p, q) = (part.screen[corners[m]], part.screen[corners[(m + 1) % n]]);
                 let (pv, qv) = (
-                    part.values[corners[m]][k],
-                    part.values[corners[(m + 1) % n]][k],
+                    corner(part, corners[m])[k],
+                    corner(part, corners[(m + 1) % n])[k],
                 );
                 a += (p[1] - q[1]) * (pv + qv);
                 b += (pv - qv) * (p[0] + q[0]);
@@ -357,7 +387,7 @@ impl ReferenceFrame {
             if c == 0.0 {
                 return None;
             }
-            *out = part.values[corners[0]][k] - (a * (x - o[0]) + b * (y - o[1])) / c;
+            *out = corner(part, corners[0])[k] - (a * (x - o[0]) + b * (y - o[1])) / c;
         }
         Some(out)
     }

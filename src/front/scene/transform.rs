@@ -9,6 +9,7 @@ use core::cell::OnceCell;
 
 use crate::error::Error;
 use crate::front::clip::ClipPoint;
+use crate::front::clip_w::ClipW;
 use crate::front::fixed_point::FixedFrame;
 use crate::front::geometry::{Mat4, Vec3, Vec4};
 use crate::front::mesh::{Mesh, QuantizedView};
@@ -319,6 +320,21 @@ impl Frame {
             None if self.clip_position64(mesh, index).is_finite() => Ok(needs_clip),
             None => Ok(non_finite),
         }
+    }
+
+    /// Mesh vertex `index`'s clip-space `w`: the integer front end's
+    /// when it draws the mesh, else the `f32` transform's (as
+    /// [`Self::vertex`] computes them).
+    pub(super) fn clip_w<M: Mesh + ?Sized>(&self, mesh: &M, index: usize) -> ClipW {
+        if let (Some(fixed), Some(q)) = (&self.fixed, mesh.quantized())
+            && let Some(&p) = q.positions.get(index)
+        {
+            return ClipW::from_i64(fixed.clip(p)[3]);
+        }
+        let p = self
+            .mvp
+            .transform_point(Vec3::from_array(mesh.position(index)));
+        ClipW::from_f32(p.w)
     }
 
     /// The frame's `f64` state for clipping, made on first use.

@@ -1,10 +1,12 @@
 //! What a vertex shading closure knows about a vertex ([`VertexInfo`]):
 //! its index at once, its normal and texture coordinates when asked for.
 
+use crate::front::clip_w::ClipW;
 use crate::front::geometry::Vec3;
 use crate::front::mesh::Mesh;
 use crate::front::scene::face_info::normal_vector_i32;
 use crate::front::scene::transform::Frame;
+use crate::front::tex_coord::TexCoord;
 
 /// What a vertex shading closure knows about a mesh vertex, for smooth
 /// shading ([`PaintedRenderer::draw_mesh`](crate::paint::PaintedRenderer::draw_mesh)):
@@ -107,6 +109,25 @@ impl<'a> VertexInfo<'a> {
             }
             VertexGeometry::Known { .. } => 0.0,
         }
+    }
+
+    /// The vertex's clip-space `w` (for a perspective camera, its distance
+    /// along the view axis), which perspective-correct texture mapping
+    /// divides by: from the integer front end's clip coordinates for a
+    /// quantized mesh it draws, else from the `f32` transform.
+    /// [`ClipW::ONE`] for a vertex made with [`Self::new`].
+    pub fn clip_w(&self) -> ClipW {
+        match self.geometry {
+            VertexGeometry::Mesh { mesh, frame } => frame.clip_w(mesh, self.vertex as usize),
+            VertexGeometry::Known { .. } => ClipW::ONE,
+        }
+    }
+
+    /// Texture coordinates and `w` for [`Textured`](crate::paint::Textured)
+    /// painting: [`Self::uv`] (as OBJ gives it, `v` up) and
+    /// [`Self::clip_w`]; `(0, 0)` when the mesh has no coordinates.
+    pub fn tex_coord(&self) -> TexCoord {
+        TexCoord::from_obj(self.uv().unwrap_or([0.0; 2]), self.clip_w())
     }
 
     /// The vertex's texture coordinates ([`Mesh::vertex_uv`]); `None` when
