@@ -1211,6 +1211,14 @@ pub fn painted(data: &[u8]) {
     };
     let (mut flat_rows, mut painted_rows) = (Vec::new(), Vec::new());
     run(&mut flat_rows, &mut painted_rows, z24);
+    textured(
+        data,
+        &polygons,
+        (width, height),
+        &caps,
+        &flat_rows,
+        &uniform,
+    );
     // Which polygon each pixel shows, from the flat frame's colours.
     for (flat_row, painted_row) in flat_rows.iter().zip(&painted_rows) {
         for (&f, &p) in flat_row.iter().zip(painted_row) {
@@ -1230,6 +1238,133 @@ pub fn painted(data: &[u8]) {
                 assert!(
                     u16::from(value) + 1 >= lo && u16::from(value) <= hi + 1,
                     "{poly:?} {colors:?}: channel {i} = {value} outside {lo}..={hi}"
+                );
+            }
+        }
+    }
+}
+
+/// The textured half of [`painted`] (z24 inputs): the same polygons mapped with
+/// texture coordinates drawn from a generator seeded by the input (any
+/// `uv`, `w` over many decades, nearest texels of a texture of distinct
+/// colours, repeat or clamp). Every pixel a polygon wins shows one of the
+/// texture's texels; a polygon whose corners share one coordinate shows
+/// that coordinate's texel at every pixel it wins; nothing panics or
+/// overflows.
+fn textured(
+    data: &[u8],
+    polygons: &[(Vec<ScreenVertex>, Vec<zline::paint::Rgb8p8>)],
+    (width, height): (u16, u16),
+    caps: &Capacities,
+    flat_rows: &[Vec<embedded_graphics_core::pixelcolor::Rgb888>],
+    uniform: &dyn Fn(usize) -> embedded_graphics_core::pixelcolor::Rgb888,
+) {
+    use embedded_graphics_core::pixelcolor::Rgb888;
+    use embedded_graphics_core::pixelcolor::raw::RawU16;
+    use zline::host::HostPaintedRenderer;
+    use zline::paint::{ClipW, TexCoord, Texture, Textured, UV_ONE, Wrap};
+    let mut state = data.iter().fold(0x9E37_79B9_7F4A_7C15u64, |h, &b| {
+        (h ^ u64::from(b)).wrapping_mul(0x100_0000_01B3)
+    }) | 1;
+    let mut next = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        state
+    };
+    const TW: u16 = 8;
+    const TH: u16 = 4;
+    let texels: Vec<u16> = (0..TW * TH)
+        .map(|k| 0x0841u16.wrapping_mul(k + 1) ^ 0x8000)
+        .collect();
+    let color = |texel: u16| {
+        Rgb888::from(embedded_graphics_core::pixelcolor::Rgb565::from(
+            RawU16::new(texel),
+        ))
+    };
+    let wrap = if next() % 2 == 0 {
+        Wrap::Repeat
+    } else {
+        Wrap::Clamp
+    };
+    let texture = Texture::new(&texels, TW, TH).expect("size").with_wrap(wrap);
+    let random_coord = |next: &mut dyn FnMut() -> u64| {
+        let uv = |r: u64| match r % 4 {
+            0 => (r >> 8) as i32,
+            1 => ((r >> 8) as i32) % (4 * UV_ONE),
+            2 => 0,
+            _ => UV_ONE * ((r >> 8) % 9) as i32 - 4 * UV_ONE,
+        };
+        let w = match next() % 3 {
+            0 => ClipW::from_f32(f32::from_bits((next() as u32) & 0x7FFF_FFFF)),
+            1 => ClipW::from_i64((next() >> (next() % 64)) as i64),
+            _ => ClipW::from_f32(0.1 + (next() % 1000) as f32 / 10.0),
+        };
+        TexCoord {
+            uv: [uv(next()), uv(next())],
+            w,
+        }
+    };
+    // Each polygon's coordinates, and the texel of the uniform ones.
+    let mut coords = Vec::new();
+    let mut expected = Vec::new();
+    for (poly, _) in polygons {
+        if next() % 3 == 0 {
+            let c = random_coord(&mut next);
+            let corners: Vec<TexCoord> = poly
+                .iter()
+                .map(|_| TexCoord {
+                    w: random_coord(&mut next).w,
+                    ..c
+                })
+                .collect();
+            let texel = |a: usize, size: u16| {
+                let t = (i64::from(c.uv[a]) * i64::from(size)).div_euclid(i64::from(UV_ONE));
+                match wrap {
+                    Wrap::Repeat => t.rem_euclid(i64::from(size)),
+                    Wrap::Clamp => t.clamp(0, i64::from(size) - 1),
+                }
+            };
+            expected.push(Some(
+                texels[(texel(1, TH) * i64::from(TW) + texel(0, TW)) as usize],
+            ));
+            coords.push(corners);
+        } else {
+            coords.push(poly.iter().map(|_| random_coord(&mut next)).collect());
+            expected.push(None);
+        }
+    }
+    let background = Rgb888::new(1, 2, 3);
+    let mut rows = Vec::new();
+    let mut painted = HostPaintedRenderer::<Textured<'_, Rgb888>, zline::Depth24>::with_capacities(
+        caps,
+        (width, height),
+        Textured::new(texture),
+        background,
+    )
+    .expect("size");
+    for ((poly, _), corners) in polygons.iter().zip(&coords) {
+        painted
+            .push_polygon_vertices(poly, corners)
+            .expect("admitted as the flat one");
+    }
+    painted
+        .render(&mut KeepRows(&mut rows))
+        .expect("textured frame");
+    let palette: Vec<Rgb888> = texels.iter().map(|&t| color(t)).collect();
+    for (flat_row, row) in flat_rows.iter().zip(&rows) {
+        for (&f, &p) in flat_row.iter().zip(row) {
+            let Some(k) = (0..polygons.len()).find(|&k| uniform(k) == f) else {
+                assert_eq!(p, background);
+                continue;
+            };
+            assert!(palette.contains(&p), "polygon {k}: {p:?} is no texel");
+            if let Some(texel) = expected[k] {
+                assert_eq!(
+                    p,
+                    color(texel),
+                    "polygon {k} with one coordinate {:?}",
+                    coords[k]
                 );
             }
         }

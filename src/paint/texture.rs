@@ -117,23 +117,21 @@ impl<'a> Texture<'a> {
     }
 
     /// Texel column (or row) `i` of a texture `size` wide with power-of-two
-    /// `mask` (else 0), `i` counted from the texture's origin moved by
-    /// `base` whole texels.
+    /// `mask` (else 0), wrapped or clamped.
     #[inline(always)]
-    fn index(&self, i: i32, base: i32, size: u16, mask: u16) -> usize {
+    fn index(&self, i: i32, size: u16, mask: u16) -> usize {
         match self.wrap {
             Wrap::Repeat if mask != 0 => (i & i32::from(mask)) as usize,
             Wrap::Repeat => i.rem_euclid(i32::from(size)) as usize,
-            Wrap::Clamp => (i.saturating_add(base)).clamp(0, i32::from(size) - 1) as usize,
+            Wrap::Clamp => i.clamp(0, i32::from(size) - 1) as usize,
         }
     }
 
-    /// The texel at column `i`, row `j` (whole texels from the origin moved
-    /// by `base`, wrapped or clamped).
+    /// The texel at column `i`, row `j`, wrapped or clamped.
     #[inline(always)]
-    fn texel(&self, i: i32, j: i32, base: [i32; 2]) -> u16 {
-        let x = self.index(i, base[0], self.width, self.mask_x);
-        let y = self.index(j, base[1], self.height, self.mask_y);
+    fn texel(&self, i: i32, j: i32) -> u16 {
+        let x = self.index(i, self.width, self.mask_x);
+        let y = self.index(j, self.height, self.mask_y);
         // In range by construction; 0 (black) would show a mistake.
         self.texels
             .get(y * usize::from(self.width) + x)
@@ -142,15 +140,11 @@ impl<'a> Texture<'a> {
     }
 
     /// The colour at `(u, v)` (texel units with [`TEXEL_FRAC_BITS`]
-    /// fractional bits, from the texture's origin moved by `base` whole
-    /// texels; for [`Wrap::Repeat`] `base` must be a multiple of the size)
-    /// as 8.8 channels.
+    /// fractional bits) as 8.8 channels.
     #[inline(always)]
-    pub(crate) fn sample(&self, u: i32, v: i32, base: [i32; 2]) -> [u32; 3] {
+    pub(crate) fn sample(&self, u: i32, v: i32) -> [u32; 3] {
         match self.filter {
-            Filter::Nearest => {
-                channels(self.texel(u >> TEXEL_FRAC_BITS, v >> TEXEL_FRAC_BITS, base))
-            }
+            Filter::Nearest => channels(self.texel(u >> TEXEL_FRAC_BITS, v >> TEXEL_FRAC_BITS)),
             Filter::Bilinear => {
                 // The texel centres around the point: `u - 1/2`'s floor and
                 // the next, weighted by its fraction.
@@ -160,10 +154,10 @@ impl<'a> Texture<'a> {
                 let fraction = (1 << TEXEL_FRAC_BITS) - 1;
                 let (fu, fv) = ((u & fraction) as u32, (v & fraction) as u32);
                 let corners = [
-                    channels(self.texel(i, j, base)),
-                    channels(self.texel(i.wrapping_add(1), j, base)),
-                    channels(self.texel(i, j.wrapping_add(1), base)),
-                    channels(self.texel(i.wrapping_add(1), j.wrapping_add(1), base)),
+                    channels(self.texel(i, j)),
+                    channels(self.texel(i.wrapping_add(1), j)),
+                    channels(self.texel(i, j.wrapping_add(1))),
+                    channels(self.texel(i.wrapping_add(1), j.wrapping_add(1))),
                 ];
                 core::array::from_fn(|k| {
                     let top = corners[0][k] * (256 - fu) + corners[1][k] * fu;
@@ -268,17 +262,17 @@ mod tests {
             (1.5, -0.5, 9),
         ] {
             let (u, v) = at(u, v);
-            assert_eq!(repeat.sample(u, v, [0, 0]), channels(t[texel]), "{u} {v}");
+            assert_eq!(repeat.sample(u, v), channels(t[texel]), "{u} {v}");
         }
         let clamp = repeat.with_wrap(Wrap::Clamp);
-        for (u, v, base, texel) in [
-            (-5.0, -5.0, [0, 0], 0),
-            (100.0, 1.0, [0, 0], 7),
-            (0.5, 0.5, [2, 1], 6),
-            (0.5, 0.5, [-10, 10], 8),
+        for (u, v, texel) in [
+            (-5.0, -5.0, 0),
+            (100.0, 1.0, 7),
+            (2.5, 1.5, 6),
+            (-9.5, 10.5, 8),
         ] {
             let (u, v) = at(u, v);
-            assert_eq!(clamp.sample(u, v, base), channels(t[texel]), "{u} {v}");
+            assert_eq!(clamp.sample(u, v), channels(t[texel]), "{u} {v}");
         }
     }
 
@@ -293,19 +287,15 @@ mod tests {
         let centre = |i: i32, j: i32| (i * 256 + 128, j * 256 + 128);
         for k in 0..12 {
             let (u, v) = centre(k % 4, k / 4);
-            assert_eq!(
-                bilinear.sample(u, v, [0, 0]),
-                channels(t[k as usize]),
-                "{k}"
-            );
+            assert_eq!(bilinear.sample(u, v), channels(t[k as usize]), "{k}");
         }
         let (u, v) = centre(1, 1);
         let mean: [u32; 3] = core::array::from_fn(|c| (channels(t[5])[c] + channels(t[6])[c]) / 2);
-        assert_eq!(bilinear.sample(u + 128, v, [0, 0]), mean);
+        assert_eq!(bilinear.sample(u + 128, v), mean);
         // Between column 3 and column 0 (wrapped).
         let (u, v) = centre(3, 0);
         let wrapped: [u32; 3] =
             core::array::from_fn(|c| (channels(t[3])[c] + channels(t[0])[c]) / 2);
-        assert_eq!(bilinear.sample(u + 128, v, [0, 0]), wrapped);
+        assert_eq!(bilinear.sample(u + 128, v), wrapped);
     }
 }

@@ -3,9 +3,10 @@
 //! and so are attribute planes like depth, then divided back.
 //!
 //! # Set-up (once per polygon)
-//! The corners' coordinates are moved by whole repeats of the texture so
-//! the smallest is in `[0, 1)` and taken to texel units with
-//! [`TEXEL_FRAC_BITS`] fractional bits (`t_i`, at most `2^36`). Each
+//! The corners' coordinates are taken to texel units with
+//! [`TEXEL_FRAC_BITS`] fractional bits and moved by the smallest, so each
+//! is from 0 (`t_i`, at most `2^36`; a polygon whose corners share a
+//! coordinate interpolates 0 exactly). Each
 //! corner's weight is `q_i = floor(2^b · w_min / w_i)` ([`ClipW::ratio`]),
 //! `b = min(23, 46 - bits(max t_i))`, so `q_i · t_i < 2^46`; the planes
 //! interpolate `q`, `(t_u·q) >> s_u` and `(t_v·q) >> s_v`, each shift the
@@ -28,10 +29,10 @@
 use core::marker::PhantomData;
 
 use crate::front::clip_w::ClipW;
-use crate::front::tex_coord::{TexCoord, UV_ONE};
+use crate::front::tex_coord::TexCoord;
 use crate::paint::PaintMode;
 use crate::paint::color::{PaintColor, bayer_threshold};
-use crate::paint::texture::{Filter, TEXEL_FRAC_BITS, Texture};
+use crate::paint::texture::{Filter, TEXEL_FRAC_BITS, Texture, Wrap};
 use crate::raster::attribute::{AttributePlane, attribute_planes, exact_value_at};
 use crate::raster::vertex::ScreenVertex;
 
@@ -50,9 +51,9 @@ pub struct TexturedPlanes {
     planes: [AttributePlane; 3],
     /// `s_u`, `s_v`.
     shifts: [u8; 2],
-    /// The whole texels the coordinates were moved by (for
-    /// [`Wrap::Clamp`](crate::paint::Wrap::Clamp)).
-    base: [i32; 2],
+    /// What the interpolated coordinates are added to (`2^-8` texel): the
+    /// smallest corner's, taken modulo the texture's size when it repeats.
+    offset: [i64; 2],
 }
 
 /// A textured polygon's coordinates at one pixel: `u`, `v` in texel units
@@ -117,26 +118,25 @@ impl<'a, C: PaintColor> Textured<'a, C> {
         }
     }
 
-    /// The colour at texel coordinates `t` (from the polygon's base).
+    /// The colour at texel coordinates `t` (`2^-8` texel, from the
+    /// polygon's offset).
     #[inline(always)]
     fn color(&self, planes: &TexturedPlanes, t: [i64; 2], threshold: Option<u32>) -> C {
-        let reduce = |c: i64, size: u16, base: i32| -> i32 {
+        let sizes = [self.texture.width(), self.texture.height()];
+        let [u, v]: [i32; 2] = core::array::from_fn(|a| {
+            let c = t[a] + planes.offset[a];
             if let Ok(c) = i32::try_from(c) {
                 return c;
             }
-            // Far from the base (a polygon across more than 2^23 texels):
-            // an equal coordinate nearer it.
-            let size = i64::from(size) << TEXEL_FRAC_BITS;
+            // Far from the texture (a polygon across more than 2^23
+            // texels): the coordinate that samples the same texels.
+            let period = i64::from(sizes[a]) << TEXEL_FRAC_BITS;
             match self.texture.wrap() {
-                crate::paint::Wrap::Repeat => c.rem_euclid(size) as i32,
-                crate::paint::Wrap::Clamp => {
-                    c.clamp(-1, size - (i64::from(base) << TEXEL_FRAC_BITS) + 1) as i32
-                }
+                Wrap::Repeat => c.rem_euclid(period) as i32,
+                Wrap::Clamp => c.clamp(-period, 2 * period) as i32,
             }
-        };
-        let u = reduce(t[0], self.texture.width(), planes.base[0]);
-        let v = reduce(t[1], self.texture.height(), planes.base[1]);
-        C::from_channels(self.texture.sample(u, v, planes.base), threshold)
+        });
+        C::from_channels(self.texture.sample(u, v), threshold)
     }
 
     /// The plane values at pixel `(x, y)`, each steep plane's computed
@@ -159,29 +159,35 @@ impl<'a, C: PaintColor> Textured<'a, C> {
 
 /// The corner values of a textured polygon and how they were scaled.
 struct CornerValues {
-    base_uv: [i64; 2],
+    /// The smallest corner coordinates (`2^-8` texel).
+    base: [i64; 2],
     bits: u32,
     shifts: [u32; 2],
     w_min: ClipW,
+}
+
+/// A corner's coordinates in texel units (`2^-8`): below `2^35` in
+/// magnitude (`|uv| < 2^31`, sizes at most `2^12`).
+fn texel_units(texture: &Texture<'_>, c: TexCoord) -> [i64; 2] {
+    let sizes = [texture.width(), texture.height()];
+    core::array::from_fn(|a| (i64::from(c.uv[a]) * i64::from(sizes[a])) >> (16 - TEXEL_FRAC_BITS))
 }
 
 impl CornerValues {
     /// Chosen from the corners (see the module's notes).
     fn new(texture: &Texture<'_>, corners: impl Iterator<Item = TexCoord> + Clone) -> Self {
         let mut w_min = ClipW::ONE;
-        let mut low = [i64::MAX; 2];
+        let mut base = [i64::MAX; 2];
         for (k, c) in corners.clone().enumerate() {
             if k == 0 || c.w.at_most(w_min) {
                 w_min = c.w;
             }
-            for (low, &uv) in low.iter_mut().zip(&c.uv) {
-                *low = (*low).min(i64::from(uv));
+            for (base, t) in base.iter_mut().zip(texel_units(texture, c)) {
+                *base = (*base).min(t);
             }
         }
-        let unit = i64::from(UV_ONE);
-        let base_uv = low.map(|l| l.div_euclid(unit) * unit);
         let mut this = Self {
-            base_uv,
+            base,
             bits: 23,
             shifts: [0; 2],
             w_min,
@@ -204,13 +210,10 @@ impl CornerValues {
         this
     }
 
-    /// A corner's coordinates in texel units from the base (`< 2^36`).
+    /// A corner's coordinates from the smallest (`2^-8` texel, `< 2^36`).
     fn texels(&self, texture: &Texture<'_>, c: TexCoord) -> [u64; 2] {
-        let sizes = [texture.width(), texture.height()];
-        core::array::from_fn(|a| {
-            let moved = (i64::from(c.uv[a]) - self.base_uv[a]).max(0) as u64;
-            (moved * u64::from(sizes[a])) >> (16 - TEXEL_FRAC_BITS)
-        })
+        let t = texel_units(texture, c);
+        core::array::from_fn(|a| (t[a] - self.base[a]).max(0) as u64)
     }
 
     /// A corner's plane values: `q`, `t_u·q >> s_u`, `t_v·q >> s_v`.
@@ -237,7 +240,7 @@ impl<C: PaintColor> PaintMode for Textured<'_, C> {
     const PLANES_FILLER: TexturedPlanes = TexturedPlanes {
         planes: [AttributePlane::ZERO; 3],
         shifts: [0; 2],
-        base: [0; 2],
+        offset: [0; 2],
     };
 
     fn vertex(&self, source: TexCoord) -> TexCoord {
@@ -256,10 +259,9 @@ impl<C: PaintColor> PaintMode for Textured<'_, C> {
         TexturedPlanes {
             planes: attribute_planes(values, width, height).unwrap_or_default(),
             shifts: scale.shifts.map(|s| s as u8),
-            base: core::array::from_fn(|a| {
-                let repeats = scale.base_uv[a] / i64::from(UV_ONE);
-                (repeats * i64::from(sizes[a])).clamp(i64::from(i32::MIN), i64::from(i32::MAX))
-                    as i32
+            offset: core::array::from_fn(|a| match self.texture.wrap() {
+                Wrap::Repeat => scale.base[a].rem_euclid(i64::from(sizes[a]) << TEXEL_FRAC_BITS),
+                Wrap::Clamp => scale.base[a],
             }),
         }
     }
@@ -356,6 +358,7 @@ fn chord_within_tolerance(a: &Point, b: &Point) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::front::tex_coord::UV_ONE;
     use crate::limits::{HALF_PIXEL, SUBPIXEL_STEPS};
     use embedded_graphics_core::pixelcolor::Rgb565;
     use proptest::prelude::*;
@@ -413,7 +416,6 @@ mod tests {
             .min()
             .unwrap();
         let bound = (CHORD_TOLERANCE + 2) as f64 + 3.0 * texel_range as f64 / f64::from(q_min);
-        let base: [f64; 2] = core::array::from_fn(|a| f64::from(planes.base[a]) * 256.0);
         let mut worst = 0.0f64;
         for y in 0..64u16 {
             // The row's samples inside the triangle.
@@ -428,9 +430,7 @@ mod tests {
                 let x = first + k as u16;
                 let want = exact(&corners, size, x, y);
                 for a in 0..2 {
-                    // Repeat: the base is whole repeats, 0 texels mod size.
-                    let base_units = if planes.base[a] == 0 { 0.0 } else { base[a] };
-                    let got = t[a] as f64 + base_units;
+                    let got = (t[a] + planes.offset[a]) as f64;
                     let moved = (want[a] - got).abs();
                     // Compare modulo the base's whole repeats.
                     let period = f64::from(size[a]) * 256.0;
