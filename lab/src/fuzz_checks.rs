@@ -1211,14 +1211,16 @@ pub fn painted(data: &[u8]) {
     };
     let (mut flat_rows, mut painted_rows) = (Vec::new(), Vec::new());
     run(&mut flat_rows, &mut painted_rows, z24);
-    textured(
-        data,
-        &polygons,
-        (width, height),
-        &caps,
-        &flat_rows,
-        &uniform,
-    );
+    if z24 {
+        textured(
+            data,
+            &polygons,
+            (width, height),
+            &caps,
+            &flat_rows,
+            &uniform,
+        );
+    }
     // Which polygon each pixel shows, from the flat frame's colours.
     for (flat_row, painted_row) in flat_rows.iter().zip(&painted_rows) {
         for (&f, &p) in flat_row.iter().zip(painted_row) {

@@ -17,7 +17,7 @@ use zline::Shading;
 use zline::host::HostMesh;
 use zline::host::host_renderer;
 use zline::host::{DEFAULT_CREASE_DEGREES, HostPaintedRenderer};
-use zline::paint::Gouraud;
+use zline::paint::{Gouraud, PaintMode, Texture, Textured};
 use zline::{Camera, Cull, VertexCache, draw_mesh, reference_model};
 use zline::{Depth16, Depth24, DepthFormat, DrawTargetSink, RenderError};
 use zline::{Mat4, Vec3};
@@ -32,6 +32,8 @@ pub const MAX_MESH_VERTICES: usize = 65_536;
 type WindowRenderer<D> = zline::host::HostRenderer<Rgb888, D>;
 /// The scanline core's Gouraud renderer.
 type GouraudRenderer<D> = HostPaintedRenderer<Gouraud<Rgb888>, D>;
+/// The scanline core's texture-mapping renderer.
+type TexturedRenderer<D> = HostPaintedRenderer<Textured<'static, Rgb888>, D>;
 
 /// Which method draws the frame: the core straight to the window, or any
 /// of the comparison methods ([`zline_lab::methods::Method`]).
@@ -121,18 +123,22 @@ impl DepthChoice {
 }
 
 /// The shadings key `s` cycles through, by name (see [`shading`]):
-/// `gouraud` is Lambert per vertex, interpolated (the scanline core's
-/// painted renderer; the other methods draw Lambert per face).
-pub const SHADINGS: [&str; 5] = ["lambert", "flat", "depth", "id", "gouraud"];
+/// `gouraud` is Lambert per vertex, interpolated; `texture` maps the
+/// texture perspective-correctly by the mesh's `vt` (both the scanline
+/// core's painted renderers; the other methods draw Lambert per face).
+pub const SHADINGS: [&str; 6] = ["lambert", "flat", "depth", "id", "gouraud", "texture"];
 
 /// Index of `gouraud` in [`SHADINGS`].
 const GOURAUD: usize = 4;
+/// Index of `texture` in [`SHADINGS`].
+const TEXTURE: usize = 5;
 
 /// The overlay's name of `view`'s shading.
 pub fn shading_name(view: &View) -> &'static str {
     match (view.shading % SHADINGS.len(), view.method) {
         (GOURAUD, Method::Scanline) => "gouraud",
-        (GOURAUD, _) => "lambert (gouraud: scanline only)",
+        (TEXTURE, Method::Scanline) => "texture, perspective-correct",
+        (GOURAUD | TEXTURE, _) => "lambert (gouraud, texture: scanline only)",
         (k, _) => SHADINGS[k],
     }
 }
@@ -240,7 +246,26 @@ pub struct Renderers {
     gouraud16: Option<Box<GouraudRenderer<Depth16>>>,
     gouraud24: Option<Box<GouraudRenderer<Depth24>>>,
     smooth: Option<((usize, usize, usize), HostMesh)>,
+    /// The texture-mapping renderers, made on first use, and the texture.
+    textured16: Option<Box<TexturedRenderer<Depth16>>>,
+    textured24: Option<Box<TexturedRenderer<Depth24>>>,
+    texture: Texture<'static>,
 }
+
+/// The texture when none is given: an 8x8 checker of two creams.
+static CHECKER: [u16; 64] = {
+    let mut t = [0; 64];
+    let mut k = 0;
+    while k < 64 {
+        t[k] = if (k % 8 + k / 8) % 2 == 0 {
+            0xFFDB
+        } else {
+            0x6A69
+        };
+        k += 1;
+    }
+    t
+};
 
 impl Renderers {
     /// Renderers for `width` x `height` frames. Each core takes tens of MB
@@ -263,7 +288,34 @@ impl Renderers {
             gouraud16: None,
             gouraud24: None,
             smooth: None,
+            textured16: None,
+            textured24: None,
+            texture: Texture::new(&CHECKER, 8, 8).map_err(e)?,
         })
+    }
+
+    /// Maps `texture` in the `texture` shading (an 8x8 checker until
+    /// then).
+    pub fn set_texture(&mut self, texture: Texture<'static>) {
+        self.texture = texture;
+        self.textured16 = None;
+        self.textured24 = None;
+    }
+
+    /// Draws the painted shadings from `mesh` (read with its normals and
+    /// texture coordinates) instead of vertex normals computed from the
+    /// flat mesh `flat`.
+    pub fn set_smooth(&mut self, flat: &HostMesh, mesh: HostMesh) {
+        self.smooth = Some((Self::key(flat), mesh));
+    }
+
+    /// What identifies a flat mesh for its smooth one.
+    fn key(mesh: &HostMesh) -> (usize, usize, usize) {
+        (
+            mesh as *const HostMesh as usize,
+            mesh.positions.len(),
+            mesh.corners.len(),
+        )
     }
 
     /// Draws `mesh` as `view` says into every pixel of `display`.
@@ -273,8 +325,9 @@ impl Renderers {
         view: &View,
         display: &mut SimulatorDisplay<Rgb888>,
     ) -> Result<FrameReport, String> {
-        if view.method == Method::Scanline && view.shading % SHADINGS.len() == GOURAUD {
-            return self.gouraud(mesh, view, display);
+        let painted = view.shading % SHADINGS.len();
+        if view.method == Method::Scanline && (painted == GOURAUD || painted == TEXTURE) {
+            return self.painted(mesh, view, display);
         }
         match (view.method, view.depth) {
             (Method::Scanline, DepthChoice::Z16) => {
@@ -307,19 +360,16 @@ impl Renderers {
         }
     }
 
-    /// A Gouraud frame by the scanline core's painted renderer, of the
-    /// mesh with vertex normals (60° crease).
-    fn gouraud(
+    /// A Gouraud or textured frame by the scanline core's painted
+    /// renderers, of the mesh with vertex normals (60° crease) and its
+    /// texture coordinates.
+    fn painted(
         &mut self,
         mesh: &HostMesh,
         view: &View,
         display: &mut SimulatorDisplay<Rgb888>,
     ) -> Result<FrameReport, String> {
-        let key = (
-            mesh as *const HostMesh as usize,
-            mesh.positions.len(),
-            mesh.corners.len(),
-        );
+        let key = Self::key(mesh);
         if self.smooth.as_ref().is_none_or(|(k, _)| *k != key) {
             let smooth = mesh
                 .clone()
@@ -335,14 +385,26 @@ impl Renderers {
             ..zline_lab::methods::HOST_CAPACITIES
         };
         let size = (self.width, self.height);
-        match view.depth {
-            DepthChoice::Z16 => {
-                let r = gouraud_renderer(&mut self.gouraud16, &caps, size)?;
-                gouraud_frame(r, smooth, view, display)
+        let shade = Shading::lambert();
+        let lit = |v: &zline::VertexInfo<'_>| shade.vertex_color(v);
+        let textured = view.shading % SHADINGS.len() == TEXTURE;
+        let texture = Textured::new(self.texture);
+        match (view.depth, textured) {
+            (DepthChoice::Z16, false) => {
+                let r = painted_renderer(&mut self.gouraud16, &caps, size, Gouraud::new())?;
+                painted_frame(r, smooth, view, display, lit)
             }
-            DepthChoice::Z24 => {
-                let r = gouraud_renderer(&mut self.gouraud24, &caps, size)?;
-                gouraud_frame(r, smooth, view, display)
+            (DepthChoice::Z24, false) => {
+                let r = painted_renderer(&mut self.gouraud24, &caps, size, Gouraud::new())?;
+                painted_frame(r, smooth, view, display, lit)
+            }
+            (DepthChoice::Z16, true) => {
+                let r = painted_renderer(&mut self.textured16, &caps, size, texture)?;
+                painted_frame(r, smooth, view, display, |v| v.tex_coord())
+            }
+            (DepthChoice::Z24, true) => {
+                let r = painted_renderer(&mut self.textured24, &caps, size, texture)?;
+                painted_frame(r, smooth, view, display, |v| v.tex_coord())
             }
         }
     }
@@ -444,36 +506,37 @@ where
     })
 }
 
-/// The Gouraud renderer in `slot`, made on first use.
-fn gouraud_renderer<'a, D: DepthFormat>(
-    slot: &'a mut Option<Box<GouraudRenderer<D>>>,
+/// The painted renderer in `slot`, made with `mode` on first use.
+fn painted_renderer<'a, M: PaintMode<Color = Rgb888>, D: DepthFormat>(
+    slot: &'a mut Option<Box<HostPaintedRenderer<M, D>>>,
     caps: &zline::Capacities,
     size: (u16, u16),
-) -> Result<&'a mut GouraudRenderer<D>, String> {
+    mode: M,
+) -> Result<&'a mut HostPaintedRenderer<M, D>, String> {
     if slot.is_none() {
-        let renderer = GouraudRenderer::with_capacities(caps, size, Gouraud::new(), Rgb888::BLACK)
+        let renderer = HostPaintedRenderer::with_capacities(caps, size, mode, Rgb888::BLACK)
             .map_err(|e| format!("renderer: {e}"))?;
         *slot = Some(Box::new(renderer));
     }
     slot.as_deref_mut()
-        .ok_or_else(|| "no Gouraud renderer".to_string())
+        .ok_or_else(|| "no painted renderer".to_string())
 }
 
-/// One Gouraud frame by the scanline core's painted renderer: clear,
-/// draw with vertex Lambert, render through a [`DrawTargetSink`].
-fn gouraud_frame<D: DepthFormat>(
-    renderer: &mut GouraudRenderer<D>,
+/// One frame by a painted renderer: clear, draw with each vertex's value
+/// from `value`, render through a [`DrawTargetSink`].
+fn painted_frame<M: PaintMode<Color = Rgb888>, D: DepthFormat>(
+    renderer: &mut HostPaintedRenderer<M, D>,
     mesh: &HostMesh,
     view: &View,
     display: &mut SimulatorDisplay<Rgb888>,
+    value: impl Fn(&zline::VertexInfo<'_>) -> M::Source,
 ) -> Result<FrameReport, String> {
     let camera = Camera::reference(renderer.width(), renderer.height());
     let model = view.model(mesh)?;
-    let shade = Shading::lambert();
     let start = Instant::now();
     renderer.clear();
     renderer
-        .draw_mesh(mesh, &model, &camera, view.cull, |v| shade.vertex_color(v))
+        .draw_mesh(mesh, &model, &camera, view.cull, value)
         .map_err(|e| format!("draw_mesh: {e}"))?;
     let stats = renderer
         .render(&mut DrawTargetSink::new(display))
@@ -552,10 +615,11 @@ mod tests {
                                 let mut display = SimulatorDisplay::<Rgb888>::new(size);
                                 let report = r.draw(&mesh, &view, &mut display).unwrap();
                                 assert!(report.polygons > 0);
-                                let gouraud = method == Method::Scanline && shading == GOURAUD;
+                                let painted = method == Method::Scanline
+                                    && (shading == GOURAUD || shading == TEXTURE);
                                 assert_eq!(
                                     report.ram_bytes.is_some(),
-                                    method != Method::Reference && !gouraud
+                                    method != Method::Reference && !painted
                                 );
                                 frames.push((view, display));
                             }

@@ -21,7 +21,7 @@
 //!
 //! Keys: arrows rotate (left/right yaw, up/down pitch, 5° steps), `+`/`-`
 //! zoom (×1.1 per step), space toggles auto-spin (on at start), `s` cycles
-//! shading (lambert, flat, depth, id, gouraud: the scanline core only), `c` toggles back-face culling, `d`
+//! shading (lambert, flat, depth, id, gouraud, texture: the last two the scanline core only; `--texture FILE.png` gives the texture, else a checker), `c` toggles back-face culling, `d`
 //! cycles the depth format (z16, z24), `m` cycles the method (scanline,
 //! zbuffer, bands:8, interval, painter, the float64 reference), `q` or Esc
 //! quits.
@@ -94,7 +94,17 @@ fn run(args: &[String]) -> Result<(), Failure> {
     let mesh = options::load_model(&o.model).map_err(Failure::Other)?;
     let (w, h) = (o.width, o.height);
     // The renderers' storage is in `Vec`s, sized once for any mesh.
-    let renderers = Renderers::new(w, h).map_err(Failure::Other)?;
+    let mut renderers = Renderers::new(w, h).map_err(Failure::Other)?;
+    // The painted shadings draw the mesh read with its normals and
+    // texture coordinates.
+    let smooth = zline_lab::cli::load_model_smooth(&o.model.to_string_lossy());
+    renderers.set_smooth(&mesh, smooth.map_err(Failure::Other)?);
+    if let Some(path) = &o.texture {
+        // The texture lives as long as the window.
+        let png = zline_lab::texture_png::PngTexture::read(path, 1).map_err(Failure::Other)?;
+        let png: &'static _ = Box::leak(Box::new(png));
+        renderers.set_texture(png.texture().map_err(Failure::Other)?);
+    }
     show(&o, &mesh, renderers).map_err(Failure::Other)
 }
 

@@ -6,7 +6,7 @@ use zline::host::HostMesh;
 use zline_lab::cli::parse_size;
 
 /// The usage line, printed with `--help` and after a bad argument.
-pub const USAGE: &str = "usage: simulator [MODEL.obj | shape:NAME] [--size WxH] [--scale N] [--yaw DEG] [--pitch DEG] [--no-overlay]";
+pub const USAGE: &str = "usage: simulator [MODEL.obj | shape:NAME] [--size WxH] [--scale N] [--yaw DEG] [--pitch DEG] [--texture FILE.png] [--no-overlay]";
 
 /// The keys, printed with `--help`.
 pub const KEYS: &str = "keys: arrows rotate (5 degrees), +/- zoom, space auto-spin, \
@@ -30,6 +30,8 @@ pub struct Options {
     pub yaw: f32,
     /// Initial pitch in degrees.
     pub pitch: f32,
+    /// The texture of the `texture` shading (a checker when `None`).
+    pub texture: Option<PathBuf>,
     /// Whether to draw the text overlay.
     pub overlay: bool,
     /// `--help` was given.
@@ -45,6 +47,7 @@ impl Default for Options {
             scale: 2,
             yaw: 30.0,
             pitch: 20.0,
+            texture: None,
             overlay: true,
             help: false,
         }
@@ -69,6 +72,7 @@ pub fn parse_args(args: &[String]) -> Result<Options, String> {
             }
             "--yaw" => o.yaw = zline_lab::cli::parse_angle(arg, value()?)?,
             "--pitch" => o.pitch = zline_lab::cli::parse_angle(arg, value()?)?,
+            "--texture" => o.texture = Some(PathBuf::from(value()?)),
             "--no-overlay" => o.overlay = false,
             "-h" | "--help" => o.help = true,
             s if s.starts_with("--") => return Err(format!("unknown option {s}")),
