@@ -56,7 +56,7 @@ use zline_lab::cli::parse_size;
 use zline_lab::cli::{help_requested, run_tool};
 use zline_lab::cli::{load_model, load_model_smooth};
 use zline_lab::methods::{BACKGROUND, Method, MethodRenderer, ReferenceView};
-use zline_lab::texture_png::PngTexture;
+use zline_lab::textures::Rgb565Texture;
 
 /// Parsed command line.
 #[derive(Debug)]
@@ -306,7 +306,7 @@ where
                     .texture
                     .as_ref()
                     .ok_or("--shade texture needs --texture")?;
-                let png = PngTexture::read(path, 1)?;
+                let png = Rgb565Texture::read(path, 1)?;
                 let texture = png.texture()?.with_filter(o.filter).with_wrap(o.wrap);
                 painted_frames::<_, D>(
                     Textured::<Rgb888>::new(texture),

@@ -83,6 +83,10 @@ pub enum Error {
     /// above [`TEXTURE_SIZE_MAX`](crate::paint::TEXTURE_SIZE_MAX), or its
     /// texels are not `width · height`.
     BadTextureSize,
+    /// A texture coordinate does not fit a quantized mesh's range
+    /// (`-8..8` texture sizes: [`UV_SCALE`](crate::limits::UV_SCALE)), or is
+    /// not finite.
+    TexCoordRange,
 }
 
 impl fmt::Display for Error {
@@ -130,6 +134,9 @@ impl fmt::Display for Error {
             ),
             Error::ValueCountMismatch => {
                 f.write_str("a polygon's corner values are not one per corner")
+            }
+            Error::TexCoordRange => {
+                f.write_str("a texture coordinate is outside -8..8 or not finite")
             }
             Error::BadTextureSize => write!(
                 f,

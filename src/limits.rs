@@ -71,3 +71,6 @@ pub const CLIP_BAND_PX: f32 = (GUARD_BAND_PX / 2) as f32;
 pub const POSITION_SCALE: i32 = 32_767;
 /// A quantized normal component `n` is `n / NORMAL_SCALE`.
 pub const NORMAL_SCALE: i32 = 32_767;
+/// A quantized texture coordinate `q` is `q / UV_SCALE` (so from -8 to
+/// just under 8 texture sizes, in steps of `1/4096`).
+pub const UV_SCALE: i32 = 4096;

@@ -1,8 +1,8 @@
 //! Prepares the emulated firmware on the host:
 //! 1. the memory map (`memory.x`, QEMU mps2-an385) and cortex-m-rt's linker
 //!    script;
-//! 2. the scenes' meshes as Rust statics, quantized for the integer front
-//!    end, so they live in flash;
+//! 2. the scenes' meshes (and the textured scenes' texture) as Rust
+//!    statics, quantized for the integer front end, so they live in flash;
 //! 3. each scene's expected CRC, from rendering it on the host with the
 //!    very same code (`src/frame.rs`); the firmware fails if its own frame
 //!    differs;
@@ -10,7 +10,8 @@
 //!    as measured on the host.
 //!
 //! `ZLINE_QEMU_SCENE=K` keeps only flat scene K, `ZLINE_QEMU_SCENE=gouraud`
-//! only the Gouraud scenes (for profiling one frame);
+//! only the Gouraud scenes, `ZLINE_QEMU_SCENE=textured` only the textured
+//! ones (for profiling one frame);
 //! `ZLINE_QEMU_BAD_CRC=1` corrupts one expected CRC (a self-test of the
 //! failure path).
 
@@ -27,14 +28,22 @@ use zline::VertexCache;
 use zline::host::host_renderer;
 use zline::host::{DEFAULT_CREASE_DEGREES, HostPaintedRenderer};
 use zline::host::{HostMesh, QuantizedHostMesh};
-use zline::paint::Gouraud;
+use zline::paint::{Gouraud, PaintMode, Textured};
 use zline::{Capacities, Crc32Sink, Depth16, Depth24, DepthFormat, FrameStats};
 use zline_lab::rust_source::quantized_mesh_source;
 use zline_lab::shapes;
+use zline_lab::textures::Rgb565Texture;
 
 /// (shape, yaw, pitch) drawn with Gouraud shading (z16), the shape read
 /// smooth (vertex normals within a 60° crease).
 const GOURAUD_SCENES: [(&str, f32, f32); 1] = [("torus-knot", 30.0, 20.0)];
+
+/// (shape, yaw, pitch) texture-mapped (z16, perspective-correct, nearest
+/// texels of `TILES`, repeating).
+const TEXTURED_SCENES: [(&str, f32, f32); 1] = [("textured-torus-knot", 30.0, 20.0)];
+
+/// `TILES` is this many texels a side.
+const TEXTURE_SIZE: u16 = 64;
 
 /// (shape, yaw, pitch): each is rendered with both depth formats.
 const SCENES: [(&str, f32, f32); 4] = [
@@ -105,7 +114,8 @@ fn generate() -> String {
     // ZLINE_QEMU_SCENE=K keeps only scene K (for profiling one frame).
     // ZLINE_QEMU_SCENE=gouraud keeps only the Gouraud scenes.
     let gouraud_only = std::env::var("ZLINE_QEMU_SCENE").is_ok_and(|v| v == "gouraud");
-    let only: Option<usize> = match gouraud_only {
+    let textured_only = std::env::var("ZLINE_QEMU_SCENE").is_ok_and(|v| v == "textured");
+    let only: Option<usize> = match gouraud_only || textured_only {
         true => Some(usize::MAX),
         false => std::env::var("ZLINE_QEMU_SCENE")
             .ok()
@@ -166,6 +176,7 @@ fn generate() -> String {
         scene_list.len() * 2
     );
     gouraud_scenes(&mut out, only.is_none() || gouraud_only);
+    textured_scenes(&mut out, only.is_none() || textured_only);
     let _ = writeln!(
         out,
         "// Capacities: the exact largest needs over all scenes, measured on the host.\n\
@@ -186,6 +197,56 @@ fn generate() -> String {
 /// `GOURAUD_CAPS`, the painted renderer's capacities measured on the host.
 fn gouraud_scenes(out: &mut String, all: bool) {
     let list: &[(&str, f32, f32)] = if all { &GOURAUD_SCENES } else { &[] };
+    painted_scenes(
+        out,
+        ("GOURAUD", "SMOOTH", "smooth"),
+        list,
+        Gouraud::new(),
+        |r, mesh, sphere, view, crc| frame::render_frame_gouraud(r, mesh, sphere, view, crc),
+    );
+}
+
+/// The textured scenes (all of them, or none when one flat scene is
+/// kept): the texture (`TILES`, written by zline-lab's
+/// `Rgb565Texture::tiles`), the meshes with their texture coordinates,
+/// `TEXTURED_SCENES` with the host's CRCs and `TEXTURED_CAPS`.
+fn textured_scenes(out: &mut String, all: bool) {
+    let list: &[(&str, f32, f32)] = if all { &TEXTURED_SCENES } else { &[] };
+    let tiles = Rgb565Texture::tiles(TEXTURE_SIZE, TEXTURE_SIZE);
+    out.push_str(&tiles.rust_source("TILES", "zline-lab's Rgb565Texture::tiles"));
+    out.push('\n');
+    let texture = tiles.texture().expect("texture");
+    painted_scenes(
+        out,
+        ("TEXTURED", "UV", "with texture coordinates"),
+        list,
+        Textured::new(texture),
+        |r, mesh, sphere, view, crc| frame::render_frame_textured(r, mesh, sphere, view, crc),
+    );
+}
+
+/// The scenes `list` of one painted mode (`mode`, drawn by `render`):
+/// each shape read smooth (normals within a 60° crease, texture
+/// coordinates kept) as the static `SHAPE_SUFFIX`, the scenes as
+/// `KIND_SCENES` with the host's CRCs, and `KIND_CAPS`, the painted
+/// renderer's capacities: the scenes' largest needs, measured on the
+/// host.
+fn painted_scenes<M: PaintMode<Color = Rgb565>>(
+    out: &mut String,
+    (kind, suffix, what): (&str, &str, &str),
+    list: &[(&str, f32, f32)],
+    mode: M,
+    render: impl Fn(
+        &mut HostPaintedRenderer<M, Depth16>,
+        &QuantizedMesh<'_>,
+        (zline::Vec3, f32),
+        (f32, f32),
+        &mut Crc32Sink,
+    ) -> Result<
+        (zline::DrawStats, FrameStats),
+        zline::RenderError<core::convert::Infallible>,
+    >,
+) {
     let mut needs = Needs::default();
     let mut scenes = String::new();
     let mut meshes: Vec<&str> = Vec::new();
@@ -194,15 +255,15 @@ fn gouraud_scenes(out: &mut String, all: bool) {
         mesh_vertices: 65_536,
         ..HOST_CAPACITIES
     };
-    let mut painted = HostPaintedRenderer::<Gouraud<Rgb565>, Depth16>::with_capacities(
+    let mut painted = HostPaintedRenderer::<M, Depth16>::with_capacities(
         &caps,
         (frame::SIZE, frame::SIZE),
-        Gouraud::new(),
+        mode,
         Rgb565::BLACK,
     )
     .expect("painted renderer");
     for &(shape, yaw, pitch) in list {
-        let name = format!("{}_SMOOTH", const_name(shape));
+        let name = format!("{}_{suffix}", const_name(shape));
         let host = shapes::by_name(shape)
             .expect("known shape")
             .with_vertex_normals(DEFAULT_CREASE_DEGREES)
@@ -211,7 +272,7 @@ fn gouraud_scenes(out: &mut String, all: bool) {
             let source = quantized_mesh_source(
                 &host,
                 &name,
-                &format!("zline_lab::shapes `{shape}`, smooth"),
+                &format!("zline_lab::shapes `{shape}`, {what}"),
             )
             .expect("mesh source");
             out.push_str(&source);
@@ -222,14 +283,9 @@ fn gouraud_scenes(out: &mut String, all: bool) {
         let quantized = QuantizedHostMesh::new(&host).expect("quantizable mesh");
         let mesh = quantized.mesh().expect("valid mesh");
         let mut crc = Crc32Sink::new();
-        let (_, stats) = frame::render_frame_gouraud(
-            &mut painted,
-            &mesh,
-            zline::bounding_sphere(&mesh).expect("mesh size"),
-            (yaw, pitch),
-            &mut crc,
-        )
-        .expect("host render");
+        let sphere = zline::bounding_sphere(&mesh).expect("mesh size");
+        let (_, stats) =
+            render(&mut painted, &mesh, sphere, (yaw, pitch), &mut crc).expect("host render");
         needs.add(&stats);
         let _ = writeln!(
             scenes,
@@ -239,11 +295,11 @@ fn gouraud_scenes(out: &mut String, all: bool) {
     }
     let _ = writeln!(
         out,
-        "/// The Gouraud scenes (z16), with their CRCs as rendered on the host.\n\
-         static GOURAUD_SCENES: [Scene; {}] = [\n{scenes}];\n\n\
-         /// The painted renderer's capacities: the largest needs of the Gouraud\n\
+        "/// The {kind} scenes (z16), with their CRCs as rendered on the host.\n\
+         static {kind}_SCENES: [Scene; {}] = [\n{scenes}];\n\n\
+         /// The painted renderer's capacities: the largest needs of the\n\
          /// scenes, measured on the host.\n\
-         const GOURAUD_CAPS: zline::Capacities = zline::Capacities {{\n    \
+         const {kind}_CAPS: zline::Capacities = zline::Capacities {{\n    \
          width: {},\n    vertices: {},\n    polygons: {},\n    corners: {},\n    \
          active_polygons: {},\n    pooled_edges: {},\n    mesh_vertices: {},\n}};",
         list.len(),

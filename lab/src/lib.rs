@@ -10,7 +10,7 @@
 //! | [`shapes`] | procedural meshes (torus knot, icosphere, boxes, terrain) |
 //! | [`rust_source`] | a mesh as Rust statics for flash |
 //! | [`needs`] | the capacities a firmware needs for a mesh over the views it shows |
-//! | [`texture_png`] | textures read from PNG files as Rgb565 texels, scaled for flash, written as Rust statics |
+//! | [`textures`] | Rgb565 textures: read from PNG files (scaled for flash) or made procedurally, written as Rust statics |
 //! | [`cli`] | the command-line helpers the tools share |
 //! | [`machine`] | the machine a measurement ran on |
 
@@ -21,7 +21,7 @@ pub mod methods;
 pub mod needs;
 pub mod rust_source;
 pub mod shapes;
-pub mod texture_png;
+pub mod textures;
 
 /// The book's code (`docs/`), compiled as doctests: every `rust` block of
 /// these pages builds and runs with `cargo test -p zline-lab --doc`.

@@ -164,11 +164,32 @@ pub fn quantized_mesh_source(mesh: &HostMesh, name: &str, origin: &str) -> Resul
         "match mesh.with_vertex_normals(&NAME_VERTEX_NORMALS) {\n                \
          Ok(mesh) => mesh,\n                Err(_) => panic!(\"NAME: invalid vertex normals\"),\n            }"
     };
-    let last = if vertex_normals.is_empty() {
-        "mesh".to_string()
+    // And one with texture coordinates (texture mapping), those.
+    let vertex_uvs = if q.vertex_uvs.is_empty() {
+        ""
     } else {
-        vertex_normals.replace("NAME", name)
+        let _ = writeln!(
+            out,
+            "// Each vertex's texture coordinates, `q / zline::limits::UV_SCALE`.\n\
+             static {name}_VERTEX_UVS: [[i16; 2]; {}] = [\n{}];\n",
+            q.vertex_uvs.len(),
+            rows(&q.vertex_uvs, 6, |uv| format!("[{}, {}]", uv[0], uv[1]))
+        );
+        "match mesh.with_vertex_uvs(&NAME_VERTEX_UVS) {\n                \
+         Ok(mesh) => mesh,\n                Err(_) => panic!(\"NAME: invalid texture coordinates\"),\n            }"
     };
+    let mut last = "mesh".to_string();
+    for step in [vertex_normals, vertex_uvs] {
+        let step = step.replace("NAME", name);
+        last = match (step.is_empty(), last == "mesh") {
+            (true, _) => last,
+            (false, true) => step,
+            // Each step takes the mesh the one before made.
+            (false, false) => {
+                format!("{{\n            let mesh = {last};\n            {step}\n        }}")
+            }
+        };
+    }
     let _ = writeln!(
         out,
         "/// Mesh from {origin}, quantized, checked at compile time.\n\

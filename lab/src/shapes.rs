@@ -31,27 +31,10 @@ impl Build for HostMesh {
 /// A (p, q) torus knot: a tube of `sides` corners swept along the knot in
 /// `segments` steps; `2 · segments · sides` triangles.
 pub fn torus_knot(p: u32, q: u32, segments: usize, sides: usize, tube: f32) -> HostMesh {
-    let curve = |t: f32| {
-        let r = 2.0 + libm::cosf(q as f32 * t);
-        [
-            r * libm::cosf(p as f32 * t),
-            r * libm::sinf(p as f32 * t),
-            libm::sinf(q as f32 * t),
-        ]
-    };
     let mut mesh = HostMesh::default();
     for i in 0..segments {
-        let t = TAU * i as f32 / segments as f32;
-        let (c, ahead) = (curve(t), curve(t + 1e-3));
-        let tangent = normalize(sub(ahead, c));
-        // A frame around the tangent: the normal points away from the
-        // knot's axis, the binormal completes it.
-        let binormal = normalize(cross(tangent, [c[0], c[1], c[2] + 1.0]));
-        let normal = cross(binormal, tangent);
         for j in 0..sides {
-            let a = TAU * j as f32 / sides as f32;
-            let (s, k) = (libm::sinf(a) * tube, libm::cosf(a) * tube);
-            mesh.vertex([0, 1, 2].map(|d| c[d] + normal[d] * k + binormal[d] * s));
+            mesh.vertex(torus_knot_point(p, q, (i, segments), (j, sides), tube));
         }
     }
     for i in 0..segments {
@@ -63,6 +46,69 @@ pub fn torus_knot(p: u32, q: u32, segments: usize, sides: usize, tube: f32) -> H
         }
     }
     mesh
+}
+
+/// [`torus_knot`] with texture coordinates: `u` from 0 to `repeats` along
+/// the knot, `v` from 0 to 1 around the tube, the seams given their own
+/// vertices (`(segments + 1) · (sides + 1)` of them) so no face spans
+/// them; the same faces.
+pub fn textured_torus_knot(
+    p: u32,
+    q: u32,
+    segments: usize,
+    sides: usize,
+    tube: f32,
+    repeats: f32,
+) -> HostMesh {
+    let mut mesh = HostMesh::default();
+    for i in 0..=segments {
+        for j in 0..=sides {
+            mesh.vertex(torus_knot_point(p, q, (i, segments), (j, sides), tube));
+            mesh.uvs.push([
+                repeats * i as f32 / segments as f32,
+                j as f32 / sides as f32,
+            ]);
+        }
+    }
+    for i in 0..segments {
+        for j in 0..sides {
+            let at = |i: usize, j: usize| (i * (sides + 1) + j) as u16;
+            let (a, b, c, d) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+            mesh.face(&[a, c, b]);
+            mesh.face(&[a, d, c]);
+        }
+    }
+    mesh
+}
+
+/// The point of a (p, q) torus knot's tube at step `i` of `segments`
+/// along the knot and `j` of `sides` around the tube.
+fn torus_knot_point(
+    p: u32,
+    q: u32,
+    (i, segments): (usize, usize),
+    (j, sides): (usize, usize),
+    tube: f32,
+) -> [f32; 3] {
+    let curve = |t: f32| {
+        let r = 2.0 + libm::cosf(q as f32 * t);
+        [
+            r * libm::cosf(p as f32 * t),
+            r * libm::sinf(p as f32 * t),
+            libm::sinf(q as f32 * t),
+        ]
+    };
+    // Whole turns give the first ring's point exactly.
+    let t = TAU * (i % segments) as f32 / segments as f32;
+    let (c, ahead) = (curve(t), curve(t + 1e-3));
+    let tangent = normalize(sub(ahead, c));
+    // A frame around the tangent: the normal points away from the
+    // knot's axis, the binormal completes it.
+    let binormal = normalize(cross(tangent, [c[0], c[1], c[2] + 1.0]));
+    let normal = cross(binormal, tangent);
+    let a = TAU * (j % sides) as f32 / sides as f32;
+    let (s, k) = (libm::sinf(a) * tube, libm::cosf(a) * tube);
+    [0, 1, 2].map(|d| c[d] + normal[d] * k + binormal[d] * s)
 }
 
 /// An icosphere of radius 1: the icosahedron with each triangle split in
@@ -302,15 +348,24 @@ fn normalize(a: [f32; 3]) -> [f32; 3] {
 }
 
 /// The named built-in meshes, as the tools accept them (`shape:NAME`):
-/// `torus-knot` (1,024 triangles), `icosphere` (5,120), `boxes` (217
-/// quads), `terrain` (3,200 triangles); besides these, `sphere-N` is a UV
-/// sphere of exactly `N` triangles ([`sphere_with_triangles`]).
-pub const NAMES: [&str; 4] = ["torus-knot", "icosphere", "boxes", "terrain"];
+/// `torus-knot` (1,024 triangles), `textured-torus-knot` (the same with
+/// texture coordinates: 6 repeats along it, 1 around), `icosphere`
+/// (5,120), `boxes` (217 quads), `terrain` (3,200 triangles); besides
+/// these, `sphere-N` is a UV sphere of exactly `N` triangles
+/// ([`sphere_with_triangles`]).
+pub const NAMES: [&str; 5] = [
+    "torus-knot",
+    "textured-torus-knot",
+    "icosphere",
+    "boxes",
+    "terrain",
+];
 
 /// A built-in mesh by name (see [`NAMES`]).
 pub fn by_name(name: &str) -> Option<HostMesh> {
     match name {
         "torus-knot" => Some(torus_knot(2, 3, 64, 8, 0.45)),
+        "textured-torus-knot" => Some(textured_torus_knot(2, 3, 64, 8, 0.45, 6.0)),
         "icosphere" => Some(icosphere(4)),
         "boxes" => Some(box_field(6)),
         "terrain" => Some(terrain(40)),

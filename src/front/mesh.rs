@@ -544,6 +544,12 @@ pub struct QuantizedView<'a> {
     /// ([`QuantizedMesh::with_vertex_normals`](crate::front::quantized::QuantizedMesh::with_vertex_normals)),
     /// or empty.
     pub vertex_normals: &'a [[i16; 3]],
+    /// Each vertex's texture coordinates, `q / UV_SCALE`
+    /// ([`UV_SCALE`](crate::limits::UV_SCALE); OBJ's `vt`, `v` up), for
+    /// texture mapping
+    /// ([`QuantizedMesh::with_vertex_uvs`](crate::front::quantized::QuantizedMesh::with_vertex_uvs)),
+    /// or empty.
+    pub vertex_uvs: &'a [[i16; 2]],
 }
 
 impl QuantizedView<'_> {

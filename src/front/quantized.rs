@@ -22,6 +22,7 @@ use crate::limits::MAX_FACE_CORNERS;
 use crate::limits::NORMAL_SCALE;
 #[cfg(any(test, feature = "std"))]
 use crate::limits::POSITION_SCALE;
+use crate::limits::UV_SCALE;
 
 /// Largest squared length a stored normal may have: `(32767 · (1 +
 /// 2^-12))^2`, room for rounding each component of a unit vector. With it,
@@ -118,6 +119,7 @@ impl<'a> QuantizedMesh<'a> {
                 radius,
                 exact_normals: &[],
                 vertex_normals: &[],
+                vertex_uvs: &[],
             },
             corners,
             face_starts,
@@ -210,6 +212,20 @@ impl<'a> QuantizedMesh<'a> {
         Ok(Self { view, ..self })
     }
 
+    /// The same mesh with texture coordinates per vertex, `q /
+    /// UV_SCALE` ([`UV_SCALE`](crate::limits::UV_SCALE), `v` up as OBJ's
+    /// `vt`), for texture mapping: the integer front end passes them on
+    /// with no floating point
+    /// ([`VertexInfo::tex_coord`](crate::VertexInfo::tex_coord)).
+    pub const fn with_vertex_uvs(self, uvs: &'a [[i16; 2]]) -> Result<Self, MeshError> {
+        if uvs.len() != self.view.positions.len() {
+            return Err(MeshError::BadVertexAttributes);
+        }
+        let mut view = self.view;
+        view.vertex_uvs = uvs;
+        Ok(Self { view, ..self })
+    }
+
     /// The integer data.
     pub const fn view(&self) -> QuantizedView<'a> {
         self.view
@@ -261,6 +277,11 @@ impl Mesh for QuantizedMesh<'_> {
 
     fn shared_planes(&self) -> &[SharedPlane] {
         self.shared
+    }
+
+    fn vertex_uv(&self, index: usize) -> Option<[f32; 2]> {
+        let uv = self.view.vertex_uvs.get(index)?;
+        Some(uv.map(|c| f32::from(c) / UV_SCALE as f32))
     }
 }
 

@@ -4,6 +4,7 @@
 
 use crate::front::clip::ClipValue;
 use crate::front::clip_w::ClipW;
+use crate::limits::UV_SCALE;
 
 /// Texture coordinates per texture size: `1.0` in [`TexCoord`]'s units.
 pub const UV_ONE: i32 = 1 << 16;
@@ -33,6 +34,18 @@ impl TexCoord {
         };
         Self {
             uv: [unit(uv[0]), UV_ONE - unit(uv[1])],
+            w,
+        }
+    }
+}
+
+impl TexCoord {
+    /// Coordinates stored in a quantized mesh (`q / UV_SCALE`, `v` up),
+    /// exactly: `UV_ONE / UV_SCALE` is 16.
+    pub fn from_quantized(q: [i16; 2], w: ClipW) -> Self {
+        const STEP: i32 = UV_ONE / UV_SCALE;
+        Self {
+            uv: [i32::from(q[0]) * STEP, UV_ONE - i32::from(q[1]) * STEP],
             w,
         }
     }

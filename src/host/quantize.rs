@@ -8,6 +8,7 @@ use crate::front::mesh::{Mesh, MeshError, SharedPlane, planar_face_bits};
 use crate::front::quantized::{QuantizedMesh, quantize_normal, quantize_position, quantize_unit};
 use crate::front::scene::bounding_sphere;
 use crate::host::HostMesh;
+use crate::limits::UV_SCALE;
 use std::vec::Vec;
 
 /// A mesh quantized for the integer front end, in `Vec`s.
@@ -35,11 +36,17 @@ pub struct QuantizedHostMesh {
     /// One quantized unit normal per vertex (the original mesh's vertex
     /// normals), or empty when it has none.
     pub vertex_normals: Vec<[i16; 3]>,
+    /// Each vertex's texture coordinates, `q / UV_SCALE`
+    /// ([`UV_SCALE`](crate::limits::UV_SCALE)), or empty when the mesh has
+    /// none.
+    pub vertex_uvs: Vec<[i16; 2]>,
 }
 
 impl QuantizedHostMesh {
     /// Quantizes `mesh` in its [`bounding_sphere`]; each face's normal
-    /// comes from its original corners, in `f64`.
+    /// comes from its original corners, in `f64`; texture coordinates are
+    /// rounded to `1/UV_SCALE`, `Err(`[`Error::TexCoordRange`]`)` when one
+    /// is outside `-8..8` (or not finite).
     pub fn new(mesh: &HostMesh) -> Result<Self, Error> {
         let (centre, radius) = bounding_sphere(mesh)?;
         let radius = if radius > 0.0 { radius } else { 1.0 };
@@ -69,9 +76,22 @@ impl QuantizedHostMesh {
             .iter()
             .map(|n| quantize_unit(n.map(f64::from)))
             .collect();
+        let vertex_uvs = mesh
+            .uvs
+            .iter()
+            .map(|uv| {
+                let q = uv.map(|c| libm::round(f64::from(c) * f64::from(UV_SCALE)));
+                let fits = |c: f64| (f64::from(i16::MIN)..=f64::from(i16::MAX)).contains(&c);
+                match fits(q[0]) && fits(q[1]) {
+                    true => Ok(q.map(|c| c as i16)),
+                    false => Err(Error::TexCoordRange),
+                }
+            })
+            .collect::<Result<Vec<_>, _>>()?;
         Ok(Self {
             exact_normals,
             vertex_normals,
+            vertex_uvs,
             positions,
             normals,
             corners: mesh.corners.clone(),
@@ -99,6 +119,10 @@ impl QuantizedHostMesh {
         .and_then(|m| match self.vertex_normals.is_empty() {
             true => Ok(m),
             false => m.with_vertex_normals(&self.vertex_normals),
+        })
+        .and_then(|m| match self.vertex_uvs.is_empty() {
+            true => Ok(m),
+            false => m.with_vertex_uvs(&self.vertex_uvs),
         })
     }
 }

@@ -36,6 +36,10 @@ use crate::paint::texture::{Filter, TEXEL_FRAC_BITS, Texture, Wrap};
 use crate::raster::attribute::{AttributePlane, attribute_planes, exact_value_at};
 use crate::raster::vertex::ScreenVertex;
 
+/// The largest texel coordinate a pixel takes (`2^-8` texel, from its
+/// polygon's smallest corner coordinate): beyond every corner's (`2^36`).
+const COORDINATE_MAX: i64 = 1 << 40;
+
 /// The longest span whose coordinates are stepped between two divisions.
 pub const SPAN: usize = 16;
 
@@ -108,9 +112,14 @@ impl<'a, C: PaintColor> Textured<'a, C> {
     fn point(planes: &TexturedPlanes, [q, u, v]: [i64; 3]) -> Point {
         let q = q.max(1);
         let divide = |value: i64, shift: u8| {
-            // value < 2^41 and shift <= 22 (module notes): below 2^63.
+            // value <= 2^41 and shift <= 22 (module notes): at most 2^63.
+            // A quotient beyond any corner's (t < 2^36), where Q is near 0
+            // at the edge of a polygon of extreme w ratio, is held at
+            // COORDINATE_MAX, so sums and steps of coordinates stay far
+            // inside i64.
             let value = value.clamp(0, 1 << 41) as u64;
-            ((value << shift) / q as u64) as i64
+            let quotient = (value << shift) / q as u64;
+            quotient.min(COORDINATE_MAX as u64) as i64
         };
         Point {
             t: [divide(u, planes.shifts[0]), divide(v, planes.shifts[1])],

@@ -114,3 +114,30 @@ where
     let frame = renderer.render(sink)?;
     Ok((draw, frame))
 }
+
+/// [`render_frame`] texture-mapped: the same view, each vertex's
+/// texture coordinates (the quantized mesh's, with no floating point)
+/// interpolated perspective-correctly, nearest texels.
+#[allow(dead_code)] // Each side uses its own subset of this file.
+pub fn render_frame_textured<'t, T, S, C, A, K, M>(
+    renderer: &mut zline::paint::PaintedRenderer<T, S, C, A>,
+    mesh: &M,
+    (centre, radius): (Vec3, f32),
+    (yaw, pitch): (f32, f32),
+    sink: &mut K,
+) -> Result<(DrawStats, FrameStats), RenderError<K::Error>>
+where
+    T: TableStorage<Color = u16>,
+    S: ScanStorage<Color = u16>,
+    C: zline::CacheStorage,
+    A: zline::paint::PaintStorage<Mode = zline::paint::Textured<'t, Rgb565>>,
+    K: RowSink<Rgb565, <S::Depth as DepthFormat>::Value>,
+    M: Mesh,
+{
+    renderer.clear();
+    let model = reference_model_around(centre, radius, yaw, pitch);
+    let camera = Camera::reference(SIZE, SIZE);
+    let draw = renderer.draw_mesh(mesh, &model, &camera, Cull::Back, |v| v.tex_coord())?;
+    let frame = renderer.render(sink)?;
+    Ok((draw, frame))
+}

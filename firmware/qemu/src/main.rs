@@ -2,7 +2,8 @@
 //! `thumbv6m-none-eabi` (Cortex-M0+; it runs on the board's Cortex-M3).
 //!
 //! For every scene (built-in meshes in flash, two views, both depth formats,
-//! 240x240) it renders one frame into a CRC sink and compares the CRC with
+//! 240x240; then Gouraud-shaded and texture-mapped frames) it renders one
+//! frame into a CRC sink and compares the CRC with
 //! the host's (computed by `build.rs` with the same code). It then renders
 //! the frame again into a sink that discards rows, counting instructions
 //! with SysTick under `-icount shift=0`. It prints one line per scene and
@@ -25,7 +26,7 @@ use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use static_cell::ConstStaticCell;
 use zline::QuantizedMesh;
 use zline::VertexCache;
-use zline::paint::Gouraud;
+use zline::paint::{Gouraud, Texture, Textured};
 use zline::zbuffer::BandBuffers;
 use zline::{ActiveEdge, ActivePolygon, ScanArrays, ScanStorage, TableArrays};
 use zline::{Crc32Sink, Depth16, Depth24, DepthFormat, FnSink, FrameStats, Renderer};
@@ -78,6 +79,22 @@ static GOURAUD16: ConstStaticCell<Gouraud16> = ConstStaticCell::new(Gouraud16::n
     frame::SIZE,
     frame::SIZE,
     Gouraud::new(),
+    Rgb565::BLACK,
+));
+
+/// The textured scenes' texture, in flash.
+const TEXTURE: Texture<'static> = match Texture::new(&TILES, TILES_WIDTH, TILES_HEIGHT) {
+    Ok(texture) => texture,
+    Err(_) => panic!("TILES: bad texture size"),
+};
+
+/// The texture-mapping renderer (z16): slots in its rows, texels painted
+/// after.
+type Textured16 = zline::painted_renderer_type!(Textured<'static, Rgb565>, Depth16, TEXTURED_CAPS);
+static TEXTURED16: ConstStaticCell<Textured16> = ConstStaticCell::new(Textured16::new_in_static(
+    frame::SIZE,
+    frame::SIZE,
+    Textured::new(TEXTURE),
     Rgb565::BLACK,
 ));
 
@@ -226,20 +243,56 @@ fn run<S: ScanStorage<Color = Rgb565>>(
     })
 }
 
-/// A Gouraud scene: its CRC and the instructions of a second, discarded
+/// A painted renderer's frame of a scene (`frame::render_frame_gouraud`
+/// or `frame::render_frame_textured`).
+trait PaintedFrame {
+    fn frame<K: zline::RowSink<Rgb565, u16>>(
+        &mut self,
+        mesh: &QuantizedMesh<'static>,
+        sphere: (zline::Vec3, f32),
+        view: (f32, f32),
+        sink: &mut K,
+    ) -> Result<(zline::DrawStats, FrameStats), zline::RenderError<K::Error>>;
+}
+
+impl PaintedFrame for Gouraud16 {
+    fn frame<K: zline::RowSink<Rgb565, u16>>(
+        &mut self,
+        mesh: &QuantizedMesh<'static>,
+        sphere: (zline::Vec3, f32),
+        view: (f32, f32),
+        sink: &mut K,
+    ) -> Result<(zline::DrawStats, FrameStats), zline::RenderError<K::Error>> {
+        frame::render_frame_gouraud(self, mesh, sphere, view, sink)
+    }
+}
+
+impl PaintedFrame for Textured16 {
+    fn frame<K: zline::RowSink<Rgb565, u16>>(
+        &mut self,
+        mesh: &QuantizedMesh<'static>,
+        sphere: (zline::Vec3, f32),
+        view: (f32, f32),
+        sink: &mut K,
+    ) -> Result<(zline::DrawStats, FrameStats), zline::RenderError<K::Error>> {
+        frame::render_frame_textured(self, mesh, sphere, view, sink)
+    }
+}
+
+/// A painted scene: its CRC and the instructions of a second, discarded
 /// frame.
-fn run_gouraud(
-    renderer: &mut Gouraud16,
+fn run_painted<R: PaintedFrame>(
+    renderer: &mut R,
     scene: &Scene,
     syst: &mut SYST,
 ) -> Result<Outcome, zline::RenderError<Infallible>> {
     let mut crc = Crc32Sink::new();
     let sphere = zline::bounding_sphere(scene.mesh)?;
     let view = (scene.yaw, scene.pitch);
-    frame::render_frame_gouraud(renderer, scene.mesh, sphere, view, &mut crc)?;
+    renderer.frame(scene.mesh, sphere, view, &mut crc)?;
     let mut discard = FnSink(|_: u16, _: &[Rgb565], _: &[u16]| Ok::<(), Infallible>(()));
     let (result, ticks) = ticks(syst, || {
-        frame::render_frame_gouraud(renderer, scene.mesh, sphere, view, &mut discard)
+        renderer.frame(scene.mesh, sphere, view, &mut discard)
     });
     let (_, stats) = result?;
     Ok(Outcome {
@@ -247,6 +300,44 @@ fn run_gouraud(
         ticks,
         stats,
     })
+}
+
+/// Runs painted scenes and prints a line for each (`shade=NAME ...`);
+/// whether every CRC matched.
+fn painted_scenes<R: PaintedFrame>(
+    shade: &str,
+    scenes: &[Scene],
+    renderer: &mut R,
+    syst: &mut SYST,
+    per_tick: u32,
+) -> bool {
+    let mut all_ok = true;
+    for scene in scenes {
+        match run_painted(renderer, scene, syst) {
+            Ok(o) => {
+                let ok = o.crc == scene.expected_crc;
+                all_ok &= ok;
+                hprintln!(
+                    "shade={} scene={} yaw={} pitch={} depth=z16 crc32={:08X} expected={:08X} {} instructions={} polygons={} peak_active_polygons={}",
+                    shade,
+                    scene.name,
+                    scene.yaw,
+                    scene.pitch,
+                    o.crc,
+                    scene.expected_crc,
+                    if ok { "ok" } else { "MISMATCH" },
+                    u64::from(o.ticks) * u64::from(per_tick),
+                    o.stats.polygons,
+                    o.stats.peak_active_polygons
+                );
+            }
+            Err(e) => {
+                all_ok = false;
+                hprintln!("shade={} scene={} error: {}", shade, scene.name, e);
+            }
+        }
+    }
+    all_ok
 }
 
 #[entry]
@@ -305,31 +396,14 @@ fn main() -> ! {
             }
         }
     }
-    let gouraud = GOURAUD16.take();
-    for scene in &GOURAUD_SCENES {
-        match run_gouraud(gouraud, scene, syst) {
-            Ok(o) => {
-                let ok = o.crc == scene.expected_crc;
-                all_ok &= ok;
-                hprintln!(
-                    "shade=gouraud scene={} yaw={} pitch={} depth=z16 crc32={:08X} expected={:08X} {} instructions={} polygons={} peak_active_polygons={}",
-                    scene.name,
-                    scene.yaw,
-                    scene.pitch,
-                    o.crc,
-                    scene.expected_crc,
-                    if ok { "ok" } else { "MISMATCH" },
-                    u64::from(o.ticks) * u64::from(per_tick),
-                    o.stats.polygons,
-                    o.stats.peak_active_polygons
-                );
-            }
-            Err(e) => {
-                all_ok = false;
-                hprintln!("shade=gouraud scene={} error: {}", scene.name, e);
-            }
-        }
-    }
+    all_ok &= painted_scenes("gouraud", &GOURAUD_SCENES, GOURAUD16.take(), syst, per_tick);
+    all_ok &= painted_scenes(
+        "texture",
+        &TEXTURED_SCENES,
+        TEXTURED16.take(),
+        syst,
+        per_tick,
+    );
     // The same z16 scenes by the full-frame z-buffer: the same frames (the
     // CRCs the scanline must match), 230 KB of depth and colour.
     let mut z = ZBuffer {
@@ -366,10 +440,11 @@ fn main() -> ! {
         + core::mem::size_of::<Renderer24>()
         + core::mem::size_of::<VertexCache<VM>>();
     hprintln!(
-        "stack_high_water_bytes={} renderer_static_bytes={} gouraud_renderer_static_bytes={}",
+        "stack_high_water_bytes={} renderer_static_bytes={} gouraud_renderer_static_bytes={} textured_renderer_static_bytes={}",
         stack::high_water(stack_floor),
         renderer_bytes,
-        core::mem::size_of::<Gouraud16>()
+        core::mem::size_of::<Gouraud16>(),
+        core::mem::size_of::<Textured16>()
     );
     finish(all_ok)
 }

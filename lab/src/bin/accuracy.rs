@@ -56,7 +56,7 @@ use zline_lab::methods::{
     BACKGROUND, Comparison, Method, MethodRenderer, ReferenceCamera, ReferenceFrame, ReferenceView,
     compare, rotate,
 };
-use zline_lab::texture_png::PngTexture;
+use zline_lab::textures::Rgb565Texture;
 
 /// (yaw, pitch) of the three views, degrees.
 const VIEWS: [(f32, f32); 3] = [(30.0, 20.0), (135.0, -30.0), (250.0, 65.0)];
@@ -462,7 +462,7 @@ impl TextureErrors {
 
 /// A texel's 8-bit channels as the core widens them (embedded-graphics'
 /// Rgb565 to Rgb888).
-fn texel_rgb(texture: &PngTexture, i: i64, j: i64) -> [f64; 3] {
+fn texel_rgb(texture: &Rgb565Texture, i: i64, j: i64) -> [f64; 3] {
     let (w, h) = (i64::from(texture.width), i64::from(texture.height));
     let t = texture.texels[(j.rem_euclid(h) * w + i.rem_euclid(w)) as usize];
     let widen = |c: u16, max: u32| f64::from((u32::from(c) * 255 + max / 2) / max);
@@ -507,7 +507,7 @@ fn textured_values(
 /// perspective-correct coordinates.
 fn textured_frame(
     mesh: &HostMesh,
-    png: &PngTexture,
+    png: &Rgb565Texture,
     view: (f32, f32),
     reference_view: &ReferenceView,
     o: &Options,
@@ -625,7 +625,7 @@ fn textured(o: &Options) -> Result<bool, String> {
             continue;
         }
         meshes += 1;
-        let png = PngTexture::read(&texture_path, 1)?;
+        let png = Rgb565Texture::read(&texture_path, 1)?;
         let bytes = std::fs::read(&path).map_err(|e| format!("{}: {e}", path.display()))?;
         let mesh = HostMesh::from_obj_smooth(&bytes, zline::host::DEFAULT_CREASE_DEGREES)
             .map_err(|e| format!("{}: {e}", path.display()))?;

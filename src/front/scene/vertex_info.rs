@@ -125,8 +125,18 @@ impl<'a> VertexInfo<'a> {
 
     /// Texture coordinates and `w` for [`Textured`](crate::paint::Textured)
     /// painting: [`Self::uv`] (as OBJ gives it, `v` up) and
-    /// [`Self::clip_w`]; `(0, 0)` when the mesh has no coordinates.
+    /// [`Self::clip_w`]; `(0, 0)` when the mesh has no coordinates. A
+    /// quantized mesh's stored coordinates drawn by the integer front end
+    /// take no floating point.
     pub fn tex_coord(&self) -> TexCoord {
+        if let VertexGeometry::Mesh { mesh, frame } = self.geometry
+            && frame.fixed.is_some()
+            && let Some(&q) = mesh
+                .quantized()
+                .and_then(|q| q.vertex_uvs.get(self.vertex as usize))
+        {
+            return TexCoord::from_quantized(q, self.clip_w());
+        }
         TexCoord::from_obj(self.uv().unwrap_or([0.0; 2]), self.clip_w())
     }
 

@@ -101,7 +101,7 @@ fn run(args: &[String]) -> Result<(), Failure> {
     renderers.set_smooth(&mesh, smooth.map_err(Failure::Other)?);
     if let Some(path) = &o.texture {
         // The texture lives as long as the window.
-        let png = zline_lab::texture_png::PngTexture::read(path, 1).map_err(Failure::Other)?;
+        let png = zline_lab::textures::Rgb565Texture::read(path, 1).map_err(Failure::Other)?;
         let png: &'static _ = Box::leak(Box::new(png));
         renderers.set_texture(png.texture().map_err(Failure::Other)?);
     }

@@ -1,15 +1,15 @@
-//! Textures from PNG files: read as Rgb565 texels (what
-//! [`zline::paint::Texture`] samples), optionally scaled down by whole
-//! box filters for a microcontroller's flash, and written as a Rust
-//! static.
+//! Rgb565 textures (what [`zline::paint::Texture`] samples): read from
+//! PNG files, optionally scaled down by whole box filters for a
+//! microcontroller's flash, or made procedurally ([`Rgb565Texture::tiles`]),
+//! and written as Rust statics.
 
 use std::fmt::Write;
 use std::path::Path;
 
-/// An Rgb565 texture read from a PNG: `width · height` raw texels, row by
-/// row from the top.
+/// An Rgb565 texture: `width · height` raw texels, row by row from the
+/// top.
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub struct PngTexture {
+pub struct Rgb565Texture {
     /// Raw Rgb565 texels.
     pub texels: Vec<u16>,
     /// Width in texels.
@@ -49,7 +49,7 @@ pub fn read_png_rgb(path: &Path) -> Result<(Vec<[u8; 3]>, u32, u32), String> {
     Ok((pixels, info.width, info.height))
 }
 
-impl PngTexture {
+impl Rgb565Texture {
     /// A PNG as a texture, scaled down by `shrink` (a whole factor: each
     /// texel the mean of a `shrink` x `shrink` box, rounded) when it is
     /// above 1. The size must end up within
@@ -93,6 +93,31 @@ impl PngTexture {
             width: w as u16,
             height: h as u16,
         })
+    }
+
+    /// Tiles for the firmware's textured scenes (no file needed): a
+    /// `width` x `height` texture of 8x8-texel tiles, alternately warm and
+    /// cool, each shaded from its top-left corner and outlined.
+    pub fn tiles(width: u16, height: u16) -> Self {
+        let mut texels = Vec::with_capacity(usize::from(width) * usize::from(height));
+        for y in 0..height {
+            for x in 0..width {
+                let (i, j) = (x % 8, y % 8);
+                let warm = (x / 8 + y / 8) % 2 == 0;
+                let shade = 255 - 8 * (i + j) as u8;
+                let [r, g, b] = match (i == 0 || j == 0, warm) {
+                    (true, _) => [40, 40, 48],
+                    (false, true) => [shade, (shade as u16 * 3 / 4) as u8, 60],
+                    (false, false) => [60, (shade as u16 * 3 / 4) as u8, shade],
+                };
+                texels.push(rgb565(r, g, b));
+            }
+        }
+        Self {
+            texels,
+            width,
+            height,
+        }
     }
 
     /// The texture as zline samples it (repeating, nearest texel).
