@@ -13,7 +13,10 @@
 //! an FPU. With `--smooth` as well it adds a unit normal per vertex
 //! (the file's `vn`, or computed with a 60° crease angle; a vertex for
 //! each different position and normal) for Gouraud shading
-//! ([`zline::paint::Gouraud`]), lit with integers too.
+//! ([`zline::paint::Gouraud`]), lit with integers too, and the file's
+//! `vt` texture coordinates as `i16` (steps of 1/4096, within -8..8) for
+//! texture mapping ([`zline::paint::Textured`]); `png2rust` writes the
+//! texture.
 //!
 //! `name.rs` defines `pub static NAME: zline::StaticMesh<'static>`
 //! over three `const` arrays (positions, corners, face starts). Include it
@@ -76,7 +79,7 @@ fn run(args: &[String]) -> Result<(), String> {
 const USAGE: &str = "usage: obj2rust [--quantized [--smooth]] MODEL.obj NAME > name.rs
 Writes Rust source for MODEL.obj as a StaticMesh static named NAME (with --quantized, a
 QuantizedMesh: i16 positions and unit face normals, drawn with integers only; with --smooth
-too, i16 vertex normals for Gouraud shading).";
+too, i16 vertex normals for Gouraud shading and the file's vt for texture mapping).";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();

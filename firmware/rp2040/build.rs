@@ -12,6 +12,10 @@
 //!    `OUT_DIR/capacities.rs`. A mesh whose tables would not leave enough
 //!    RAM for the stack fails the build here. `ZLINE_RP2040_BAD_CRC=1`
 //!    corrupts the first expected CRC (a self-test of the emulator check).
+//! 4. With the `textured` feature, the texture as a Rust static
+//!    (`OUT_DIR/texture.rs`): the PNG named by `ZLINE_TEXTURE`, each
+//!    texel the mean of a `ZLINE_TEXTURE_SHRINK` square of its pixels
+//!    (default 1), or 64x64 tiles for the built-in textured torus knot.
 
 #[path = "src/frame.rs"]
 mod frame;
@@ -27,11 +31,12 @@ use zline::bounding_sphere;
 use zline::host::{DEFAULT_CREASE_DEGREES, HostPaintedRenderer};
 use zline::host::{HostMesh, HostRenderer, QuantizedHostMesh, host_renderer};
 use zline::limits::MAX_FACE_CORNERS;
-use zline::paint::Gouraud;
+use zline::paint::{Gouraud, Texture, Textured};
 use zline::{Capacities, Crc32Sink, Depth16, FrameStats, RowSink};
 use zline::{Mesh, StaticMesh};
 use zline_lab::rust_source::quantized_mesh_source;
 use zline_lab::shapes;
+use zline_lab::textures::Rgb565Texture;
 
 /// Room for any view on the host, where the capacities are measured.
 const HOST_CAPACITIES: Capacities = Capacities {
@@ -53,6 +58,8 @@ const YAW_STEPS: u32 = 120;
 const PITCH_DEG: f32 = 20.0;
 /// Built-in mesh used when `ZLINE_MESH` is not set.
 const DEFAULT_SHAPE: &str = "torus-knot";
+/// Built-in mesh of the `textured` feature when `ZLINE_MESH` is not set.
+const TEXTURED_SHAPE: &str = "textured-torus-knot";
 /// RAM in `memory.x` (SRAM0-3; the two 4 KiB banks SRAM4/5 are left out).
 const RAM: usize = 256 * 1024;
 /// Stack kept free for start-up and the render loop (the largest frames in
@@ -110,26 +117,34 @@ fn run() -> Result<(), String> {
 
     // 2. The mesh, as statics in flash.
     println!("cargo:rerun-if-env-changed=ZLINE_MESH");
+    println!("cargo:rerun-if-env-changed=ZLINE_TEXTURE");
+    println!("cargo:rerun-if-env-changed=ZLINE_TEXTURE_SHRINK");
     println!("cargo:rerun-if-env-changed=ZLINE_RP2040_BAD_CRC");
     println!("cargo:rerun-if-changed=src/frame.rs");
+    let textured = env::var_os("CARGO_FEATURE_TEXTURED").is_some();
     let (mesh, origin) = match env::var_os("ZLINE_MESH").filter(|p| !p.is_empty()) {
         Some(path) => {
-            // A relative path is taken from the directory the command was
-            // run in (the shell's PWD; cargo runs build scripts in the
-            // package's own directory), as every other path of the tools.
-            let path = PathBuf::from(path);
-            let path = match env::var_os("PWD") {
-                Some(pwd) if path.is_relative() => PathBuf::from(pwd).join(path),
-                _ => path,
-            };
+            let path = from_command_directory(path);
             println!("cargo:rerun-if-changed={}", path.display());
-            (load_obj(&path)?, path.display().to_string())
+            (load_obj(&path, textured)?, path.display().to_string())
         }
-        None => (
-            shapes::by_name(DEFAULT_SHAPE).ok_or("built-in shape missing")?,
-            format!("zline_lab::shapes::by_name({DEFAULT_SHAPE:?})"),
-        ),
+        None => {
+            let shape = if textured {
+                TEXTURED_SHAPE
+            } else {
+                DEFAULT_SHAPE
+            };
+            (
+                shapes::by_name(shape).ok_or("built-in shape missing")?,
+                format!("zline_lab::shapes::by_name({shape:?})"),
+            )
+        }
     };
+    if textured && mesh.uvs.is_empty() {
+        return Err(format!(
+            "{origin}: the `textured` feature needs texture coordinates (`vt`)"
+        ));
+    }
     check_mesh(&mesh, &origin)?;
     // The `gouraud` feature draws the mesh with vertex normals (the file's,
     // or computed with a 60° crease).
@@ -145,17 +160,57 @@ fn run() -> Result<(), String> {
     let source = quantized_mesh_source(&mesh, "MESH", &origin)?;
     write(&out.join("mesh.rs"), &source)?;
 
+    // 4. The texture (before the capacities: the host frames map it).
+    let texture = if textured {
+        let texture = match env::var_os("ZLINE_TEXTURE").filter(|p| !p.is_empty()) {
+            Some(path) => {
+                let path = from_command_directory(path);
+                println!("cargo:rerun-if-changed={}", path.display());
+                let shrink = match env::var("ZLINE_TEXTURE_SHRINK") {
+                    Ok(s) => s
+                        .parse()
+                        .ok()
+                        .filter(|&n| n >= 1)
+                        .ok_or("ZLINE_TEXTURE_SHRINK: expected a whole number from 1")?,
+                    Err(_) => 1,
+                };
+                Rgb565Texture::read(&path, shrink)?
+            }
+            None => Rgb565Texture::tiles(64, 64),
+        };
+        write(
+            &out.join("texture.rs"),
+            &texture.rust_source("TEXTURE", "the firmware's build script"),
+        )?;
+        Some(texture)
+    } else {
+        None
+    };
+
     // 3. Table capacities for every view the firmware shows.
-    let capacities = measure(mesh, &origin)?;
+    let capacities = measure(mesh, &origin, texture)?;
     write(&out.join("capacities.rs"), &capacities)?;
     Ok(())
+}
+
+/// `path` as given, a relative one taken from the directory the command
+/// was run in (the shell's PWD; cargo runs build scripts in the package's
+/// own directory), as every other path of the tools.
+fn from_command_directory(path: std::ffi::OsString) -> PathBuf {
+    let path = PathBuf::from(path);
+    match env::var_os("PWD") {
+        Some(pwd) if path.is_relative() => PathBuf::from(pwd).join(path),
+        _ => path,
+    }
 }
 
 fn write(path: &Path, text: &str) -> Result<(), String> {
     fs::write(path, text).map_err(|e| format!("writing {}: {e}", path.display()))
 }
 
-fn load_obj(path: &Path) -> Result<HostMesh, String> {
+/// An OBJ file, with its texture coordinates (and normals) when
+/// `with_uvs`.
+fn load_obj(path: &Path, with_uvs: bool) -> Result<HostMesh, String> {
     let shown = path.display();
     let bytes = fs::read(path).map_err(|e| {
         let resolved = env::current_dir()
@@ -163,7 +218,11 @@ fn load_obj(path: &Path) -> Result<HostMesh, String> {
             .unwrap_or_default();
         format!("ZLINE_MESH={shown}: {e} (read as {resolved}: a relative path starts at the directory the command was run in)")
     })?;
-    HostMesh::from_obj(&bytes).map_err(|e| format!("ZLINE_MESH={shown}: {e}"))
+    match with_uvs {
+        true => HostMesh::from_obj_smooth(&bytes, DEFAULT_CREASE_DEGREES),
+        false => HostMesh::from_obj(&bytes),
+    }
+    .map_err(|e| format!("ZLINE_MESH={shown}: {e}"))
 }
 
 /// Refuses meshes the firmware cannot draw, with a message naming why.
@@ -192,11 +251,11 @@ fn max_face_corners(mesh: &HostMesh) -> usize {
 /// Renders every firmware view on the host (on a thread with a large
 /// stack: the host renderer is built on the stack) and returns the source
 /// of `capacities.rs`.
-fn measure(mesh: HostMesh, origin: &str) -> Result<String, String> {
+fn measure(mesh: HostMesh, origin: &str, texture: Option<Rgb565Texture>) -> Result<String, String> {
     let origin = origin.to_string();
     std::thread::Builder::new()
         .stack_size(256 << 20)
-        .spawn(move || measure_views(&mesh, &origin))
+        .spawn(move || measure_views(&mesh, &origin, texture.as_ref()))
         .map_err(|e| format!("starting the sizing thread: {e}"))?
         .join()
         .map_err(|_| "the sizing thread failed".to_string())?
@@ -238,21 +297,38 @@ impl RowSink<frame::WirePixel, u16> for WireCrc {
     }
 }
 
-/// A host renderer of the firmware's: flat, or Gouraud (the `gouraud`
-/// feature).
-enum Host {
+/// A host renderer of the firmware's: flat, Gouraud (the `gouraud`
+/// feature) or textured (`textured`).
+enum Host<'t> {
     Flat(Box<HostRenderer<frame::WireColor, Depth16>>),
     Gouraud(Box<HostPaintedRenderer<Gouraud<frame::WirePixel>, Depth16>>),
+    Textured(Box<HostPaintedRenderer<Textured<'t, frame::WirePixel>, Depth16>>),
 }
 
-fn measure_views(mesh: &HostMesh, origin: &str) -> Result<String, String> {
+fn measure_views(
+    mesh: &HostMesh,
+    origin: &str,
+    texture: Option<&Rgb565Texture>,
+) -> Result<String, String> {
     // The very arrays the firmware's statics hold.
     let quantized = QuantizedHostMesh::new(mesh).map_err(|e| format!("{origin}: {e}"))?;
     let quantized = quantized
         .mesh()
         .map_err(|e| format!("{origin}: invalid quantized mesh: {e:?}"))?;
     let gouraud = env::var_os("CARGO_FEATURE_GOURAUD").is_some();
-    let mut host = if gouraud {
+    let mut host = if let Some(texture) = texture {
+        let texture = Texture::new(&texture.texels, texture.width, texture.height)
+            .map_err(|e| format!("texture: {e}"))?;
+        Host::Textured(Box::new(
+            HostPaintedRenderer::with_capacities(
+                &HOST_CAPACITIES,
+                (WIDTH, HEIGHT),
+                Textured::new(texture),
+                frame::WirePixel(frame::WIRE_BLACK),
+            )
+            .map_err(|e| format!("host renderer: {e}"))?,
+        ))
+    } else if gouraud {
         Host::Gouraud(Box::new(
             HostPaintedRenderer::with_capacities(
                 &HOST_CAPACITIES,
@@ -280,6 +356,9 @@ fn measure_views(mesh: &HostMesh, origin: &str) -> Result<String, String> {
             Host::Flat(r) => frame::render_frame(r, &quantized, &shading, sphere, view, &mut crc),
             Host::Gouraud(r) => {
                 frame::render_frame_gouraud(r, &quantized, &shading, sphere, view, &mut crc)
+            }
+            Host::Textured(r) => {
+                frame::render_frame_textured(r, &quantized, &shading, sphere, view, &mut crc)
             }
         }
         .map_err(|e| format!("{origin}: view {step} does not render on the host: {e:?}"))?;
@@ -314,6 +393,12 @@ fn measure_views(mesh: &HostMesh, origin: &str) -> Result<String, String> {
         // A colour per vertex (3 x u16), the planes of each active polygon
         // (3 x 24 bytes and its position) and the painted row.
         renderer += 6 * vertices + 76 * active_polygons + 2 * usize::from(WIDTH);
+    }
+    if texture.is_some() {
+        // Texture coordinates and w per vertex (12 bytes), the planes of
+        // each active polygon (3 x 24 bytes, shifts, offsets and its
+        // position) and the painted row.
+        renderer += 12 * vertices + 104 * active_polygons + 2 * usize::from(WIDTH);
     }
     let ram = renderer + 2 * mesh_vertices + SPI_BUFFER + ROW_BUFFERS * 2 * usize::from(WIDTH);
     // The renderer is built at compile time in its static

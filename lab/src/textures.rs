@@ -131,7 +131,7 @@ impl Rgb565Texture {
         let mut s = String::new();
         let _ = writeln!(
             s,
-            "// {}x{} Rgb565 texels from {origin}, written by zline's png2rust.",
+            "// {}x{} Rgb565 texels from {origin}, written by zline-lab (Rgb565Texture).",
             self.width, self.height
         );
         let _ = writeln!(s, "pub const {name}_WIDTH: u16 = {};", self.width);

@@ -185,14 +185,21 @@ fn texel_units(texture: &Texture<'_>, c: TexCoord) -> [i64; 2] {
 impl CornerValues {
     /// Chosen from the corners (see the module's notes).
     fn new(texture: &Texture<'_>, corners: impl Iterator<Item = TexCoord> + Clone) -> Self {
+        // The smallest `w` and coordinates, from the first corner on (no
+        // `i64::MAX` start: the emulated RP2040, rp2040js 1.4.1, sets the
+        // overflow flag wrongly when a 64-bit signed comparison's high word
+        // is 0x7FFFFFFF, so `i64::MAX.min(t)` gave `i64::MAX` there).
         let mut w_min = ClipW::ONE;
-        let mut base = [i64::MAX; 2];
+        let mut base = [0i64; 2];
         for (k, c) in corners.clone().enumerate() {
-            if k == 0 || c.w.at_most(w_min) {
-                w_min = c.w;
-            }
-            for (base, t) in base.iter_mut().zip(texel_units(texture, c)) {
-                *base = (*base).min(t);
+            let t = texel_units(texture, c);
+            if k == 0 {
+                (w_min, base) = (c.w, t);
+            } else {
+                if c.w.at_most(w_min) {
+                    w_min = c.w;
+                }
+                base = [base[0].min(t[0]), base[1].min(t[1])];
             }
         }
         let mut this = Self {

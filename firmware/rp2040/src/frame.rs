@@ -32,7 +32,7 @@ pub fn wire(c: Rgb565) -> WireColor {
 /// culled, and sends the frame to `sink` row by row, in wire order
 /// ([`WireColor`]).
 #[allow(clippy::too_many_arguments)]
-#[cfg_attr(feature = "gouraud", allow(dead_code))]
+#[cfg_attr(any(feature = "gouraud", feature = "textured"), allow(dead_code))]
 pub fn render_frame<T, S, C, K, M>(
     renderer: &mut Renderer<T, S, C>,
     mesh: &M,
@@ -81,6 +81,34 @@ impl zline::paint::PaintColor for WirePixel {
             rgb, threshold,
         )))
     }
+}
+
+/// [`render_frame`] texture-mapped: each vertex's texture coordinates
+/// (the quantized mesh's, with no floating point) interpolated
+/// perspective-correctly, nearest texels (`shading` is not used).
+#[allow(dead_code)] // Each build uses its own subset of this file.
+pub fn render_frame_textured<'t, T, S, C, A, K, M>(
+    renderer: &mut zline::paint::PaintedRenderer<T, S, C, A>,
+    mesh: &M,
+    _shading: &Shading,
+    (centre, radius): (Vec3, f32),
+    (yaw, pitch): (f32, f32),
+    sink: &mut K,
+) -> Result<(DrawStats, FrameStats), RenderError<K::Error>>
+where
+    T: TableStorage<Color = u16>,
+    S: ScanStorage<Color = u16>,
+    C: CacheStorage,
+    A: zline::paint::PaintStorage<Mode = zline::paint::Textured<'t, WirePixel>>,
+    K: RowSink<WirePixel, <S::Depth as DepthFormat>::Value>,
+    M: Mesh,
+{
+    renderer.clear();
+    let model = reference_model_around(centre, radius, yaw, pitch);
+    let camera = Camera::reference(renderer.width(), renderer.height());
+    let draw = renderer.draw_mesh(mesh, &model, &camera, Cull::Back, |v| v.tex_coord())?;
+    let frame = renderer.render(sink)?;
+    Ok((draw, frame))
 }
 
 /// [`render_frame`] with Gouraud shading: each vertex lit by its normal

@@ -377,9 +377,9 @@ impl LcdRows {
     }
 }
 
-/// Gouraud rows (the `gouraud` feature): the painted renderer's row,
-/// copied into a buffer as the flat rows are.
-#[cfg(feature = "gouraud")]
+/// Painted rows (the `gouraud` and `textured` features): the painted
+/// renderer's row, copied into a buffer as the flat rows are.
+#[cfg(any(feature = "gouraud", feature = "textured"))]
 impl RowSink<crate::frame::WirePixel, u16> for LcdRows {
     type Error = LcdError;
 
