@@ -10,7 +10,8 @@
 //! corner's weight is `q_i = floor(2^b · w_min / w_i)` ([`ClipW::ratio`]),
 //! `b = min(23, 46 - bits(max t_i))`, so `q_i · t_i < 2^46`; the planes
 //! interpolate `q`, `(t_u·q) >> s_u` and `(t_v·q) >> s_v`, each shift the
-//! least that keeps the corner values below `2^24`
+//! least that keeps `max t · 2^b`, a bound of the corner values, below
+//! `2^24`
 //! ([`VALUE_MAX`](crate::raster::attribute::VALUE_MAX)). At a pixel,
 //! `t = floor((T << s) / Q)` with `T`, `Q` the planes' values there.
 //!
@@ -208,21 +209,18 @@ impl CornerValues {
             shifts: [0; 2],
             w_min,
         };
-        let range = corners
-            .clone()
-            .flat_map(|c| this.texels(texture, c))
-            .max()
-            .unwrap_or(0);
-        let range_bits = 64 - range.leading_zeros();
-        this.bits = 23.min(46u32.saturating_sub(range_bits));
-        for a in 0..2 {
-            let largest = corners
-                .clone()
-                .map(|c| this.texels(texture, c)[a] * u64::from(w_min.ratio(c.w, this.bits)))
-                .max()
-                .unwrap_or(0);
-            this.shifts[a] = (64 - largest.leading_zeros()).saturating_sub(24);
+        // The largest coordinate of each axis from the smallest.
+        let mut ranges = [0u64; 2];
+        for c in corners {
+            let t = this.texels(texture, c);
+            ranges = [ranges[0].max(t[0]), ranges[1].max(t[1])];
         }
+        let bits_of = |v: u64| 64 - v.leading_zeros();
+        this.bits = 23.min(46u32.saturating_sub(bits_of(ranges[0].max(ranges[1]))));
+        // Each `t·q` is below `2^(bits(range) + bits)` (`q <= 2^bits`): the
+        // shift that brings that bound below `2^24` (no division per corner
+        // to find the largest product itself).
+        this.shifts = ranges.map(|r| (bits_of(r) + this.bits).saturating_sub(24));
         this
     }
 
@@ -345,11 +343,24 @@ impl<C: PaintColor> Textured<'_, C> {
                 length /= 2;
             };
             let log = length.trailing_zeros();
-            for k in 0..length {
-                let t: [i64; 2] = core::array::from_fn(|a| {
-                    start.t[a] + (((end.t[a] - start.t[a]) * k as i64) >> log)
-                });
-                pixel(i + k, t);
+            // Coordinates below 2^26 at both ends are stepped in 32 bits
+            // (every sum below 2^31): the same values as the 64-bit steps,
+            // without a 64-bit product and shift a pixel on a 32-bit core.
+            let small = |t: i64| (0..1 << 26).contains(&t);
+            if start.t.iter().chain(&end.t).all(|&t| small(t)) {
+                let step = [0, 1].map(|a| (end.t[a] - start.t[a]) as i32);
+                let mut at = start.t.map(|t| (t as i32) << log);
+                for k in 0..length {
+                    pixel(i + k, at.map(|v| i64::from(v >> log)));
+                    at = [at[0] + step[0], at[1] + step[1]];
+                }
+            } else {
+                for k in 0..length {
+                    let t: [i64; 2] = core::array::from_fn(|a| {
+                        start.t[a] + (((end.t[a] - start.t[a]) * k as i64) >> log)
+                    });
+                    pixel(i + k, t);
+                }
             }
             i += length;
             start = end;
