@@ -8,7 +8,7 @@ use crate::front::clip::ClipValue;
 
 /// A positive clip-space `w` in 32 bits: `mantissa · 2^exponent`, a
 /// 24-bit mantissa (`2^23..2^24`, as exact as an `f32`'s) and an exponent
-/// from [`EXPONENT_MIN`] to [`EXPONENT_MAX`], packed so that comparing two
+/// from -151 to 104, packed so that comparing two
 /// packed values compares the `w`s. Only ratios of the `w` of one
 /// polygon's corners are used (texture coordinates are interpolated as
 /// `u/w`, `v/w` and `1/w`), so any common unit will do.
@@ -21,9 +21,9 @@ pub struct ClipW {
 
 /// The smallest exponent: `w` below `2^(23 + EXPONENT_MIN)` (`2^-128`) is
 /// taken as that.
-pub const EXPONENT_MIN: i32 = -151;
+pub(crate) const EXPONENT_MIN: i32 = -151;
 /// The largest exponent: any `f32` fits (`2^128 > w`).
-pub const EXPONENT_MAX: i32 = EXPONENT_MIN + 255;
+pub(crate) const EXPONENT_MAX: i32 = EXPONENT_MIN + 255;
 
 impl ClipW {
     /// `w = 1` (an orthographic camera's, and what a `w` that is not
