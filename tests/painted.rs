@@ -205,6 +205,140 @@ fn rgb565_is_dithered_by_default() {
     }
 }
 
+/// Rgb565 levels of random triangles, dithered and not: each pixel's
+/// level is `floor(L + t)`, with `L` the exact barycentric value in the
+/// channel's levels and `t` the pixel's Bayer threshold `(2b + 1)/32` (or
+/// 1/2), wherever `L + t` is more than the stated error (corners rounded
+/// to 1/256 of a level, planes within `2^-12` of one) from a level's edge;
+/// where it is nearer, either neighbour. Values run to both ends of the
+/// range, where a wrapped sum would show the far end.
+#[test]
+fn rgb565_levels_are_the_exact_plane_quantised() {
+    type Z = zline::painted_renderer_type!(Gouraud<Rgb565>, Depth16, CAPS);
+    const BAYER: [[u32; 4]; 4] = [[0, 8, 2, 10], [12, 4, 14, 6], [3, 11, 1, 9], [15, 7, 13, 5]];
+    let mut rng = 0x9e37_79b9_u64;
+    let mut next = |n: i32| {
+        rng ^= rng << 13;
+        rng ^= rng >> 7;
+        rng ^= rng << 17;
+        (rng % n as u64) as i32
+    };
+    let background = Rgb565::new(1, 2, 3);
+    let mut checked = 0;
+    for case in 0..600 {
+        let dither = case % 2 == 0;
+        let mut r = Z::new(W, H, Gouraud::with_dither(dither), background).unwrap();
+        let corners: Vec<ScreenVertex> = (0..3)
+            .map(|_| v(next(i32::from(W) * S), next(i32::from(H) * S), 1000))
+            .collect();
+        // Ends of the range half the time: 0 and 255 exactly.
+        let channel = |n: i32| match n % 4 {
+            0 => 0,
+            1 => 0xFF00,
+            _ => n as u16,
+        };
+        let values: Vec<Rgb8p8> = (0..3)
+            .map(|_| Rgb8p8 {
+                r: channel(next(0xFF01)),
+                g: channel(next(0xFF01)),
+                b: channel(next(0xFF01)),
+            })
+            .collect();
+        if !matches!(
+            r.push_polygon_vertices(&corners, &values).unwrap(),
+            Admission::Queued(_)
+        ) {
+            continue;
+        }
+        let rows = frame::<Rgb565, u16>(|sink| {
+            r.render(sink).unwrap();
+        });
+        let p = |k: usize| {
+            (
+                f64::from(corners[k].x) / 256.0,
+                f64::from(corners[k].y) / 256.0,
+            )
+        };
+        let (a, b, c) = (p(0), p(1), p(2));
+        let area = (b.0 - a.0) * (c.1 - a.1) - (b.1 - a.1) * (c.0 - a.0);
+        for (j, row) in rows.iter().enumerate() {
+            for (i, &color) in row.iter().enumerate() {
+                let (x, y) = (i as f64 + 0.5, j as f64 + 0.5);
+                let wb = ((x - a.0) * (c.1 - a.1) - (y - a.1) * (c.0 - a.0)) / area;
+                let wc = ((b.0 - a.0) * (y - a.1) - (b.1 - a.1) * (x - a.0)) / area;
+                let wa = 1.0 - wb - wc;
+                if wa < 0.0 || wb < 0.0 || wc < 0.0 {
+                    continue; // outside, or on an edge the fill rule may leave out
+                }
+                let t = if dither {
+                    f64::from(2 * BAYER[j & 3][i & 3] + 1) / 32.0
+                } else {
+                    0.5
+                };
+                let got = [color.r(), color.g(), color.b()];
+                let value = |f: fn(&Rgb8p8) -> u16| {
+                    wa * f64::from(f(&values[0]))
+                        + wb * f64::from(f(&values[1]))
+                        + wc * f64::from(f(&values[2]))
+                };
+                let exact = [value(|c| c.r), value(|c| c.g), value(|c| c.b)];
+                for k in 0..3 {
+                    let max = if k == 1 { 63.0 } else { 31.0 };
+                    let level = exact[k] / 65280.0 * max + t;
+                    let slack = 1.0 / 512.0 + 1.0 / 4096.0;
+                    let (low, high) = ((level - slack).floor(), (level + slack).floor());
+                    let got = f64::from(got[k]);
+                    assert!(
+                        got == low.min(max) || got == high.min(max),
+                        "case {case} pixel ({i}, {j}) channel {k}: {got} for {level}"
+                    );
+                    checked += 1;
+                }
+            }
+        }
+    }
+    assert!(checked > 10_000, "{checked}");
+}
+
+/// Squares whose corner values are not coplanar get Newell's plane,
+/// which leaves the range of the corners' values: with 255 at one corner
+/// and 0 at the rest it falls to -119.5 (of 255) at the next corner, with
+/// 0 at one and 255 at the rest it rises to 374.5. Those pixels are
+/// clamped to black and to white, never wrapped round.
+#[test]
+fn a_plane_beyond_its_range_is_clamped() {
+    type Z = zline::painted_renderer_type!(Gouraud<Rgb565>, Depth16, CAPS);
+    let background = Rgb565::new(1, 2, 3);
+    let square = [
+        v(0, 0, 7),
+        v(16 * S, 0, 7),
+        v(16 * S, 16 * S, 7),
+        v(0, 16 * S, 7),
+    ];
+    let (black, white) = (rgb(0, 0, 0), rgb(255, 255, 255));
+    for mode in [Gouraud::new(), Gouraud::with_dither(false)] {
+        let mut r = Z::new(16, 16, mode, background).unwrap();
+        r.push_polygon_vertices(&square, &[black, black, black, white])
+            .unwrap();
+        let rows = frame::<Rgb565, u16>(|sink| {
+            r.render(sink).unwrap();
+        });
+        assert_eq!(rows[0][15], Rgb565::BLACK);
+        assert!(rows[15][0].r() >= 13, "{:?}", rows[15][0]);
+        let mut r = Z::new(16, 16, mode, background).unwrap();
+        r.push_polygon_vertices(&square, &[white, black, white, white])
+            .unwrap();
+        let rows = frame::<Rgb565, u16>(|sink| {
+            r.render(sink).unwrap();
+        });
+        // The plane is at least 135.5 everywhere, 16.4 levels of 5 bits.
+        for row in &rows {
+            assert!(row.iter().all(|c| c.r() >= 16), "{row:?}");
+        }
+        assert!(rows.iter().flatten().any(|&c| c == Rgb565::WHITE));
+    }
+}
+
 /// Capacities too small and values not one per corner are errors, and
 /// nothing is added.
 #[test]

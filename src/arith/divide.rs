@@ -176,14 +176,7 @@ impl Divisor {
     /// is [`Self::QUOTIENT_LIMIT`] or more.
     #[inline]
     pub fn div_rem(&self, n: u64) -> Option<(u64, u64)> {
-        debug_assert!(n < 1 << 57);
-        // n < 2^57, R < 2^32 and d < 2^31 (see the type's notes): every
-        // product has 32-bit operands.
-        let (high, low) = ((n >> 32) as u32, n as u32);
-        let recip = self.recip as u32;
-        let product = mul_u32_by_size(recip, high) + (mul_u32(low, recip) >> 32);
-        // shift - 32 = 31 - s, below 32.
-        let mut q = shr_u64(product, self.shift - 32);
+        let mut q = self.estimate(n);
         if q >= Self::QUOTIENT_LIMIT + 4 {
             return None;
         }
@@ -198,6 +191,41 @@ impl Divisor {
             r -= self.d;
         }
         (q < Self::QUOTIENT_LIMIT).then_some((q, r))
+    }
+
+    /// An estimate `q` of `n / d` for `n < 2^57`, with no correction: at
+    /// most `n / d` plus 1 and at least `n / d - q·2^-28 - 2` (`R` is at
+    /// most `2^62 / dn` and within 8 of it; the low product's dropped
+    /// word and the final shift each lower it by less than one).
+    #[inline]
+    pub fn estimate(&self, n: u64) -> u64 {
+        debug_assert!(n < 1 << 57);
+        // n < 2^57, R < 2^32 and d < 2^31 (see the type's notes): every
+        // product has 32-bit operands.
+        let (high, low) = ((n >> 32) as u32, n as u32);
+        let recip = self.recip as u32;
+        let product = mul_u32_by_size(recip, high) + (mul_u32(low, recip) >> 32);
+        // shift - 32 = 31 - s, below 32.
+        shr_u64(product, self.shift - 32)
+    }
+
+    /// An estimate `q` of `a·2^k / d` for `k <= 31`, with no correction,
+    /// by one 32x32→64 product: at most the quotient and at least the
+    /// quotient `- q·2^-28 - 1` (`R` is at most `2^62 / dn` and within 8
+    /// of it, and the shift floors once).
+    ///
+    /// Ranges: `a·R < 2^64`; the shift `63 - s - k` is at least 1 as `s`
+    /// is at most 31, and at most 62.
+    #[inline]
+    pub fn estimate_scaled(&self, a: u32, k: u32) -> u64 {
+        debug_assert!(k <= 31);
+        let product = mul_u32(a, self.recip as u32);
+        let shift = self.shift - k;
+        if shift >= 32 {
+            u64::from(((product >> 32) as u32) >> (shift - 32))
+        } else {
+            shr_u64(product, shift)
+        }
     }
 
     /// [`Self::div_rem`], by one 32x32→64 product when `d < 2^28` and the

@@ -17,17 +17,53 @@ pub use crate::front::rgb8p8::CHANNEL_MAX;
 /// exactly where `c·max + 127` does, both sides being integers and halves.
 const NEAREST: u32 = CHANNEL_MAX / 2;
 
-/// A colour a painted row can hold, made from three 8.8 channels.
+/// A colour a painted row can hold: up to 256 levels a channel, made from
+/// the levels themselves ([`Self::from_levels`]) or from three 8.8
+/// channels ([`Self::from_channels`]).
 pub trait PaintColor: Copy {
+    /// The top level of each channel (31, 63, 31 for `Rgb565`), each from
+    /// 1 to 255.
+    const MAX: [u32; 3];
+
     /// Whether a channel has fewer than 8 bits, so that dithering can help.
-    const COARSE: bool;
+    const COARSE: bool = Self::MAX[0] < 255 || Self::MAX[1] < 255 || Self::MAX[2] < 255;
+
+    /// The colour of these levels (each at most its [`Self::MAX`]).
+    fn from_levels(levels: [u32; 3]) -> Self;
 
     /// The colour of channels `rgb` (each `0..=`[`CHANNEL_MAX`]; larger
     /// values are taken as [`CHANNEL_MAX`]), each rounded to the nearest
     /// level when `threshold` is `None`, else raised to the next level
     /// where its fraction of a level exceeds `threshold / 65,280`
     /// ([`bayer_threshold`]).
-    fn from_channels(rgb: [u32; 3], threshold: Option<u32>) -> Self;
+    #[inline(always)]
+    fn from_channels(rgb: [u32; 3], threshold: Option<u32>) -> Self {
+        let t = threshold.unwrap_or(NEAREST);
+        let max = Self::MAX;
+        Self::from_levels([
+            level(rgb[0], max[0], t),
+            level(rgb[1], max[1], t),
+            level(rgb[2], max[2], t),
+        ])
+    }
+}
+
+/// `floor(x / 255)` for `x <= 16,646,527` (`65,280 · 255 + 127`), with no
+/// division: `((x + 1)·257 + (x + 1)/256) / 65,536`, all below `2^32`
+/// (the tests check every `x`).
+#[inline(always)]
+pub(crate) fn div255(x: u32) -> u32 {
+    let y = x + 1;
+    ((y << 8) + y + (y >> 8)) >> 16
+}
+
+/// A channel (8.8, taken as at most [`CHANNEL_MAX`]) in 1/256 of a level
+/// of a channel with top level `max` (at most 255), rounded:
+/// `round(v · max / 255)`, at most `256 · max`, within `2^-9` of a level
+/// of the exact value.
+#[inline(always)]
+pub(crate) fn level_units(v: u32, max: u32) -> u32 {
+    div255(v.min(CHANNEL_MAX) * max + 127)
 }
 
 /// `v` (8.8, at most [`CHANNEL_MAX`]) quantised to `0..=max` with the
@@ -45,30 +81,31 @@ fn level(v: u32, max: u32, t: u32) -> u32 {
     (257 * y + 257) >> 16
 }
 
+/// The 4x4 Bayer matrix's entry for pixel `(x, y)`: `0..16`, each once in
+/// every aligned 4x4 block.
+#[inline(always)]
+pub(crate) fn bayer_index(x: u16, y: u16) -> u32 {
+    const BAYER: [[u8; 4]; 4] = [[0, 8, 2, 10], [12, 4, 14, 6], [3, 11, 1, 9], [15, 7, 13, 5]];
+    u32::from(BAYER[usize::from(y & 3)][usize::from(x & 3)])
+}
+
 /// The ordered-dither threshold of pixel `(x, y)`: the 4x4 Bayer matrix's
 /// entry `b` as the offset `(2b + 1)·65,280 / 32` of a channel's level, so that
 /// the sixteen thresholds of a 4x4 block are spread evenly over a level
 /// and average half of it (the rounding of no dither).
 #[inline(always)]
 pub fn bayer_threshold(x: u16, y: u16) -> u32 {
-    const BAYER: [[u8; 4]; 4] = [[0, 8, 2, 10], [12, 4, 14, 6], [3, 11, 1, 9], [15, 7, 13, 5]];
-    let b = u32::from(BAYER[usize::from(y & 3)][usize::from(x & 3)]);
-    (2 * b + 1) * (CHANNEL_MAX / 32)
+    (2 * bayer_index(x, y) + 1) * (CHANNEL_MAX / 32)
 }
 
 macro_rules! paint_color {
     ($($color:ty: $r:expr, $g:expr, $b:expr;)*) => {$(
         impl PaintColor for $color {
-            const COARSE: bool = $r < 255 || $g < 255 || $b < 255;
+            const MAX: [u32; 3] = [$r, $g, $b];
 
             #[inline(always)]
-            fn from_channels(rgb: [u32; 3], threshold: Option<u32>) -> Self {
-                let t = threshold.unwrap_or(NEAREST);
-                <$color>::new(
-                    level(rgb[0], $r, t) as u8,
-                    level(rgb[1], $g, t) as u8,
-                    level(rgb[2], $b, t) as u8,
-                )
+            fn from_levels(levels: [u32; 3]) -> Self {
+                <$color>::new(levels[0] as u8, levels[1] as u8, levels[2] as u8)
             }
         }
     )*};
@@ -94,6 +131,20 @@ mod tests {
     /// and `level` is the division it stands for over its whole range
     /// (every level count, every `v` at a stride, every threshold the
     /// dither gives and the rounding offset).
+    #[test]
+    fn div255_is_the_division() {
+        for x in 0..=65_280 * 255 + 127 {
+            assert_eq!(div255(x), x / 255, "{x}");
+        }
+        for max in [1, 31, 63, 255] {
+            for v in (0..=CHANNEL_MAX).chain([u32::MAX]) {
+                let exact = f64::from(v.min(CHANNEL_MAX)) * f64::from(max) / 255.0;
+                let got = f64::from(level_units(v, max));
+                assert!((got - exact).abs() <= 0.5, "{v} {max}");
+            }
+        }
+    }
+
     #[test]
     fn levels_are_the_division() {
         for y in 0..1u32 << 16 {

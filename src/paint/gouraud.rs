@@ -6,17 +6,14 @@
 
 use core::marker::PhantomData;
 
-use crate::arith::wide::mul_i64_small;
 pub use crate::front::rgb8p8::Rgb8p8;
+use crate::limits::SUBPIXEL_BITS;
 use crate::paint::PaintMode;
-use crate::paint::color::{CHANNEL_MAX, PaintColor, bayer_threshold};
+use crate::paint::color::{PaintColor, bayer_index, level_units};
 use crate::raster::attribute::{
-    ATTRIBUTE_FRAC_BITS, AttributePlane, attribute_planes, exact_value_at,
+    ATTRIBUTE_FRAC_BITS, AttributePlane, attribute_planes, exact_value_at, modular_triangle_planes,
 };
 use crate::raster::vertex::ScreenVertex;
-
-/// The planes of a Gouraud-shaded polygon: one per channel.
-pub type GouraudPlanes = [AttributePlane; 3];
 
 /// Gouraud shading into colours `C`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -52,13 +49,44 @@ impl<C: PaintColor> Default for Gouraud<C> {
     }
 }
 
-/// A plane value (plane units) as a channel: rounded to 8.8, clamped to
-/// `0..=`[`CHANNEL_MAX`] (a pixel inside the polygon is off its corners'
-/// range by at most the plane's error, below 2^-4 of a value step).
+/// The planes of a Gouraud-shaded polygon: one per channel, in units of
+/// `2^-24` of a level of the painted colour's channel (each corner's value
+/// is its 8.8 channel scaled to the colour's levels and rounded to 1/256
+/// of a level, then interpolated at `2^-16` of that).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct GouraudPlanes {
+    channels: [AttributePlane; 3],
+    /// Whether every pixel the polygon can paint has each channel's plane
+    /// value within 1/32 of a level of `0..=max` (see [`WRAP_MARGIN`]), so
+    /// that a run is painted in wrapping 32-bit arithmetic.
+    wraps: bool,
+}
+
+/// Fractional bits of a level in a Gouraud plane's units: corners carry
+/// 8 bits below the level, planes 16 more.
+const LEVEL_SHIFT: u32 = 8 + ATTRIBUTE_FRAC_BITS;
+
+/// How far (plane units, 1/32 of a level) a painted pixel's value may lie
+/// outside `0..=max` for a run to be painted in wrapping 32-bit
+/// arithmetic: then `value + t`, with a dither threshold or rounding
+/// offset `t` in `1/32..=31/32` of a level, lies in `0..(max + 1)·2^24`,
+/// below `2^32` as `max <= 255`, and its level is `(value + t) >> 24`
+/// however the sum wrapped on the way.
+const WRAP_MARGIN: i64 = 1 << (LEVEL_SHIFT - 5);
+
+/// The offsets added to a plane value before its level is taken, for
+/// pixels `x & 3 = 0..4` of row `y`: the 4x4 Bayer thresholds
+/// ([`bayer_threshold`](crate::paint::bayer_threshold)) as `(2b + 1)/32` of a level, or half a level
+/// (rounding) without dither.
 #[inline(always)]
-fn channel(value: i64) -> u32 {
-    let rounded = (value + (1 << (ATTRIBUTE_FRAC_BITS - 1))) >> ATTRIBUTE_FRAC_BITS;
-    rounded.clamp(0, i64::from(CHANNEL_MAX)) as u32
+fn offsets(dither: bool, y: u16) -> [u32; 4] {
+    core::array::from_fn(|k| {
+        if dither {
+            (2 * bayer_index(k as u16, y) + 1) << (LEVEL_SHIFT - 5)
+        } else {
+            1 << (LEVEL_SHIFT - 1)
+        }
+    })
 }
 
 impl<C: PaintColor> PaintMode for Gouraud<C> {
@@ -66,8 +94,13 @@ impl<C: PaintColor> PaintMode for Gouraud<C> {
     type Vertex = Rgb8p8;
     type Planes = GouraudPlanes;
     type Color = C;
+    /// The offsets of pixels `x & 3 = 0..4` ([`offsets`]).
+    type Row = [u32; 4];
     const VERTEX_FILLER: Rgb8p8 = Rgb8p8::BLACK;
-    const PLANES_FILLER: GouraudPlanes = [AttributePlane::ZERO; 3];
+    const PLANES_FILLER: GouraudPlanes = GouraudPlanes {
+        channels: [AttributePlane::ZERO; 3],
+        wraps: false,
+    };
 
     fn vertex(&self, source: Rgb8p8) -> Rgb8p8 {
         source
@@ -79,65 +112,58 @@ impl<C: PaintColor> PaintMode for Gouraud<C> {
         width: u16,
         height: u16,
     ) -> GouraudPlanes {
-        attribute_planes(corners.map(|(v, c)| (v, c.values())), width, height).unwrap_or_default()
+        let levels = corners.map(|(v, c)| (v, corner_levels::<C>(c)));
+        let mut three = levels.clone();
+        if let (Some(o), Some(p), Some(q), None) =
+            (three.next(), three.next(), three.next(), three.next())
+            && let Some(channels) = modular_triangle_planes(o, p, q)
+        {
+            // Within 2^-10 of a level of the exact plane at its pixels
+            // (see modular_triangle_planes), whose values there lie in
+            // 0..=max: within WRAP_MARGIN.
+            return GouraudPlanes {
+                channels,
+                wraps: true,
+            };
+        }
+        let Some(channels) = attribute_planes(levels.clone(), width, height) else {
+            return Self::PLANES_FILLER;
+        };
+        let wraps = !channels.iter().any(AttributePlane::is_steep)
+            && (levels.clone().nth(3).is_none()
+                || within_margin::<C>(&channels, levels, width, height));
+        GouraudPlanes { channels, wraps }
+    }
+
+    fn row(&self, y: u16) -> [u32; 4] {
+        offsets(self.dither, y)
     }
 
     #[inline]
     fn paint_run(
         &self,
+        offsets: &[u32; 4],
         planes: &GouraudPlanes,
         corners: impl Iterator<Item = (ScreenVertex, Rgb8p8)> + Clone,
         x0: u16,
         y: u16,
         out: &mut [C],
     ) {
-        if planes.iter().any(AttributePlane::is_steep) {
-            return self.paint_steep(planes, corners, x0, y, out);
+        if !planes.wraps {
+            return self.paint_clamped(offsets, planes, corners, x0, y, out);
         }
-        let [r, g, b] = planes;
-        let (vr, vg, vb) = (r.value_at(x0, y), g.value_at(x0, y), b.value_at(x0, y));
-        // The run's last values: the values are linear along it, so when
-        // both ends of each channel lie in `0..RUN_LIMIT`, every value
-        // between does, and 32-bit wrapping steps give them exactly.
-        let steps = out.len().saturating_sub(1) as i32;
-        let in_range = |v: i64, dx: i64| {
-            let last = v + mul_i64_small(dx, steps);
-            (0..RUN_LIMIT).contains(&v) && (0..RUN_LIMIT).contains(&last)
+        let start = |p: &AttributePlane| {
+            (p.at_origin as u32)
+                .wrapping_add((p.dx as u32).wrapping_mul(u32::from(x0)))
+                .wrapping_add((p.dy as u32).wrapping_mul(u32::from(y)))
         };
-        if in_range(vr, r.dx) && in_range(vg, g.dx) && in_range(vb, b.dx) {
-            return self.paint_run_32([vr, vg, vb], [r.dx, g.dx, b.dx], x0, y, out);
-        }
-        let (mut vr, mut vg, mut vb) = (vr, vg, vb);
+        let [r, g, b] = &planes.channels;
+        let (mut vr, mut vg, mut vb) = (start(r), start(g), start(b));
+        let (dr, dg, db) = (r.dx as u32, g.dx as u32, b.dx as u32);
         for (x, pixel) in (x0..).zip(out) {
-            let threshold = self.dither.then(|| bayer_threshold(x, y));
-            *pixel = C::from_channels([channel(vr), channel(vg), channel(vb)], threshold);
-            (vr, vg, vb) = (vr + r.dx, vg + g.dx, vb + b.dx);
-        }
-    }
-}
-
-/// Values (plane units) below which a run is stepped in 32 bits: rounding
-/// adds `2^15`, which must not carry out of 32 bits.
-const RUN_LIMIT: i64 = (1 << 32) - (1 << (ATTRIBUTE_FRAC_BITS - 1));
-
-impl<C: PaintColor> Gouraud<C> {
-    /// A run whose values all lie in `0..RUN_LIMIT` (`start`, the values at
-    /// its first pixel, and the run's last, checked by the caller): each
-    /// value and step taken modulo `2^32`, which gives the exact values,
-    /// rounded as [`channel`] rounds them (no clamp at 0 is needed). The
-    /// same pixels as the `i64` loop, in a third of the registers (the
-    /// Cortex-M0+ has eight it can add in).
-    #[inline(always)]
-    fn paint_run_32(&self, start: [i64; 3], dx: [i64; 3], x0: u16, y: u16, out: &mut [C]) {
-        let [mut vr, mut vg, mut vb] = start.map(|v| v as u32);
-        let [dr, dg, db] = dx.map(|d| d as u32);
-        let half = 1u32 << (ATTRIBUTE_FRAC_BITS - 1);
-        let ch = |v: u32| ((v + half) >> ATTRIBUTE_FRAC_BITS).min(CHANNEL_MAX);
-        let thresholds: [Option<u32>; 4] =
-            core::array::from_fn(|k| self.dither.then(|| bayer_threshold(k as u16, y)));
-        for (x, pixel) in (x0..).zip(out) {
-            let threshold = thresholds[usize::from(x & 3)];
-            *pixel = C::from_channels([ch(vr), ch(vg), ch(vb)], threshold);
+            let t = offsets[usize::from(x & 3)];
+            let level = |v: u32| v.wrapping_add(t) >> LEVEL_SHIFT;
+            *pixel = C::from_levels([level(vr), level(vg), level(vb)]);
             vr = vr.wrapping_add(dr);
             vg = vg.wrapping_add(dg);
             vb = vb.wrapping_add(db);
@@ -145,31 +171,80 @@ impl<C: PaintColor> Gouraud<C> {
     }
 }
 
+/// A corner's channels in 1/256 of a level of `C`'s channels.
+#[inline]
+fn corner_levels<C: PaintColor>(c: Rgb8p8) -> [u32; 3] {
+    let [r, g, b] = c.values();
+    let max = C::MAX;
+    [
+        level_units(r, max[0]),
+        level_units(g, max[1]),
+        level_units(b, max[2]),
+    ]
+}
+
+/// Whether each plane's values over the pixels of the polygon's bounding
+/// box (clamped to the frame) lie within [`WRAP_MARGIN`] of `0..=max`: a
+/// plane's extremes over a box are at its corners. (A triangle needs no
+/// check: its painted pixels' samples lie inside it, where each plane is
+/// within its error bound, below `2^-8` of a corner value step, of the
+/// range of the corners' values.)
+fn within_margin<C: PaintColor>(
+    channels: &[AttributePlane; 3],
+    corners: impl Iterator<Item = (ScreenVertex, [u32; 3])>,
+    width: u16,
+    height: u16,
+) -> bool {
+    let (mut x0, mut y0, mut x1, mut y1) = (i32::MAX, i32::MAX, i32::MIN, i32::MIN);
+    for (v, _) in corners {
+        (x0, y0, x1, y1) = (x0.min(v.x), y0.min(v.y), x1.max(v.x), y1.max(v.y));
+    }
+    let pixel =
+        |s: i32, size: u16| (s >> SUBPIXEL_BITS).clamp(0, i32::from(size.max(1)) - 1) as u16;
+    let (x0, x1, y0, y1) = (
+        pixel(x0, width),
+        pixel(x1, width),
+        pixel(y0, height),
+        pixel(y1, height),
+    );
+    channels.iter().zip(C::MAX).all(|(plane, max)| {
+        let top = i64::from(max) << LEVEL_SHIFT;
+        [(x0, y0), (x1, y0), (x0, y1), (x1, y1)]
+            .iter()
+            .all(|&(x, y)| (-WRAP_MARGIN..=top + WRAP_MARGIN).contains(&plane.value_at(x, y)))
+    })
+}
+
 impl<C: PaintColor> Gouraud<C> {
-    /// [`PaintMode::paint_run`] for a polygon with a steep plane: its
-    /// channels' exact values at each pixel (rare: slivers narrower than
-    /// a sub-pixel step).
+    /// [`PaintMode::paint_run`] for a polygon whose values may stray
+    /// further from their range (a polygon of more than three corners
+    /// whose corner values are not coplanar, or a steep plane, whose
+    /// channels take their exact values at each pixel: slivers narrower
+    /// than a sub-pixel step): each value in `i64`, clamped to its range.
     #[inline(never)]
-    fn paint_steep(
+    fn paint_clamped(
         &self,
+        offsets: &[u32; 4],
         planes: &GouraudPlanes,
         corners: impl Iterator<Item = (ScreenVertex, Rgb8p8)> + Clone,
         x0: u16,
         y: u16,
         out: &mut [C],
     ) {
-        let values = corners.map(|(v, c)| (v, c.values()));
+        let values = corners.map(|(v, c)| (v, corner_levels::<C>(c)));
         for (x, pixel) in (x0..).zip(out) {
-            let rgb: [u32; 3] = core::array::from_fn(|k| {
-                let value = if planes[k].is_steep() {
+            let t = i64::from(offsets[usize::from(x & 3)]);
+            let levels: [u32; 3] = core::array::from_fn(|k| {
+                let plane = &planes.channels[k];
+                let value = if plane.is_steep() {
                     exact_value_at(values.clone(), k, x, y)
                 } else {
-                    planes[k].value_at(x, y)
+                    plane.value_at(x, y)
                 };
-                channel(value)
+                let top = i64::from(C::MAX[k]) << LEVEL_SHIFT;
+                ((value.clamp(0, top) + t) >> LEVEL_SHIFT).min(i64::from(C::MAX[k])) as u32
             });
-            let threshold = self.dither.then(|| bayer_threshold(x, y));
-            *pixel = C::from_channels(rgb, threshold);
+            *pixel = C::from_levels(levels);
         }
     }
 }

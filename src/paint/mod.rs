@@ -50,6 +50,9 @@ pub trait PaintMode {
     type Planes: Copy;
     /// The colour painted.
     type Color: Copy;
+    /// What the runs of one row share, made once a row ([`Self::row`]):
+    /// its dither offsets, say.
+    type Row;
     /// A value of [`Self::Vertex`] to fill storage with.
     const VERTEX_FILLER: Self::Vertex;
     /// A value of [`Self::Planes`] to fill storage with.
@@ -68,11 +71,16 @@ pub trait PaintMode {
         height: u16,
     ) -> Self::Planes;
 
-    /// Paints `out`, the pixels from column `x0` on of row `y`, all won by
-    /// the polygon with these `planes` and `corners` (from which a steep
-    /// plane's exact values are taken).
+    /// What the runs of row `y` share.
+    fn row(&self, y: u16) -> Self::Row;
+
+    /// Paints `out`, the pixels from column `x0` on of row `y` (whose
+    /// shared values are `row`), all won by the polygon with these
+    /// `planes` and `corners` (from which a steep plane's exact values are
+    /// taken; the iterator does no work until it is used).
     fn paint_run(
         &self,
+        row: &Self::Row,
         planes: &Self::Planes,
         corners: impl Iterator<Item = (ScreenVertex, Self::Vertex)> + Clone,
         x0: u16,
@@ -108,6 +116,18 @@ impl<M: PaintMode> Painter<'_, M> {
             Some((*tables.vertices.get(id)?, *vertices.get(id)?))
         })
     }
+
+    /// [`Self::corners`], looked up on the first `next` (most runs never
+    /// ask).
+    #[inline]
+    fn lazy_corners<'t>(
+        vertices: &'t [M::Vertex],
+        tables: &'t Prepared<'t, u16>,
+        position: usize,
+    ) -> impl Iterator<Item = (ScreenVertex, M::Vertex)> + Clone + 't {
+        core::iter::once(position)
+            .flat_map(move |position| Self::corners(vertices, tables, position))
+    }
 }
 
 impl<M: PaintMode> RowPainter for Painter<'_, M> {
@@ -126,6 +146,7 @@ impl<M: PaintMode> RowPainter for Painter<'_, M> {
 
     fn paint(&self, row: u16, slots: &[u16], tables: &Prepared<'_, u16>, out: &mut [M::Color]) {
         let width = slots.len().min(out.len());
+        let shared = self.mode.row(row);
         let mut x = 0;
         while x < width {
             let slot = slots[x];
@@ -136,9 +157,10 @@ impl<M: PaintMode> RowPainter for Painter<'_, M> {
             let run = &mut out[x..end];
             match self.slots.get(usize::from(slot)) {
                 Some(entry) if slot != NO_SLOT => {
-                    let corners = Self::corners(self.vertices, tables, entry.position as usize);
+                    let corners =
+                        Self::lazy_corners(self.vertices, tables, entry.position as usize);
                     self.mode
-                        .paint_run(&entry.planes, corners, x as u16, row, run);
+                        .paint_run(&shared, &entry.planes, corners, x as u16, row, run);
                 }
                 _ => run.fill(self.background),
             }

@@ -245,6 +245,7 @@ impl CornerValues {
 impl<C: PaintColor> PaintMode for Textured<'_, C> {
     type Source = TexCoord;
     type Vertex = TexCoord;
+    type Row = ();
     type Planes = TexturedPlanes;
     type Color = C;
     const VERTEX_FILLER: TexCoord = TexCoord {
@@ -280,8 +281,11 @@ impl<C: PaintColor> PaintMode for Textured<'_, C> {
         }
     }
 
+    fn row(&self, _y: u16) {}
+
     fn paint_run(
         &self,
+        _row: &(),
         planes: &TexturedPlanes,
         corners: impl Iterator<Item = (ScreenVertex, TexCoord)> + Clone,
         x0: u16,

@@ -32,8 +32,9 @@
 //! | `at_origin` (anchor `< 2^12`) | `< 2^40 + 2^54 + 2^53` | `i64` |
 //! | value at any pixel of the frame | `< 2^56` | `i64` |
 
+use crate::arith::divide::Divisor;
 use crate::arith::wide::mul_i64_small;
-use crate::limits::{DEPTH_MAX, PLANE_FRAC_BITS, SUBPIXEL_BITS};
+use crate::limits::{DEPTH_MAX, HALF_PIXEL, PLANE_FRAC_BITS, SUBPIXEL_BITS, SUBPIXEL_STEPS};
 use crate::raster::plane::{Plane, STEEP_GRADIENT, TrianglePlane};
 use crate::raster::vertex::ScreenVertex;
 
@@ -129,6 +130,96 @@ pub fn triangle_planes<const N: usize>(
         dx: plane.dz_dx,
         dy: plane.dz_dy,
     }))
+}
+
+/// Largest corner offset (sub-pixel steps, each way from corner `o`) of a
+/// triangle [`modular_triangle_planes`] takes: under 64 px.
+pub const MODULAR_SPAN: i32 = 1 << 14;
+
+/// Largest corner value [`modular_triangle_planes`] takes.
+pub const MODULAR_VALUE_MAX: u32 = 1 << 16;
+
+/// Largest gradient (plane units per pixel) [`modular_triangle_planes`]
+/// gives: `2^34`, 2^18 corner value steps a pixel.
+pub const MODULAR_GRADIENT_MAX: u64 = 1 << 34;
+
+/// The planes of a small triangle's `N` attributes with one reciprocal of
+/// its area and no exact division: each value correct modulo `2^32` only
+/// (the low words of [`AttributePlane`]'s fields; use them in wrapping
+/// `u32` arithmetic), for a painter whose values stay within 32 bits. The
+/// cheapest set-up, for triangles whose corners lie within
+/// [`MODULAR_SPAN`] of `o` each way, values at most [`MODULAR_VALUE_MAX`]
+/// and gradients below [`MODULAR_GRADIENT_MAX`]; `None` otherwise (and for
+/// zero area).
+///
+/// Bound: each gradient is the exact one, `-a·2^24 / c`, within `e =
+/// |g|·2^-28 + 1` plane units ([`Divisor::estimate_scaled`], truncated
+/// toward zero), at most `2^6 + 1`; the value at corner `o`'s pixel is
+/// within `e + 1/2` (the sample is at most 1/2 px each way from `o`); so the value at
+/// a pixel `(x, y)` is within `1/2 + e·(1 + |x - x_o| + |y - y_o|)` plane
+/// units of the exact plane, below `2^14` (`2^-2` of a corner value step)
+/// at any pixel within 128 px of `o`'s, which includes every pixel whose
+/// sample lies inside the triangle.
+///
+/// Ranges: offsets below `2^14`, values at most `2^16`: each product of a
+/// cross term below `2^30`, `a` and `b` below `2^31` (i32, and `|a|` a
+/// `u32` for [`Divisor::estimate_scaled`]); the anchor's correction `g·f`
+/// below `2^34·2^7`.
+pub fn modular_triangle_planes<const N: usize>(
+    (o, o_values): (ScreenVertex, [u32; N]),
+    (p, p_values): (ScreenVertex, [u32; N]),
+    (q, q_values): (ScreenVertex, [u32; N]),
+) -> Option<[AttributePlane; N]> {
+    let small = |d: i32| d.unsigned_abs() < MODULAR_SPAN as u32;
+    let (px, py, qx, qy) = (p.x - o.x, p.y - o.y, q.x - o.x, q.y - o.y);
+    if !(small(px) && small(py) && small(qx) && small(qy)) {
+        return None;
+    }
+    // Each product below 2^28: c below 2^29 in magnitude.
+    let c = px * qy - py * qx;
+    if c == 0 {
+        return None;
+    }
+    let divisor = Divisor::new(c.unsigned_abs());
+    // -coef·2^24 / c, truncated toward zero.
+    let gradient = |coef: i32| -> Option<i64> {
+        let g = divisor.estimate_scaled(coef.unsigned_abs(), SUBPIXEL_BITS + ATTRIBUTE_FRAC_BITS);
+        if g >= MODULAR_GRADIENT_MAX {
+            return None;
+        }
+        let g = g as i64;
+        Some(if (coef < 0) == (c < 0) { -g } else { g })
+    };
+    // Corner o's pixel and its sample's offset from o (sub-pixel steps,
+    // -127..=128).
+    let (xo, yo) = (o.x >> SUBPIXEL_BITS, o.y >> SUBPIXEL_BITS);
+    let (fx, fy) = (
+        HALF_PIXEL - (o.x & (SUBPIXEL_STEPS - 1)),
+        HALF_PIXEL - (o.y & (SUBPIXEL_STEPS - 1)),
+    );
+    let mut planes = [AttributePlane::ZERO; N];
+    for (k, plane) in planes.iter_mut().enumerate() {
+        let (vo, vp, vq) = (o_values[k], p_values[k], q_values[k]);
+        if vo.max(vp).max(vq) > MODULAR_VALUE_MAX {
+            return None;
+        }
+        let (dp, dq) = (vp as i32 - vo as i32, vq as i32 - vo as i32);
+        let dx = gradient(dq * py - dp * qy)?;
+        let dy = gradient(dp * qx - dq * px)?;
+        let correction = mul_i64_small(dx, fx) + mul_i64_small(dy, fy);
+        let at_pixel = (i64::from(vo) << ATTRIBUTE_FRAC_BITS)
+            + ((correction + (1 << (SUBPIXEL_BITS - 1))) >> SUBPIXEL_BITS);
+        // Moved to pixel (0, 0) modulo 2^32.
+        let at_origin = (at_pixel as u32)
+            .wrapping_sub((dx as u32).wrapping_mul(xo as u32))
+            .wrapping_sub((dy as u32).wrapping_mul(yo as u32));
+        *plane = AttributePlane {
+            at_origin: i64::from(at_origin),
+            dx,
+            dy,
+        };
+    }
+    Some(planes)
 }
 
 /// The planes of any polygon's `N` attributes from Newell's set-up
@@ -373,6 +464,101 @@ mod tests {
         check(tri, 4096, 16, &[(0, 0), (100, 0), (4095, 0)]);
     }
 
+    /// Checks [`modular_triangle_planes`] at every pixel whose sample lies
+    /// inside the triangle (or on its edges): the value modulo `2^32`
+    /// within `1/2 + e·(1 + |x - x_o| + |y - y_o|)` of the exact plane,
+    /// `e = |g|·2^-28 + 1` for each gradient `g`, and that below `2^14`.
+    /// Returns whether the set-up took the triangle.
+    fn check_modular(corners: [(ScreenVertex, [u32; 1]); 3]) -> bool {
+        let [o, p, q] = corners;
+        let Some([plane]) = modular_triangle_planes(o, p, q) else {
+            return false;
+        };
+        let e = |g: i64| i128::from(g.unsigned_abs() >> 28) + 2;
+        let (ex, ey) = (e(plane.dx), e(plane.dy));
+        let (xo, yo) = (o.0.x >> SUBPIXEL_BITS, o.0.y >> SUBPIXEL_BITS);
+        let xs: Vec<i32> = corners.iter().map(|c| c.0.x >> SUBPIXEL_BITS).collect();
+        let ys: Vec<i32> = corners.iter().map(|c| c.0.y >> SUBPIXEL_BITS).collect();
+        let side = |a: ScreenVertex, b: ScreenVertex, x: i32, y: i32| {
+            i64::from(b.x - a.x) * i64::from(y - a.y) - i64::from(b.y - a.y) * i64::from(x - a.x)
+        };
+        let (lo_x, hi_x) = (*xs.iter().min().unwrap(), *xs.iter().max().unwrap());
+        let (lo_y, hi_y) = (*ys.iter().min().unwrap(), *ys.iter().max().unwrap());
+        for y in lo_y..=hi_y {
+            for x in lo_x..=hi_x {
+                let (sx, sy) = (
+                    x * SUBPIXEL_STEPS + HALF_PIXEL,
+                    y * SUBPIXEL_STEPS + HALF_PIXEL,
+                );
+                let sides = [
+                    side(o.0, p.0, sx, sy),
+                    side(p.0, q.0, sx, sy),
+                    side(q.0, o.0, sx, sy),
+                ];
+                if !(sides.iter().all(|&s| s >= 0) || sides.iter().all(|&s| s <= 0)) {
+                    continue;
+                }
+                let got = (plane.at_origin as u32)
+                    .wrapping_add((plane.dx as u32).wrapping_mul(x as u32))
+                    .wrapping_add((plane.dy as u32).wrapping_mul(y as u32));
+                let (num, den) = exact(&corners, sx, sy);
+                let (num, den) = if den < 0 { (-num, -den) } else { (num, den) };
+                // The value modulo 2^32 nearest the exact one.
+                let floor = num.div_euclid(den);
+                let got = i128::from(got);
+                let got = got - (got - floor + (1 << 31)).div_euclid(1 << 32) * (1 << 32);
+                let error2 = (2 * got * den - 2 * num).abs();
+                let steps = i128::from((x - xo).abs() + (y - yo).abs());
+                let bound2 = (1 + 2 * ex.max(ey) * (1 + steps)) * den.abs();
+                assert!(
+                    error2 <= bound2,
+                    "{corners:?} at ({x}, {y}): {got} for {num}/{den}"
+                );
+                assert!(error2 < (1 << 15) * den.abs());
+            }
+        }
+        true
+    }
+
+    /// Triangles at the modular set-up's limits (corners just under 64 px
+    /// from `o`, values 0 and `2^16`, the largest gradients it takes):
+    /// taken, and within the bound; beyond them, refused.
+    #[test]
+    fn modular_set_up_extremes() {
+        let span = MODULAR_SPAN - 1;
+        let top = MODULAR_VALUE_MAX;
+        let mut taken = 0;
+        for (ox, oy) in [(0, 0), (-span / 2, 4000 * SUBPIXEL_STEPS), (12345, 678)] {
+            for values in [[0, top, 0], [top, 0, top], [top; 3], [0, 0, top]] {
+                for (p, q) in [
+                    ((span, span / 3), (span / 5, span)),
+                    ((span, 0), (0, span)),
+                    ((-span, span), (span, span)),
+                    // A sliver: gradients near the limit, or beyond it.
+                    ((span, 1), (0, 2)),
+                    ((span, 1), (0, 300)),
+                ] {
+                    let tri = [
+                        (v(ox, oy), [values[0]]),
+                        (v(ox + p.0, oy + p.1), [values[1]]),
+                        (v(ox + q.0, oy + q.1), [values[2]]),
+                    ];
+                    taken += usize::from(check_modular(tri));
+                }
+            }
+        }
+        assert!(taken >= 40, "{taken}");
+        let tri = |d: i32, value: u32| [(v(0, 0), [0]), (v(d, 0), [value]), (v(0, d), [0])];
+        assert!(check_modular(tri(span, top)));
+        let [o, p, q] = tri(span + 1, top);
+        assert_eq!(modular_triangle_planes(o, p, q), None);
+        let [o, p, q] = tri(span, top + 1);
+        assert_eq!(modular_triangle_planes(o, p, q), None);
+        // Steep: the whole range across one sub-pixel step.
+        let [o, p, q] = [(v(0, 0), [0]), (v(span, 0), [0]), (v(0, 1), [top])];
+        assert_eq!(modular_triangle_planes(o, p, q), None);
+    }
+
     proptest! {
         /// Random triangles anywhere in the guard band, any values: every
         /// value of a 64x64 frame's sampled pixels within its bound.
@@ -396,6 +582,25 @@ mod tests {
             ];
             let pixels: Vec<(u16, u16)> = (0..64).step_by(7).flat_map(|x| (0..64).step_by(9).map(move |y| (x, y))).collect();
             check(tri, 64, 64, &pixels);
+        }
+
+        /// Random small triangles anywhere in the guard band, any values
+        /// the modular set-up takes: every pixel inside within its bound.
+        #[test]
+        fn modular_values_are_within_the_bound(
+            o in (-G..G - MODULAR_SPAN, -G..G - MODULAR_SPAN),
+            d in prop::array::uniform4(-MODULAR_SPAN + 1..MODULAR_SPAN),
+            scale in 0u32..5,
+            values in prop::array::uniform3(0..=MODULAR_VALUE_MAX),
+        ) {
+            // Sizes from 1/16 of the span to all of it.
+            let d = d.map(|c| c >> (scale * 2));
+            let tri = [
+                (v(o.0, o.1), [values[0]]),
+                (v(o.0 + d[0], o.1 + d[1]), [values[1]]),
+                (v(o.0 + d[2], o.1 + d[3]), [values[2]]),
+            ];
+            check_modular(tri);
         }
     }
 }

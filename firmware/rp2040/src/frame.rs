@@ -73,12 +73,12 @@ unsafe impl bytemuck::Zeroable for WirePixel {}
 unsafe impl bytemuck::Pod for WirePixel {}
 
 impl zline::paint::PaintColor for WirePixel {
-    const COARSE: bool = true;
+    const MAX: [u32; 3] = <Rgb565 as zline::paint::PaintColor>::MAX;
 
     #[inline(always)]
-    fn from_channels(rgb: [u32; 3], threshold: Option<u32>) -> Self {
-        WirePixel(wire(<Rgb565 as zline::paint::PaintColor>::from_channels(
-            rgb, threshold,
+    fn from_levels(levels: [u32; 3]) -> Self {
+        WirePixel(wire(<Rgb565 as zline::paint::PaintColor>::from_levels(
+            levels,
         )))
     }
 }

@@ -20,9 +20,9 @@
 //! pixels whose face id matches, each channel's error in 8-bit steps
 //! against the reference's vertex colours (Lambert in `f64` from the
 //! mesh's normals turned by the view) interpolated as the reference
-//! defines it ([`ReferenceFrame::interpolated`]): of the interpolated
-//! value before quantisation (`8.8`), and of the 8-bit colour it rounds
-//! to, which is what a display gets before dithering. It exits non-zero
+//! defines it ([`ReferenceFrame::interpolated`]): of the 8-bit colour the
+//! core paints without dither, which is what a display gets before
+//! dithering. It exits non-zero
 //! unless every frame has no hard mismatch, its 8-bit error at most 1
 //! step on 99.9 % of its matched pixels and at most 2 steps on every pixel
 //! more than 1/16 px from its face's boundary (the tolerance of face ids
@@ -183,13 +183,18 @@ where
     )
 }
 
-/// A painted pixel's channels as the core interpolated them (8.8, before
-/// any quantisation).
+/// A painted pixel's channels (8.8): a bilinear texel as the core blended
+/// it, before any quantisation; a Gouraud pixel's 8-bit level, as the
+/// core rounds it without dither.
 #[derive(Debug, Clone, Copy, Default)]
 struct Channels([u32; 3]);
 
 impl PaintColor for Channels {
+    const MAX: [u32; 3] = [255; 3];
     const COARSE: bool = false;
+    fn from_levels(levels: [u32; 3]) -> Self {
+        Self(levels.map(|c| c << 8))
+    }
     fn from_channels(rgb: [u32; 3], _: Option<u32>) -> Self {
         Self(rgb.map(|c| c.min(CHANNEL_MAX)))
     }
@@ -200,9 +205,6 @@ impl PaintColor for Channels {
 #[derive(Default)]
 struct ColorErrors {
     matched: u64,
-    /// Largest and summed error of the interpolated values (8.8).
-    max_value: f64,
-    sum_value: f64,
     /// Largest and summed error of the 8-bit colours.
     max_8bit: f64,
     sum_8bit: f64,
@@ -217,8 +219,6 @@ struct ColorErrors {
 impl ColorErrors {
     fn add(&mut self, other: &Self) {
         self.matched += other.matched;
-        self.max_value = self.max_value.max(other.max_value);
-        self.sum_value += other.sum_value;
         self.max_8bit = self.max_8bit.max(other.max_8bit);
         self.sum_8bit += other.sum_8bit;
         self.over_one += other.over_one;
@@ -322,17 +322,13 @@ fn gouraud_frame(
         let Some(exact) = reference.interpolated(id, k % width, k / width) else {
             continue;
         };
-        let (mut worst_value, mut worst_8bit) = (0.0f64, 0.0f64);
+        let mut worst_8bit = 0.0f64;
         for c in 0..3 {
-            let v = f64::from(value.0[c]) / 256.0;
-            let eight_bit = ((value.0[c] + 128) >> 8) as f64;
+            let eight_bit = f64::from(value.0[c] >> 8);
             let exact = exact[c].clamp(0.0, 255.0);
-            worst_value = worst_value.max((v - exact).abs());
             worst_8bit = worst_8bit.max((eight_bit - exact).abs());
         }
         errors.matched += 1;
-        errors.max_value = errors.max_value.max(worst_value);
-        errors.sum_value += worst_value;
         errors.max_8bit = errors.max_8bit.max(worst_8bit);
         errors.sum_8bit += worst_8bit;
         errors.over_one += u64::from(worst_8bit > 1.0);
@@ -346,13 +342,11 @@ fn gouraud_frame(
 fn gouraud_row(name: &str, view: (f32, f32), c: &Comparison, e: &ColorErrors) {
     let mean = |sum: f64| sum / e.matched.max(1) as f64;
     println!(
-        "| {name} | {:.0}/{:.0} | {} | {} | {:.3} | {:.4} | {:.3} | {:.3} | {:.4} | {:.4} % |",
+        "| {name} | {:.0}/{:.0} | {} | {} | {:.3} | {:.3} | {:.4} | {:.4} % |",
         view.0,
         view.1,
         c.hard,
         e.matched,
-        e.max_value,
-        mean(e.sum_value),
         e.max_8bit,
         e.max_8bit_inside,
         mean(e.sum_8bit),
@@ -369,9 +363,9 @@ fn gouraud(o: &Options) -> Result<bool, String> {
     );
     println!();
     println!(
-        "| mesh | yaw/pitch | hard mismatches | matched pixels | max (8.8 value) | mean (8.8 value) | max (8-bit) | max (8-bit) beyond 1/16 px of an edge | mean (8-bit) | within 1 step (8-bit) |"
+        "| mesh | yaw/pitch | hard mismatches | matched pixels | max (8-bit) | max (8-bit) beyond 1/16 px of an edge | mean (8-bit) | within 1 step (8-bit) |"
     );
-    println!("|---|---|---|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|");
     let (mut ok, mut hard) = (true, 0);
     let mut all = ColorErrors::default();
     for path in obj_files(&o.dir)? {
