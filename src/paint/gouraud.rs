@@ -140,17 +140,17 @@ impl<C: PaintColor> PaintMode for Gouraud<C> {
     }
 
     #[inline]
-    fn paint_run(
+    fn paint_run<I: Iterator<Item = (ScreenVertex, Rgb8p8)> + Clone>(
         &self,
         offsets: &[u32; 4],
         planes: &GouraudPlanes,
-        corners: impl Iterator<Item = (ScreenVertex, Rgb8p8)> + Clone,
+        corners: impl Fn() -> I,
         x0: u16,
         y: u16,
         out: &mut [C],
     ) {
         if !planes.wraps {
-            return self.paint_clamped(offsets, planes, corners, x0, y, out);
+            return self.paint_clamped(offsets, planes, corners(), x0, y, out);
         }
         let start = |p: &AttributePlane| {
             (p.at_origin as u32)

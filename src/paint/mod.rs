@@ -76,13 +76,13 @@ pub trait PaintMode {
 
     /// Paints `out`, the pixels from column `x0` on of row `y` (whose
     /// shared values are `row`), all won by the polygon with these
-    /// `planes` and `corners` (from which a steep plane's exact values are
-    /// taken; the iterator does no work until it is used).
-    fn paint_run(
+    /// `planes` and the corners `corners()` gives (from which a steep
+    /// plane's exact values are taken; most runs never ask).
+    fn paint_run<I: Iterator<Item = (ScreenVertex, Self::Vertex)> + Clone>(
         &self,
         row: &Self::Row,
         planes: &Self::Planes,
-        corners: impl Iterator<Item = (ScreenVertex, Self::Vertex)> + Clone,
+        corners: impl Fn() -> I,
         x0: u16,
         y: u16,
         out: &mut [Self::Color],
@@ -116,18 +116,6 @@ impl<M: PaintMode> Painter<'_, M> {
             Some((*tables.vertices.get(id)?, *vertices.get(id)?))
         })
     }
-
-    /// [`Self::corners`], looked up on the first `next` (most runs never
-    /// ask).
-    #[inline]
-    fn lazy_corners<'t>(
-        vertices: &'t [M::Vertex],
-        tables: &'t Prepared<'t, u16>,
-        position: usize,
-    ) -> impl Iterator<Item = (ScreenVertex, M::Vertex)> + Clone + 't {
-        core::iter::once(position)
-            .flat_map(move |position| Self::corners(vertices, tables, position))
-    }
 }
 
 impl<M: PaintMode> RowPainter for Painter<'_, M> {
@@ -157,8 +145,8 @@ impl<M: PaintMode> RowPainter for Painter<'_, M> {
             let run = &mut out[x..end];
             match self.slots.get(usize::from(slot)) {
                 Some(entry) if slot != NO_SLOT => {
-                    let corners =
-                        Self::lazy_corners(self.vertices, tables, entry.position as usize);
+                    let position = entry.position as usize;
+                    let corners = || Self::corners(self.vertices, tables, position);
                     self.mode
                         .paint_run(&shared, &entry.planes, corners, x as u16, row, run);
                 }

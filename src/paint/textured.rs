@@ -283,17 +283,17 @@ impl<C: PaintColor> PaintMode for Textured<'_, C> {
 
     fn row(&self, _y: u16) {}
 
-    fn paint_run(
+    fn paint_run<I: Iterator<Item = (ScreenVertex, TexCoord)> + Clone>(
         &self,
         _row: &(),
         planes: &TexturedPlanes,
-        corners: impl Iterator<Item = (ScreenVertex, TexCoord)> + Clone,
+        corners: impl Fn() -> I,
         x0: u16,
         y: u16,
         out: &mut [C],
     ) {
         let threshold = |x: u16| self.dither.then(|| bayer_threshold(x, y));
-        self.coordinates(planes, corners, (x0, y), out.len(), |k, t| {
+        self.coordinates(planes, corners(), (x0, y), out.len(), |k, t| {
             if let Some(pixel) = out.get_mut(k) {
                 *pixel = self.color(planes, t, threshold(x0 + k as u16));
             }
