@@ -197,13 +197,7 @@ fn generate() -> String {
 /// `GOURAUD_CAPS`, the painted renderer's capacities measured on the host.
 fn gouraud_scenes(out: &mut String, all: bool) {
     let list: &[(&str, f32, f32)] = if all { &GOURAUD_SCENES } else { &[] };
-    painted_scenes(
-        out,
-        ("GOURAUD", "SMOOTH", "smooth"),
-        list,
-        Gouraud::new(),
-        |r, mesh, sphere, view, crc| frame::render_frame_gouraud(r, mesh, sphere, view, crc),
-    );
+    painted_scenes(out, ("GOURAUD", "SMOOTH", "smooth"), list, Gouraud::new());
 }
 
 /// The textured scenes (all of them, or none when one flat scene is
@@ -221,31 +215,21 @@ fn textured_scenes(out: &mut String, all: bool) {
         ("TEXTURED", "UV", "with texture coordinates"),
         list,
         Textured::new(texture),
-        |r, mesh, sphere, view, crc| frame::render_frame_textured(r, mesh, sphere, view, crc),
     );
 }
 
-/// The scenes `list` of one painted mode (`mode`, drawn by `render`):
+/// The scenes `list` of one painted mode (`mode`, drawn by
+/// `frame::render_frame_painted`):
 /// each shape read smooth (normals within a 60° crease, texture
 /// coordinates kept) as the static `SHAPE_SUFFIX`, the scenes as
 /// `KIND_SCENES` with the host's CRCs, and `KIND_CAPS`, the painted
 /// renderer's capacities: the scenes' largest needs, measured on the
 /// host.
-fn painted_scenes<M: PaintMode<Color = Rgb565>>(
+fn painted_scenes<M: PaintMode<Color = Rgb565, Source: frame::VertexSource>>(
     out: &mut String,
     (kind, suffix, what): (&str, &str, &str),
     list: &[(&str, f32, f32)],
     mode: M,
-    render: impl Fn(
-        &mut HostPaintedRenderer<M, Depth16>,
-        &QuantizedMesh<'_>,
-        (zline::Vec3, f32),
-        (f32, f32),
-        &mut Crc32Sink,
-    ) -> Result<
-        (zline::DrawStats, FrameStats),
-        zline::RenderError<core::convert::Infallible>,
-    >,
 ) {
     let mut needs = Needs::default();
     let mut scenes = String::new();
@@ -285,7 +269,8 @@ fn painted_scenes<M: PaintMode<Color = Rgb565>>(
         let mut crc = Crc32Sink::new();
         let sphere = zline::bounding_sphere(&mesh).expect("mesh size");
         let (_, stats) =
-            render(&mut painted, &mesh, sphere, (yaw, pitch), &mut crc).expect("host render");
+            frame::render_frame_painted(&mut painted, &mesh, sphere, (yaw, pitch), &mut crc)
+                .expect("host render");
         needs.add(&stats);
         let _ = writeln!(
             scenes,

@@ -355,10 +355,10 @@ fn measure_views(
         let (_, s) = match &mut host {
             Host::Flat(r) => frame::render_frame(r, &quantized, &shading, sphere, view, &mut crc),
             Host::Gouraud(r) => {
-                frame::render_frame_gouraud(r, &quantized, &shading, sphere, view, &mut crc)
+                frame::render_frame_painted(r, &quantized, &shading, sphere, view, &mut crc)
             }
             Host::Textured(r) => {
-                frame::render_frame_textured(r, &quantized, &shading, sphere, view, &mut crc)
+                frame::render_frame_painted(r, &quantized, &shading, sphere, view, &mut crc)
             }
         }
         .map_err(|e| format!("{origin}: view {step} does not render on the host: {e:?}"))?;

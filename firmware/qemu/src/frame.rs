@@ -8,6 +8,7 @@ use embedded_graphics_core::pixelcolor::Rgb565;
 use zline::Mesh;
 use zline::Shading;
 use zline::Vec3;
+use zline::VertexInfo;
 use zline::{Camera, Cull, DrawStats, VertexCache, draw_mesh, reference_model_around};
 use zline::{DepthFormat, FrameStats, RenderError, Renderer, RowSink};
 use zline::{ScanStorage, TableStorage};
@@ -85,11 +86,33 @@ where
     Ok((draw, stats))
 }
 
-/// [`render_frame`] with Gouraud shading: the same view and light, each
-/// vertex lit by its normal (the quantized mesh's, rotated in integers)
-/// and the colours interpolated over each polygon, dithered to `Rgb565`.
+/// What a painted frame gives each vertex, by its paint mode's source:
+/// Gouraud's colour (each vertex lit by `shading` and its normal, the
+/// quantized mesh's, rotated in integers) or texture mapping's
+/// coordinates (the quantized mesh's, with no floating point).
+pub trait VertexSource {
+    /// The source of `vertex`.
+    fn of(shading: &Shading, vertex: &VertexInfo<'_>) -> Self;
+}
+
+impl VertexSource for zline::paint::Rgb8p8 {
+    fn of(shading: &Shading, vertex: &VertexInfo<'_>) -> Self {
+        shading.vertex_color(vertex)
+    }
+}
+
+impl VertexSource for zline::paint::TexCoord {
+    fn of(_: &Shading, vertex: &VertexInfo<'_>) -> Self {
+        vertex.tex_coord()
+    }
+}
+
+/// [`render_frame`] painted by the renderer's mode (`zline::paint`), each
+/// vertex's [`VertexSource`] interpolated over each polygon: Gouraud
+/// (the same view and light, colours dithered to `Rgb565`) or texture
+/// mapping (perspective-correct, nearest texels).
 #[allow(dead_code)] // Each side uses its own subset of this file.
-pub fn render_frame_gouraud<T, S, C, A, K, M>(
+pub fn render_frame_painted<T, S, C, A, K, M>(
     renderer: &mut zline::paint::PaintedRenderer<T, S, C, A>,
     mesh: &M,
     (centre, radius): (Vec3, f32),
@@ -100,7 +123,8 @@ where
     T: TableStorage<Color = u16>,
     S: ScanStorage<Color = u16>,
     C: zline::CacheStorage,
-    A: zline::paint::PaintStorage<Mode = zline::paint::Gouraud<Rgb565>>,
+    A: zline::paint::PaintStorage,
+    A::Mode: zline::paint::PaintMode<Color = Rgb565, Source: VertexSource>,
     K: RowSink<Rgb565, <S::Depth as DepthFormat>::Value>,
     M: Mesh,
 {
@@ -109,35 +133,8 @@ where
     let camera = Camera::reference(SIZE, SIZE);
     let shading = Shading::lambert();
     let draw = renderer.draw_mesh(mesh, &model, &camera, Cull::Back, |v| {
-        shading.vertex_color(v)
+        VertexSource::of(&shading, v)
     })?;
-    let frame = renderer.render(sink)?;
-    Ok((draw, frame))
-}
-
-/// [`render_frame`] texture-mapped: the same view, each vertex's
-/// texture coordinates (the quantized mesh's, with no floating point)
-/// interpolated perspective-correctly, nearest texels.
-#[allow(dead_code)] // Each side uses its own subset of this file.
-pub fn render_frame_textured<'t, T, S, C, A, K, M>(
-    renderer: &mut zline::paint::PaintedRenderer<T, S, C, A>,
-    mesh: &M,
-    (centre, radius): (Vec3, f32),
-    (yaw, pitch): (f32, f32),
-    sink: &mut K,
-) -> Result<(DrawStats, FrameStats), RenderError<K::Error>>
-where
-    T: TableStorage<Color = u16>,
-    S: ScanStorage<Color = u16>,
-    C: zline::CacheStorage,
-    A: zline::paint::PaintStorage<Mode = zline::paint::Textured<'t, Rgb565>>,
-    K: RowSink<Rgb565, <S::Depth as DepthFormat>::Value>,
-    M: Mesh,
-{
-    renderer.clear();
-    let model = reference_model_around(centre, radius, yaw, pitch);
-    let camera = Camera::reference(SIZE, SIZE);
-    let draw = renderer.draw_mesh(mesh, &model, &camera, Cull::Back, |v| v.tex_coord())?;
     let frame = renderer.render(sink)?;
     Ok((draw, frame))
 }

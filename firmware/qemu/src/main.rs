@@ -243,8 +243,7 @@ fn run<S: ScanStorage<Color = Rgb565>>(
     })
 }
 
-/// A painted renderer's frame of a scene (`frame::render_frame_gouraud`
-/// or `frame::render_frame_textured`).
+/// A painted renderer's frame of a scene (`frame::render_frame_painted`).
 trait PaintedFrame {
     fn frame<K: zline::RowSink<Rgb565, u16>>(
         &mut self,
@@ -263,7 +262,7 @@ impl PaintedFrame for Gouraud16 {
         view: (f32, f32),
         sink: &mut K,
     ) -> Result<(zline::DrawStats, FrameStats), zline::RenderError<K::Error>> {
-        frame::render_frame_gouraud(self, mesh, sphere, view, sink)
+        frame::render_frame_painted(self, mesh, sphere, view, sink)
     }
 }
 
@@ -275,7 +274,7 @@ impl PaintedFrame for Textured16 {
         view: (f32, f32),
         sink: &mut K,
     ) -> Result<(zline::DrawStats, FrameStats), zline::RenderError<K::Error>> {
-        frame::render_frame_textured(self, mesh, sphere, view, sink)
+        frame::render_frame_painted(self, mesh, sphere, view, sink)
     }
 }
 

@@ -8,6 +8,7 @@ use embedded_graphics_core::prelude::IntoStorage;
 use zline::Mesh;
 use zline::Shading;
 use zline::Vec3;
+use zline::VertexInfo;
 use zline::{CacheStorage, Camera, Cull, DrawStats, reference_model_around};
 use zline::{DepthFormat, FrameStats, RenderError, Renderer, RowSink};
 use zline::{ScanStorage, TableStorage};
@@ -83,39 +84,35 @@ impl zline::paint::PaintColor for WirePixel {
     }
 }
 
-/// [`render_frame`] texture-mapped: each vertex's texture coordinates
-/// (the quantized mesh's, with no floating point) interpolated
-/// perspective-correctly, nearest texels (`shading` is not used).
-#[allow(dead_code)] // Each build uses its own subset of this file.
-pub fn render_frame_textured<'t, T, S, C, A, K, M>(
-    renderer: &mut zline::paint::PaintedRenderer<T, S, C, A>,
-    mesh: &M,
-    _shading: &Shading,
-    (centre, radius): (Vec3, f32),
-    (yaw, pitch): (f32, f32),
-    sink: &mut K,
-) -> Result<(DrawStats, FrameStats), RenderError<K::Error>>
-where
-    T: TableStorage<Color = u16>,
-    S: ScanStorage<Color = u16>,
-    C: CacheStorage,
-    A: zline::paint::PaintStorage<Mode = zline::paint::Textured<'t, WirePixel>>,
-    K: RowSink<WirePixel, <S::Depth as DepthFormat>::Value>,
-    M: Mesh,
-{
-    renderer.clear();
-    let model = reference_model_around(centre, radius, yaw, pitch);
-    let camera = Camera::reference(renderer.width(), renderer.height());
-    let draw = renderer.draw_mesh(mesh, &model, &camera, Cull::Back, |v| v.tex_coord())?;
-    let frame = renderer.render(sink)?;
-    Ok((draw, frame))
+/// What a painted frame gives each vertex, by its paint mode's source:
+/// Gouraud's colour (each vertex lit by `shading` and its normal, the
+/// quantized mesh's, rotated and lit in integers) or texture mapping's
+/// coordinates (the quantized mesh's, with no floating point; `shading`
+/// is not used).
+#[allow(dead_code)] // The flat build uses the rest of this file only.
+pub trait VertexSource {
+    /// The source of `vertex`.
+    fn of(shading: &Shading, vertex: &VertexInfo<'_>) -> Self;
 }
 
-/// [`render_frame`] with Gouraud shading: each vertex lit by its normal
-/// (the quantized mesh's, rotated and lit in integers), the colours
-/// interpolated over each polygon and dithered to Rgb565.
+impl VertexSource for zline::paint::Rgb8p8 {
+    fn of(shading: &Shading, vertex: &VertexInfo<'_>) -> Self {
+        shading.vertex_color(vertex)
+    }
+}
+
+impl VertexSource for zline::paint::TexCoord {
+    fn of(_: &Shading, vertex: &VertexInfo<'_>) -> Self {
+        vertex.tex_coord()
+    }
+}
+
+/// [`render_frame`] painted by the renderer's mode (`zline::paint`), each
+/// vertex's [`VertexSource`] interpolated over each polygon: Gouraud (the
+/// colours dithered to Rgb565) or texture mapping (perspective-correct,
+/// nearest texels).
 #[allow(dead_code)] // The flat build uses the rest of this file only.
-pub fn render_frame_gouraud<T, S, C, A, K, M>(
+pub fn render_frame_painted<T, S, C, A, K, M>(
     renderer: &mut zline::paint::PaintedRenderer<T, S, C, A>,
     mesh: &M,
     shading: &Shading,
@@ -127,7 +124,8 @@ where
     T: TableStorage<Color = u16>,
     S: ScanStorage<Color = u16>,
     C: CacheStorage,
-    A: zline::paint::PaintStorage<Mode = zline::paint::Gouraud<WirePixel>>,
+    A: zline::paint::PaintStorage,
+    A::Mode: zline::paint::PaintMode<Color = WirePixel, Source: VertexSource>,
     K: RowSink<WirePixel, <S::Depth as DepthFormat>::Value>,
     M: Mesh,
 {
@@ -135,7 +133,7 @@ where
     let model = reference_model_around(centre, radius, yaw, pitch);
     let camera = Camera::reference(renderer.width(), renderer.height());
     let draw = renderer.draw_mesh(mesh, &model, &camera, Cull::Back, |v| {
-        shading.vertex_color(v)
+        VertexSource::of(shading, v)
     })?;
     let frame = renderer.render(sink)?;
     Ok((draw, frame))

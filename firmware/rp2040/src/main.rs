@@ -257,10 +257,8 @@ fn draw_frame(
 ) -> Result<FrameStats, FrameError> {
     #[cfg(not(any(feature = "gouraud", feature = "textured")))]
     let render = frame::render_frame;
-    #[cfg(feature = "gouraud")]
-    let render = frame::render_frame_gouraud;
-    #[cfg(feature = "textured")]
-    let render = frame::render_frame_textured;
+    #[cfg(any(feature = "gouraud", feature = "textured"))]
+    let render = frame::render_frame_painted;
     render(
         renderer,
         &MESH,
