@@ -243,7 +243,8 @@ fn run<S: ScanStorage<Color = Rgb565>>(
     })
 }
 
-/// A painted renderer's frame of a scene (`frame::render_frame_painted`).
+/// A painted renderer's frame of a scene (`frame::render_frame_painted`),
+/// for every z16 painted renderer whose mode `frame` can draw.
 trait PaintedFrame {
     fn frame<K: zline::RowSink<Rgb565, u16>>(
         &mut self,
@@ -254,19 +255,14 @@ trait PaintedFrame {
     ) -> Result<(zline::DrawStats, FrameStats), zline::RenderError<K::Error>>;
 }
 
-impl PaintedFrame for Gouraud16 {
-    fn frame<K: zline::RowSink<Rgb565, u16>>(
-        &mut self,
-        mesh: &QuantizedMesh<'static>,
-        sphere: (zline::Vec3, f32),
-        view: (f32, f32),
-        sink: &mut K,
-    ) -> Result<(zline::DrawStats, FrameStats), zline::RenderError<K::Error>> {
-        frame::render_frame_painted(self, mesh, sphere, view, sink)
-    }
-}
-
-impl PaintedFrame for Textured16 {
+impl<T, S, C, A> PaintedFrame for zline::paint::PaintedRenderer<T, S, C, A>
+where
+    T: zline::TableStorage<Color = u16>,
+    S: ScanStorage<Color = u16, Depth = Depth16>,
+    C: zline::CacheStorage,
+    A: zline::paint::PaintStorage,
+    A::Mode: zline::paint::PaintMode<Color = Rgb565, Source: frame::VertexSource>,
+{
     fn frame<K: zline::RowSink<Rgb565, u16>>(
         &mut self,
         mesh: &QuantizedMesh<'static>,
