@@ -44,8 +44,8 @@ use zline::Mesh;
 use zline::Shading;
 use zline::host::HostPaintedRenderer;
 use zline::host::{HostMesh, QuantizedHostMesh};
-use zline::paint::{CHANNEL_MAX, Filter, Gouraud, PaintColor, Texture, Textured};
-use zline::{Camera, Cull, reference_model};
+use zline::paint::{CHANNEL_MAX, Filter, Gouraud, PaintColor, PaintMode, Textured};
+use zline::{Camera, Cull, VertexInfo, reference_model};
 use zline::{Depth16, Depth24, DepthFormat};
 use zline::{FnSink, Lambert};
 use zline_lab::cli::parse_size;
@@ -293,26 +293,8 @@ fn gouraud_frame(
         reference_view,
     )?;
     let comparison = compare(&reference, &faces);
-    let camera = Camera::reference(o.width, o.height);
-    let mut painted = HostPaintedRenderer::<Gouraud<Channels>, Depth24>::for_mesh(
-        mesh,
-        o.width,
-        o.height,
-        Gouraud::new(),
-        Channels::default(),
-    )
-    .map_err(|e| e.to_string())?;
     let shading = Shading::Lambert(lambert);
-    painted
-        .draw_mesh(mesh, &model, &camera, o.cull, |v| shading.vertex_color(v))
-        .map_err(|e| e.to_string())?;
-    let mut values = Vec::with_capacity(usize::from(o.width) * usize::from(o.height));
-    painted
-        .render(&mut FnSink(|_: u16, row: &[Channels], _: &[u32]| {
-            values.extend_from_slice(row);
-            Ok::<(), ()>(())
-        }))
-        .map_err(|e| format!("{e:?}"))?;
+    let values = painted_values(mesh, Gouraud::new(), &model, o, |v| shading.vertex_color(v))?;
     let mut errors = ColorErrors::default();
     let width = usize::from(o.width);
     for (k, (&id, value)) in faces.iter().zip(&values).enumerate() {
@@ -467,24 +449,26 @@ fn texel_rgb(texture: &Rgb565Texture, i: i64, j: i64) -> [f64; 3] {
     ]
 }
 
-/// A textured frame's pixels (8.8 channels) drawn by the core.
-fn textured_values(
+/// A painted frame's pixels (8.8 channels) drawn by the core in `mode`
+/// (z24), each vertex's source from `shade`.
+fn painted_values<M: PaintMode<Color = Channels>>(
     mesh: &HostMesh,
-    texture: Texture<'_>,
+    mode: M,
     model: &Mat4,
     o: &Options,
+    shade: impl Fn(&VertexInfo<'_>) -> M::Source,
 ) -> Result<Vec<Channels>, String> {
     let camera = Camera::reference(o.width, o.height);
-    let mut painted = HostPaintedRenderer::<Textured<'_, Channels>, Depth24>::for_mesh(
+    let mut painted = HostPaintedRenderer::<M, Depth24>::for_mesh(
         mesh,
         o.width,
         o.height,
-        Textured::new(texture),
+        mode,
         Channels::default(),
     )
     .map_err(|e| e.to_string())?;
     painted
-        .draw_mesh(mesh, model, &camera, o.cull, |v| v.tex_coord())
+        .draw_mesh(mesh, model, &camera, o.cull, shade)
         .map_err(|e| e.to_string())?;
     let mut values = Vec::with_capacity(usize::from(o.width) * usize::from(o.height));
     painted
@@ -524,8 +508,10 @@ fn textured_frame(
     )?;
     let comparison = compare(&reference, &faces);
     let texture = png.texture()?;
-    let nearest = textured_values(mesh, texture, &model, o)?;
-    let bilinear = textured_values(mesh, texture.with_filter(Filter::Bilinear), &model, o)?;
+    let textured =
+        |texture| painted_values(mesh, Textured::new(texture), &model, o, |v| v.tex_coord());
+    let nearest = textured(texture)?;
+    let bilinear = textured(texture.with_filter(Filter::Bilinear))?;
     let (tw, th) = (f64::from(png.width), f64::from(png.height));
     let mut errors = TextureErrors::default();
     let width = usize::from(o.width);
