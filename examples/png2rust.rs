@@ -18,7 +18,7 @@
 use std::io::Write as _;
 use std::process::ExitCode;
 
-use zline_lab::cli::help_requested;
+use zline_lab::cli::{help_requested, run_tool};
 use zline_lab::textures::Rgb565Texture;
 
 fn run(args: &[String]) -> Result<(), String> {
@@ -64,11 +64,7 @@ fn main() -> ExitCode {
     if help_requested(&args, USAGE) {
         return ExitCode::SUCCESS;
     }
-    match run(&args) {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(message) => {
-            eprintln!("png2rust: {message}");
-            ExitCode::FAILURE
-        }
-    }
+    // No usage after an error: the message says what was wrong (a wrong
+    // number of arguments gets the usage line as its message).
+    run_tool("png2rust", "", move || run(&args))
 }
