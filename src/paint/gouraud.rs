@@ -94,7 +94,8 @@ impl<C: PaintColor> PaintMode for Gouraud<C> {
     type Vertex = Rgb8p8;
     type Planes = GouraudPlanes;
     type Color = C;
-    /// The offsets of pixels `x & 3 = 0..4` ([`offsets`]).
+    /// The offsets added before a level is taken, for pixels `x & 3 =
+    /// 0..4`: dither thresholds `(2b + 1)/32` of a level, or a half.
     type Row = [u32; 4];
     const VERTEX_FILLER: Rgb8p8 = Rgb8p8::BLACK;
     const PLANES_FILLER: GouraudPlanes = GouraudPlanes {
