@@ -309,7 +309,17 @@ impl ReferenceFrame {
     /// module's notes), whether or not the face covers it; `None` for
     /// culled or clipped-away faces and parts of no area.
     pub fn interpolated(&self, id: u32, i: usize, j: usize) -> Option<Values> {
-        self.interpolate(id, i, j, |part, k| part.values[k])
+        self.interpolate(id, i, j, false, |part, k| part.values[k])
+    }
+
+    /// [`Self::interpolated`] over the part's corners rounded to the
+    /// rasteriser's sub-pixel grid (1/256 px), as the core interpolates:
+    /// the values of the plane through the corners it is given. Near a
+    /// sliver's edge the two differ by more than the core's own error
+    /// (moving a corner by 1/512 px can move a thin triangle's values
+    /// by steps).
+    pub fn interpolated_on_grid(&self, id: u32, i: usize, j: usize) -> Option<Values> {
+        self.interpolate(id, i, j, true, |part, k| part.values[k])
     }
 
     /// The values of face `id` at pixel `(i, j)`'s sample interpolated
@@ -319,7 +329,7 @@ impl ReferenceFrame {
     /// point of the part's plane the pixel's ray meets. Values 0 and 1
     /// only (the third is not interpolated).
     pub fn interpolated_perspective(&self, id: u32, i: usize, j: usize) -> Option<[f64; 2]> {
-        let [u, v, q] = self.interpolate(id, i, j, |part, k| {
+        let [u, v, q] = self.interpolate(id, i, j, false, |part, k| {
             let w = part.distances[k];
             [part.values[k][0] / w, part.values[k][1] / w, 1.0 / w]
         })?;
@@ -327,12 +337,14 @@ impl ReferenceFrame {
     }
 
     /// The screen-affine interpolation of `corner(part, k)` over the part
-    /// of face `id` at pixel `(i, j)` (see [`Self::interpolated`]).
+    /// of face `id` at pixel `(i, j)` (see [`Self::interpolated`]), the
+    /// part's corners rounded to 1/256 px first when `on_grid`.
     fn interpolate(
         &self,
         id: u32,
         i: usize,
         j: usize,
+        on_grid: bool,
         corner: impl Fn(&Face, usize) -> Values,
     ) -> Option<Values> {
         let (x, y) = (i as f64 + 0.5, j as f64 + 0.5);
@@ -369,13 +381,23 @@ impl ReferenceFrame {
             (0..part.screen.len()).collect()
         };
         let n = corners.len();
-        let o = part.screen[corners[0]];
+        let grid = |p: [f64; 2]| {
+            if on_grid {
+                p.map(|c| (c * 256.0).round() / 256.0)
+            } else {
+                p
+            }
+        };
+        let o = grid(part.screen[corners[0]]);
         let mut out = [0.0; 3];
         for (k, out) in out.iter_mut().enumerate() {
             // Newell's normal of the corners (x, y, value).
             let (mut a, mut b, mut c) = (0.0, 0.0, 0.0);
             for m in 0..n {
-                let (p, q) = (part.screen[corners[m]], part.screen[corners[(m + 1) % n]]);
+                let (p, q) = (
+                    grid(part.screen[corners[m]]),
+                    grid(part.screen[corners[(m + 1) % n]]),
+                );
                 let (pv, qv) = (
                     corner(part, corners[m])[k],
                     corner(part, corners[(m + 1) % n])[k],
