@@ -56,6 +56,34 @@ fn rgb(r: u8, g: u8, b: u8) -> Rgb8p8 {
     Rgb8p8::from_rgb888(Rgb888::new(r, g, b))
 }
 
+/// A xorshift generator of values in `0..n`, from `seed`.
+fn xorshift(seed: u64) -> impl FnMut(i32) -> i32 {
+    let mut rng = seed;
+    move |n: i32| {
+        rng ^= rng << 13;
+        rng ^= rng >> 7;
+        rng ^= rng << 17;
+        (rng % n as u64) as i32
+    }
+}
+
+/// The barycentric weights of pixel `(i, j)`'s centre in the triangle
+/// `corners`.
+fn barycentric(corners: &[ScreenVertex], i: usize, j: usize) -> [f64; 3] {
+    let p = |k: usize| {
+        (
+            f64::from(corners[k].x) / 256.0,
+            f64::from(corners[k].y) / 256.0,
+        )
+    };
+    let (a, b, c) = (p(0), p(1), p(2));
+    let area = (b.0 - a.0) * (c.1 - a.1) - (b.1 - a.1) * (c.0 - a.0);
+    let (x, y) = (i as f64 + 0.5, j as f64 + 0.5);
+    let wb = ((x - a.0) * (c.1 - a.1) - (y - a.1) * (c.0 - a.0)) / area;
+    let wc = ((b.0 - a.0) * (y - a.1) - (b.1 - a.1) * (x - a.0)) / area;
+    [1.0 - wb - wc, wb, wc]
+}
+
 /// A triangle whose red channel is `16·x + 32·y` (pixels) at every
 /// point: at pixel (i, j), sampled at its centre, `16i + 32j + 24`. The
 /// top-left rule leaves out the hypotenuse's samples (i + j = 3).
@@ -87,13 +115,7 @@ fn a_triangle_paints_its_plane_exactly() {
 /// exact barycentric interpolation at the pixel's centre.
 #[test]
 fn channels_are_within_the_bound_of_the_exact_plane() {
-    let mut rng = 0x2545_f491_u64;
-    let mut next = |n: i32| {
-        rng ^= rng << 13;
-        rng ^= rng >> 7;
-        rng ^= rng << 17;
-        (rng % n as u64) as i32
-    };
+    let mut next = xorshift(0x2545_f491);
     for _ in 0..400 {
         let mut r = Painted::<Depth24>::new(W, H, Gouraud::new(), BACKGROUND).unwrap();
         let corners: Vec<ScreenVertex> = (0..3)
@@ -115,23 +137,12 @@ fn channels_are_within_the_bound_of_the_exact_plane() {
         let rows = frame::<Rgb888, u32>(|sink| {
             r.render(sink).unwrap();
         });
-        let p = |k: usize| {
-            (
-                f64::from(corners[k].x) / 256.0,
-                f64::from(corners[k].y) / 256.0,
-            )
-        };
-        let (a, b, c) = (p(0), p(1), p(2));
-        let area = (b.0 - a.0) * (c.1 - a.1) - (b.1 - a.1) * (c.0 - a.0);
         for (j, row) in rows.iter().enumerate() {
             for (i, &color) in row.iter().enumerate() {
                 if color == BACKGROUND {
                     continue;
                 }
-                let (x, y) = (i as f64 + 0.5, j as f64 + 0.5);
-                let wb = ((x - a.0) * (c.1 - a.1) - (y - a.1) * (c.0 - a.0)) / area;
-                let wc = ((b.0 - a.0) * (y - a.1) - (b.1 - a.1) * (x - a.0)) / area;
-                let wa = 1.0 - wb - wc;
+                let [wa, wb, wc] = barycentric(&corners, i, j);
                 let exact = |f: fn(&Rgb8p8) -> u16| {
                     let value = wa * f64::from(f(&values[0]))
                         + wb * f64::from(f(&values[1]))
@@ -216,13 +227,7 @@ fn rgb565_is_dithered_by_default() {
 fn rgb565_levels_are_the_exact_plane_quantised() {
     type Z = zline::painted_renderer_type!(Gouraud<Rgb565>, Depth16, CAPS);
     const BAYER: [[u32; 4]; 4] = [[0, 8, 2, 10], [12, 4, 14, 6], [3, 11, 1, 9], [15, 7, 13, 5]];
-    let mut rng = 0x9e37_79b9_u64;
-    let mut next = |n: i32| {
-        rng ^= rng << 13;
-        rng ^= rng >> 7;
-        rng ^= rng << 17;
-        (rng % n as u64) as i32
-    };
+    let mut next = xorshift(0x9e37_79b9);
     let background = Rgb565::new(1, 2, 3);
     let mut checked = 0;
     for case in 0..600 {
@@ -253,20 +258,9 @@ fn rgb565_levels_are_the_exact_plane_quantised() {
         let rows = frame::<Rgb565, u16>(|sink| {
             r.render(sink).unwrap();
         });
-        let p = |k: usize| {
-            (
-                f64::from(corners[k].x) / 256.0,
-                f64::from(corners[k].y) / 256.0,
-            )
-        };
-        let (a, b, c) = (p(0), p(1), p(2));
-        let area = (b.0 - a.0) * (c.1 - a.1) - (b.1 - a.1) * (c.0 - a.0);
         for (j, row) in rows.iter().enumerate() {
             for (i, &color) in row.iter().enumerate() {
-                let (x, y) = (i as f64 + 0.5, j as f64 + 0.5);
-                let wb = ((x - a.0) * (c.1 - a.1) - (y - a.1) * (c.0 - a.0)) / area;
-                let wc = ((b.0 - a.0) * (y - a.1) - (b.1 - a.1) * (x - a.0)) / area;
-                let wa = 1.0 - wb - wc;
+                let [wa, wb, wc] = barycentric(&corners, i, j);
                 if wa < 0.0 || wb < 0.0 || wc < 0.0 {
                     continue; // outside, or on an edge the fill rule may leave out
                 }
