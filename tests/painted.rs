@@ -525,3 +525,72 @@ fn quantized_vertex_normals_light_as_the_float_path() {
     );
     assert!(bare.with_vertex_normals(view.vertex_normals).is_ok());
 }
+
+/// Lends one buffer for every row. When `filled` it refills it with the
+/// background after each row, as a DMA-clearing sink would (the painter
+/// then leaves uncovered pixels alone); otherwise the buffer keeps the
+/// last row plus a pixel of junk.
+struct Lender {
+    buffer: Vec<Rgb888>,
+    filled: bool,
+    rows: Vec<Vec<Rgb888>>,
+}
+
+impl<Z> zline::RowSink<Rgb888, Z> for Lender {
+    type Error = ();
+
+    fn write_row(&mut self, _: u16, _: &[Rgb888], _: &[Z]) -> Result<(), ()> {
+        Err(())
+    }
+
+    fn lend_row(
+        &mut self,
+        _: u16,
+        width: usize,
+        background: Rgb888,
+    ) -> Result<Option<zline::LentRow<'_, Rgb888>>, ()> {
+        assert_eq!(background, BACKGROUND);
+        assert_eq!(width, usize::from(W));
+        Ok(Some(zline::LentRow {
+            colors: &mut self.buffer,
+            filled: self.filled,
+        }))
+    }
+
+    fn send_lent_row(&mut self, y: u16, _: &[Z]) -> Result<(), ()> {
+        self.rows.push(self.buffer[..usize::from(W)].to_vec());
+        if self.filled {
+            self.buffer.fill(BACKGROUND);
+        } else {
+            self.buffer[usize::from(y) % usize::from(W)] = Rgb888::new(0xBA, 0xD0, 0x0D);
+        }
+        Ok(())
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(100))]
+
+    /// A sink lending its own rows, black or holding an old row, gets the
+    /// rows a copying sink gets.
+    #[test]
+    fn lent_rows_equal_copied_rows(
+        scene in prop::collection::vec(prop_oneof![polygon(), small_triangle()], 1..8),
+        filled: bool,
+    ) {
+        let mut painted = Painted::<Depth16>::new(W, H, Gouraud::new(), BACKGROUND).unwrap();
+        for (k, polygon) in scene.iter().enumerate() {
+            let values: Vec<_> = (0..polygon.len())
+                .map(|c| Rgb8p8::from_rgb888(color_of(k * 7 + c)))
+                .collect();
+            painted.push_polygon_vertices(polygon, &values).unwrap();
+        }
+        let copied = frame::<Rgb888, u16>(|sink| {
+            painted.render(sink).unwrap();
+        });
+        let fill = if filled { BACKGROUND } else { Rgb888::new(0xDE, 0xAD, 0) };
+        let mut lender = Lender { buffer: vec![fill; usize::from(W) + 3], filled, rows: Vec::new() };
+        painted.render(&mut lender).unwrap();
+        prop_assert_eq!(lender.rows, copied);
+    }
+}

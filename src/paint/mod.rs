@@ -132,25 +132,36 @@ impl<M: PaintMode> RowPainter for Painter<'_, M> {
         }
     }
 
-    fn paint(&self, row: u16, slots: &[u16], tables: &Prepared<'_, u16>, out: &mut [M::Color]) {
+    fn paint(
+        &self,
+        row: u16,
+        slots: &[u16],
+        tables: &Prepared<'_, u16>,
+        out: &mut [M::Color],
+        filled: bool,
+    ) {
         let width = slots.len().min(out.len());
+        let (slots, out) = (&slots[..width], &mut out[..width]);
+        // The background first (unless the row holds it), in unrolled
+        // stores, so that uncovered runs need only be skipped.
+        if !filled {
+            fill(out, self.background);
+        }
         let shared = self.mode.row(row);
         let mut x = 0;
-        while x < width {
-            let slot = slots[x];
-            let mut end = x + 1;
-            while end < width && slots[end] == slot {
-                end += 1;
+        while let Some(&slot) = slots.get(x) {
+            let end = run_end(slots, x, slot);
+            if slot == NO_SLOT {
+                x = end;
+                continue;
             }
-            let run = &mut out[x..end];
-            match self.slots.get(usize::from(slot)) {
-                Some(entry) if slot != NO_SLOT => {
-                    let position = entry.position as usize;
-                    let corners = || Self::corners(self.vertices, tables, position);
-                    self.mode
-                        .paint_run(&shared, &entry.planes, corners, x as u16, row, run);
-                }
-                _ => run.fill(self.background),
+            if let (Some(entry), Some(run)) =
+                (self.slots.get(usize::from(slot)), out.get_mut(x..end))
+            {
+                let position = entry.position as usize;
+                let corners = || Self::corners(self.vertices, tables, position);
+                self.mode
+                    .paint_run(&shared, &entry.planes, corners, x as u16, row, run);
             }
             x = end;
         }
@@ -159,4 +170,47 @@ impl<M: PaintMode> RowPainter for Painter<'_, M> {
     fn background(&self) -> M::Color {
         self.background
     }
+}
+
+/// Sets every pixel of `out` to `color`, eight stores a loop step.
+#[inline(always)]
+fn fill<C: Copy>(out: &mut [C], color: C) {
+    let mut chunks = out.chunks_exact_mut(8);
+    for chunk in &mut chunks {
+        for pixel in chunk {
+            *pixel = color;
+        }
+    }
+    for pixel in chunks.into_remainder() {
+        *pixel = color;
+    }
+}
+
+/// One past the last pixel from `start` on whose slot is `slot`
+/// (`slots[start]` is), looking at four slots a loop step.
+#[inline(always)]
+fn run_end(slots: &[u16], start: usize, slot: u16) -> usize {
+    let mut end = start + 1;
+    while let Some(&[a, b, c, d]) = slots
+        .get(end..end + 4)
+        .and_then(|s| <&[u16; 4]>::try_from(s).ok())
+    {
+        if a != slot {
+            return end;
+        }
+        if b != slot {
+            return end + 1;
+        }
+        if c != slot {
+            return end + 2;
+        }
+        if d != slot {
+            return end + 3;
+        }
+        end += 4;
+    }
+    while slots.get(end) == Some(&slot) {
+        end += 1;
+    }
+    end
 }

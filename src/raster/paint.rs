@@ -43,9 +43,17 @@ pub trait RowPainter {
     fn enter(&mut self, slot: usize, position: usize, row: u16, tables: &Prepared<'_, u16>);
 
     /// Paints row `row`: `out[x]` from the polygon in slot `slots[x]`, or
-    /// the background where it is [`NO_SLOT`]. `slots` and `out` have the
+    /// the background where it is [`NO_SLOT`] (there `out` holds the
+    /// background already when `filled`). `slots` and `out` have the
     /// frame's width.
-    fn paint(&self, row: u16, slots: &[u16], tables: &Prepared<'_, u16>, out: &mut [Self::Color]);
+    fn paint(
+        &self,
+        row: u16,
+        slots: &[u16],
+        tables: &Prepared<'_, u16>,
+        out: &mut [Self::Color],
+        filled: bool,
+    );
 
     /// The colour of pixels no polygon covers.
     fn background(&self) -> Self::Color;
@@ -160,15 +168,15 @@ fn painted_rows<D: DepthFormat, P: RowPainter, K: RowSink<P::Color, D::Value>>(
             .lend_row(row, width, painter.background())
             .map_err(RenderError::Sink)?;
         match lent {
-            Some(LentRow { colors, .. }) => {
+            Some(LentRow { colors, filled }) => {
                 let colors = colors
                     .get_mut(..width)
                     .ok_or(RenderError::Table(Error::BadFrameSize))?;
-                painter.paint(row, slot_row, tables, colors);
+                painter.paint(row, slot_row, tables, colors, filled);
                 sink.send_lent_row(row, depth_row)
             }
             None => {
-                painter.paint(row, slot_row, tables, own_row);
+                painter.paint(row, slot_row, tables, own_row, false);
                 sink.write_row(row, own_row, depth_row)
             }
         }
