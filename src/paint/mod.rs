@@ -121,19 +121,15 @@ impl<M: PaintMode> Painter<'_, M> {
 impl<M: PaintMode> RowPainter for Painter<'_, M> {
     type Color = M::Color;
 
-    fn enter(&mut self, slot: usize, position: usize, _row: u16, tables: &Prepared<'_, u16>) {
-        let corners = Self::corners(self.vertices, tables, position);
-        let planes = self.mode.planes(corners, tables.width, tables.height);
+    fn enter(&mut self, slot: usize, position: usize, _row: u16, _tables: &Prepared<'_, u16>) {
         if let Some(entry) = self.slots.get_mut(slot) {
-            *entry = SlotPlanes {
-                position: position as u32,
-                planes,
-            };
+            // Its planes are set up when its first run is painted.
+            (entry.position, entry.ready) = (position as u32, false);
         }
     }
 
     fn paint(
-        &self,
+        &mut self,
         row: u16,
         slots: &[u16],
         tables: &Prepared<'_, u16>,
@@ -156,10 +152,14 @@ impl<M: PaintMode> RowPainter for Painter<'_, M> {
                 continue;
             }
             if let (Some(entry), Some(run)) =
-                (self.slots.get(usize::from(slot)), out.get_mut(x..end))
+                (self.slots.get_mut(usize::from(slot)), out.get_mut(x..end))
             {
                 let position = entry.position as usize;
                 let corners = || Self::corners(self.vertices, tables, position);
+                if !entry.ready {
+                    entry.planes = self.mode.planes(corners(), tables.width, tables.height);
+                    entry.ready = true;
+                }
                 self.mode
                     .paint_run(&shared, &entry.planes, corners, x as u16, row, run);
             }

@@ -9,8 +9,11 @@ use crate::paint::PaintMode;
 pub struct SlotPlanes<P> {
     /// The polygon's position in the prepared polygon table.
     pub(crate) position: u32,
-    /// Its planes.
+    /// Its planes, once `ready`.
     pub(crate) planes: P,
+    /// Whether `planes` are the polygon's: they are set up when its first
+    /// run is painted, so that a polygon no pixel shows costs none.
+    pub(crate) ready: bool,
 }
 
 impl<P: Copy> SlotPlanes<P> {
@@ -19,6 +22,7 @@ impl<P: Copy> SlotPlanes<P> {
         Self {
             position: 0,
             planes,
+            ready: false,
         }
     }
 }

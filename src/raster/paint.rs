@@ -31,15 +31,16 @@ use crate::sink::{LentRow, RowSink};
 /// pixel.
 pub const NO_SLOT: u16 = u16::MAX;
 
-/// Turns a painted scan's rows of slots into colours: sets up each
-/// polygon's planes when it enters a slot, and paints each row once its
-/// spans are written.
+/// Turns a painted scan's rows of slots into colours: learns which
+/// polygon enters each slot, and paints each row once its spans are
+/// written.
 pub trait RowPainter {
     /// The colour of the rows the sink receives.
     type Color: Copy;
 
     /// The polygon at `position` of the prepared tables entered APT slot
-    /// `slot` on row `row`: its planes for the rows it covers from there.
+    /// `slot` on row `row`: its pixels in the rows it covers from there
+    /// are painted from it.
     fn enter(&mut self, slot: usize, position: usize, row: u16, tables: &Prepared<'_, u16>);
 
     /// Paints row `row`: `out[x]` from the polygon in slot `slots[x]`, or
@@ -47,7 +48,7 @@ pub trait RowPainter {
     /// background already when `filled`). `slots` and `out` have the
     /// frame's width.
     fn paint(
-        &self,
+        &mut self,
         row: u16,
         slots: &[u16],
         tables: &Prepared<'_, u16>,
