@@ -8,7 +8,7 @@ use crate::view::{Cull, DEFAULT_PITCH_DEG, DEFAULT_YAW_DEG};
 pub const USAGE: &str = "\
 usage: zline-bench [--sizes WxH,...] [--cull none,back] [--rounds N] [--quick]
                    [--out FILE.csv] [--yaw DEG] [--pitch DEG] [--dump DIR]
-                   [--threads N]
+                   [--threads N] [--shading flat|gouraud|textured|all]
                    MESH.obj|MESH_DIR...
 
 Times zline (z24 and z16, rows in place and through a plain DrawTarget),
@@ -33,7 +33,14 @@ Build it with `cargo bench-peers` (profile peers: fat LTO, one codegen unit).
                  as PNG images
   --threads N    also time zline drawing in N bands on N threads, by the wall
                  clock (`zline z24 N threads`; its frame must equal
-                 zline z24's); 1 leaves it out [2]";
+                 zline z24's); 1 leaves it out [2]
+  --shading LIST which rows: flat (the rows above), gouraud (per-vertex
+                 Lambert interpolated: zline gouraud z24, embedded-3dgfx
+                 gouraud, euc gouraud; ratio over zline gouraud z24),
+                 textured (meshes with NAME_texture.png beside NAME.obj:
+                 zline textured z24, embedded-3dgfx textured, euc textured;
+                 ratio over zline textured z24), or all; the smooth rows
+                 read the mesh with HostMesh::from_obj_smooth [flat]";
 
 /// Most rounds `--rounds` accepts.
 pub const MAX_ROUNDS: usize = 100_000;
@@ -62,10 +69,61 @@ pub struct Options {
     pub dump: Option<PathBuf>,
     /// Threads (bands) for the banded zline renderer; 1 leaves it out.
     pub threads: usize,
+    /// Which rows: flat, Gouraud, textured.
+    pub shading: ShadingRows,
     /// Mesh files and directories as given.
     pub inputs: Vec<PathBuf>,
     /// `-h` or `--help` was given.
     pub help: bool,
+}
+
+/// Which kinds of rows `--shading` asks for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ShadingRows {
+    /// The flat Lambert rows (today's).
+    pub flat: bool,
+    /// The Gouraud rows.
+    pub gouraud: bool,
+    /// The textured rows (meshes with a texture only).
+    pub textured: bool,
+}
+
+impl ShadingRows {
+    /// Whether any row needs the smooth mesh.
+    pub fn smooth(&self) -> bool {
+        self.gouraud || self.textured
+    }
+}
+
+fn parse_shading(s: &str) -> Result<ShadingRows, String> {
+    let mut rows = ShadingRows {
+        flat: false,
+        gouraud: false,
+        textured: false,
+    };
+    for part in s.split(',').filter(|p| !p.is_empty()) {
+        match part {
+            "flat" => rows.flat = true,
+            "gouraud" => rows.gouraud = true,
+            "textured" => rows.textured = true,
+            "all" => {
+                rows = ShadingRows {
+                    flat: true,
+                    gouraud: true,
+                    textured: true,
+                }
+            }
+            _ => {
+                return Err(format!(
+                    "--shading: unknown '{part}' (flat, gouraud, textured, all)"
+                ));
+            }
+        }
+    }
+    if !(rows.flat || rows.smooth()) {
+        return Err(format!("--shading: empty list '{s}'"));
+    }
+    Ok(rows)
 }
 
 /// Parses the arguments after the program name.
@@ -80,6 +138,11 @@ pub fn parse(args: &[String]) -> Result<Options, String> {
         pitch: DEFAULT_PITCH_DEG,
         dump: None,
         threads: 2,
+        shading: ShadingRows {
+            flat: true,
+            gouraud: false,
+            textured: false,
+        },
         inputs: Vec::new(),
         help: false,
     };
@@ -108,6 +171,7 @@ pub fn parse(args: &[String]) -> Result<Options, String> {
                     .filter(|n| (1..=MAX_THREADS).contains(n))
                     .ok_or_else(|| format!("--threads: expected 1 to {MAX_THREADS}"))?
             }
+            "--shading" => o.shading = parse_shading(value()?)?,
             "-h" | "--help" => o.help = true,
             s if s.starts_with('-') && s.len() > 1 => return Err(format!("unknown option {s}")),
             s => o.inputs.push(PathBuf::from(s)),

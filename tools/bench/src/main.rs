@@ -42,12 +42,15 @@ mod renderer;
 mod report;
 mod timing;
 mod view;
+mod zline_painted;
 mod zline_renderer;
 
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
+use embedded_graphics::pixelcolor::Rgb565;
+use zline::paint::{Gouraud, Textured};
 use zline::{Depth16, Depth24};
 use zline_lab::methods::ReferenceFrame;
 
@@ -55,10 +58,11 @@ use crate::cli::Options;
 use crate::peers::embedded_3dgfx::{
     Embedded3dgfxRasterRenderer, Embedded3dgfxRenderer, MeshData, Mode,
 };
-use crate::peers::euc::EucRenderer;
+use crate::peers::euc::{EucPaintedRenderer, EucRenderer, Paint};
 use crate::renderer::Renderer;
 use crate::report::Row;
-use crate::view::{BACKGROUND, Scene, View};
+use crate::view::{BACKGROUND, Scene, SmoothScene, View};
+use crate::zline_painted::ZlinePaintedRenderer;
 use crate::zline_renderer::{Output, ZlineBandsRenderer, ZlineRenderer};
 
 /// Stack for the worker thread: zline's host renderer is built on the
@@ -94,10 +98,21 @@ fn run(args: &[String]) -> Result<(), String> {
     if options.help {
         return say(cli::USAGE);
     }
-    let scenes = mesh_files(&options)?
+    let files = mesh_files(&options)?;
+    let scenes = files
         .iter()
         .map(|path| Scene::load(path))
         .collect::<Result<Vec<_>, _>>()?;
+    // The smooth meshes (and textures) for the Gouraud and textured rows.
+    let smooth = if options.shading.smooth() {
+        files
+            .iter()
+            .zip(&scenes)
+            .map(|(path, scene)| SmoothScene::load(path, scene).map(Some))
+            .collect::<Result<Vec<_>, _>>()?
+    } else {
+        vec![None; scenes.len()]
+    };
     report::prepare_output(&options.out)?;
     say(&format!(
         "# zline vs embedded-3dgfx 0.7 and euc 0.5, shading timed\n\n\
@@ -105,11 +120,12 @@ fn run(args: &[String]) -> Result<(), String> {
          - date: {}\n\
          - build: {}\n\
          - view: yaw {}°, pitch {}°; flat two-sided Lambert as zline's `Shading::lambert()`, \
-         computed inside every timed frame\n\
+         computed inside every timed frame{}\n\
          - timing: median (and min) of {} interleaved rounds per configuration after a second \
          of warm-up, per-thread CPU time, single-threaded (the `threads` row: wall clock)\n\
          - ratio: a row's median / the median of `zline z24` in the same configuration \
-         (a `drawtarget` row: / zline in place with its depth); above 1.00 zline is faster\n\
+         (a `drawtarget` row: / zline in place with its depth; a `gouraud` row: / `zline \
+         gouraud z24`; a `textured` row: / `zline textured z24`); above 1.00 zline is faster\n\
          - wrong faces: pixels whose face differs from the float64 reference's, as a share of \
          the pixels the reference's object covers (not of the frame)\n",
         report::machine(),
@@ -117,6 +133,7 @@ fn run(args: &[String]) -> Result<(), String> {
         report::build(),
         options.yaw,
         options.pitch,
+        smooth_note(&options),
         options.rounds
     ))?;
 
@@ -133,6 +150,9 @@ fn run(args: &[String]) -> Result<(), String> {
             scene.triangles.len()
         );
         let e3d = MeshData::new(scene);
+        let smooth = smooth[i].as_ref();
+        let e3d_smooth = smooth.map(MeshData::smooth);
+        let painted = smooth.zip(e3d_smooth.as_ref());
         for &(width, height) in &options.sizes {
             for &cull in &options.culls {
                 let view = View {
@@ -142,7 +162,7 @@ fn run(args: &[String]) -> Result<(), String> {
                     pitch_deg: options.pitch,
                     cull,
                 };
-                let (done, regions) = bench_view(scene, &e3d, &view, &options)?;
+                let (done, regions) = bench_view(scene, &e3d, painted, &view, &options)?;
                 rows.extend(done);
                 for region in regions {
                     if !timed.iter().any(|(name, _)| *name == region.0) {
@@ -225,12 +245,61 @@ const WARM_UP: std::time::Duration = std::time::Duration::from_millis(1000);
 /// A renderer's name and what its timed frame does.
 type TimedRegion = (String, String);
 
+/// The `view:` line's words on the smooth rows, when they run.
+fn smooth_note(options: &Options) -> String {
+    let rows = options.shading;
+    let mut note = String::new();
+    if rows.gouraud {
+        note.push_str(
+            "; Gouraud rows: one-sided Lambert per vertex from the vertex normals of \
+             `HostMesh::from_obj_smooth(.., DEFAULT_CREASE_DEGREES)` (same light as \
+             `Shading::lambert()`; embedded-3dgfx: its own rule), interpolated, computed inside \
+             every timed frame",
+        );
+    }
+    if rows.textured {
+        note.push_str(
+            "; textured rows (meshes with `NAME_texture.png` only): unlit, nearest texel, \
+             repeating, perspective-correct",
+        );
+    }
+    if !rows.flat {
+        note.push_str("; flat rows left out (`--shading`)");
+    }
+    note
+}
+
+/// The kind of shading a row draws, from its name.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kind {
+    /// Flat Lambert per face.
+    Flat,
+    /// Lambert per vertex, interpolated.
+    Gouraud,
+    /// A texture.
+    Textured,
+}
+
+/// A row's kind: its name says `gouraud` or `textured`, or it is flat.
+pub fn kind(renderer: &str) -> Kind {
+    if renderer.contains(" gouraud") {
+        Kind::Gouraud
+    } else if renderer.contains(" textured") {
+        Kind::Textured
+    } else {
+        Kind::Flat
+    }
+}
+
 /// The row a row's ratio divides by: zline in place with the same depth
-/// for a `drawtarget` row, `zline z24` for every other.
+/// for a `drawtarget` row, `zline gouraud z24` for a Gouraud row, `zline
+/// textured z24` for a textured row, `zline z24` for every other.
 pub fn ratio_base(renderer: &str) -> &'static str {
-    match renderer {
-        "zline z16 drawtarget" => "zline z16",
-        _ => "zline z24",
+    match (renderer, kind(renderer)) {
+        ("zline z16 drawtarget", _) => "zline z16",
+        (_, Kind::Gouraud) => "zline gouraud z24",
+        (_, Kind::Textured) => "zline textured z24",
+        (_, Kind::Flat) => "zline z24",
     }
 }
 
@@ -247,9 +316,10 @@ fn same_frame_as(renderer: &str) -> Option<&'static str> {
 /// Builds every renderer for one view, times them, and measures their
 /// face ids against the reference. Returns the rows and each renderer's
 /// (name, timed region).
-fn bench_view(
-    scene: &Scene,
-    e3d: &MeshData<'_>,
+fn bench_view<'a>(
+    scene: &'a Scene,
+    e3d: &'a MeshData<'a>,
+    painted: Option<(&'a SmoothScene, &'a MeshData<'a>)>,
     view: &View,
     options: &Options,
 ) -> Result<(Vec<Row>, Vec<TimedRegion>), String> {
@@ -257,30 +327,63 @@ fn bench_view(
     eprintln!("  {label}: reference");
     let reference = ReferenceFrame::render(&scene.mesh, &view.reference());
 
-    let mut renderers: Vec<Box<dyn Renderer + '_>> = vec![
-        Box::new(ZlineRenderer::<Depth24>::new(scene, view, Output::InPlace)?),
-        Box::new(ZlineRenderer::<Depth16>::new(scene, view, Output::InPlace)?),
-        Box::new(ZlineRenderer::<Depth24>::new(
-            scene,
-            view,
-            Output::DrawTarget,
-        )?),
-        Box::new(ZlineRenderer::<Depth16>::new(
-            scene,
-            view,
-            Output::DrawTarget,
-        )?),
-        Box::new(Embedded3dgfxRenderer::new(e3d, view, Mode::Lit)?),
-        Box::new(Embedded3dgfxRenderer::new(e3d, view, Mode::Unlit)?),
-        Box::new(Embedded3dgfxRasterRenderer::new(e3d, view)),
-        Box::new(EucRenderer::new(scene, view)?),
-    ];
-    if options.threads > 1 && usize::from(view.height) >= options.threads {
+    let rows = options.shading;
+    let mut renderers: Vec<Box<dyn Renderer + 'a>> = Vec::new();
+    if rows.flat {
+        renderers.extend(flat_renderers(scene, e3d, view)?);
+    }
+    if rows.flat && options.threads > 1 && usize::from(view.height) >= options.threads {
         renderers.push(Box::new(ZlineBandsRenderer::new(
             scene,
             view,
             options.threads,
         )?));
+    }
+    if let Some((smooth, e3d_smooth)) = painted {
+        let s = &smooth.scene;
+        if rows.gouraud {
+            renderers.push(Box::new(ZlinePaintedRenderer::new(
+                s,
+                view,
+                Gouraud::<Rgb565>::new(),
+            )?));
+            renderers.push(Box::new(Embedded3dgfxRenderer::new(
+                e3d_smooth,
+                view,
+                Mode::Gouraud,
+            )?));
+            renderers.push(Box::new(EucPaintedRenderer::new(s, view, Paint::Gouraud)?));
+        }
+        if let (true, Some(texture)) = (rows.textured, &smooth.texture) {
+            let zline_texture = texture.texture()?;
+            renderers.push(Box::new(ZlinePaintedRenderer::new(
+                s,
+                view,
+                Textured::<Rgb565>::new(zline_texture),
+            )?));
+            if e3d_smooth.has_texture() {
+                renderers.push(Box::new(Embedded3dgfxRenderer::new(
+                    e3d_smooth,
+                    view,
+                    Mode::Textured,
+                )?));
+            } else {
+                eprintln!(
+                    "  {label}: embedded-3dgfx textured left out: its texture is not a power of \
+                     two a side"
+                );
+            }
+            let (w, h) = (usize::from(texture.width), usize::from(texture.height));
+            renderers.push(Box::new(EucPaintedRenderer::new(
+                s,
+                view,
+                Paint::Textured(&texture.texels, w, h),
+            )?));
+        }
+    }
+    if renderers.is_empty() {
+        eprintln!("  {label}: no rows (no texture for --shading textured)");
+        return Ok((Vec::new(), Vec::new()));
     }
     // Warm-up, untimed: every renderer at least once, and for at least
     // WARM_UP in all. On this shared machine the first configurations
@@ -372,6 +475,34 @@ fn bench_view(
         .map(|r| (r.name().to_string(), r.timed_region()))
         .collect();
     Ok((rows, regions))
+}
+
+/// Today's flat rows, in their order: zline in place and through a
+/// `DrawTarget` at both depths, embedded-3dgfx lit, unlit and its
+/// rasteriser fed shared vertices, euc.
+fn flat_renderers<'a>(
+    scene: &'a Scene,
+    e3d: &'a MeshData<'a>,
+    view: &View,
+) -> Result<Vec<Box<dyn Renderer + 'a>>, String> {
+    Ok(vec![
+        Box::new(ZlineRenderer::<Depth24>::new(scene, view, Output::InPlace)?),
+        Box::new(ZlineRenderer::<Depth16>::new(scene, view, Output::InPlace)?),
+        Box::new(ZlineRenderer::<Depth24>::new(
+            scene,
+            view,
+            Output::DrawTarget,
+        )?),
+        Box::new(ZlineRenderer::<Depth16>::new(
+            scene,
+            view,
+            Output::DrawTarget,
+        )?),
+        Box::new(Embedded3dgfxRenderer::new(e3d, view, Mode::Lit)?),
+        Box::new(Embedded3dgfxRenderer::new(e3d, view, Mode::Unlit)?),
+        Box::new(Embedded3dgfxRasterRenderer::new(e3d, view)),
+        Box::new(EucRenderer::new(scene, view)?),
+    ])
 }
 
 /// Pixels whose face id differs from the reference's (anywhere in the

@@ -32,8 +32,9 @@
 use std::path::Path;
 
 use zline::Mesh as _;
-use zline::host::HostMesh;
+use zline::host::{DEFAULT_CREASE_DEGREES, HostMesh};
 use zline_lab::methods::ReferenceView;
+use zline_lab::textures::Rgb565Texture;
 
 /// Face id of pixels that no face covers.
 pub const BACKGROUND: u32 = u32::MAX;
@@ -328,6 +329,59 @@ impl Scene {
     pub fn base_color() -> u16 {
         let [r, g, b] = LAMBERT_BASE;
         rgb565(r, g, b)
+    }
+}
+
+/// The mesh read for smooth shading and textures, for the `gouraud` and
+/// `textured` rows: `HostMesh::from_obj_smooth(bytes,
+/// DEFAULT_CREASE_DEGREES)` (a vertex for each different position,
+/// texture coordinate and normal its corners name; the file's normals, or
+/// normals from the faces around a position within 60°), triangulated and
+/// measured as [`Scene`] is. Its faces are the flat mesh's, in the same
+/// order and with the same corners' positions (checked), so face ids
+/// compare with the flat reference's.
+#[derive(Debug, Clone)]
+pub struct SmoothScene {
+    /// The smooth mesh as a [`Scene`]; its `mesh.vertex_normals` are the
+    /// vertex normals every Gouraud row lights.
+    pub scene: Scene,
+    /// `NAME_texture.png` beside `NAME.obj`, as raw Rgb565 texels row by
+    /// row from the top (OBJ's `v = 1`), when there is one and the mesh
+    /// has texture coordinates: the textured rows' texture.
+    pub texture: Option<Rgb565Texture>,
+}
+
+impl SmoothScene {
+    /// Reads `path` again for smooth shading, and its texture if any.
+    pub fn load(path: &Path, flat: &Scene) -> Result<Self, String> {
+        let shown = path.display();
+        let bytes = std::fs::read(path).map_err(|e| format!("{shown}: {e}"))?;
+        let mesh = HostMesh::from_obj_smooth(&bytes, DEFAULT_CREASE_DEGREES)
+            .map_err(|e| format!("{shown}: smooth: {e}"))?;
+        if mesh.vertex_normals.len() != mesh.positions.len() {
+            return Err(format!("{shown}: smooth: not every vertex has a normal"));
+        }
+        let scene = Scene::new(flat.name.clone(), mesh).map_err(|e| format!("{shown}: {e}"))?;
+        let same_faces = scene.face_count() == flat.face_count()
+            && scene.triangles.len() == flat.triangles.len()
+            && scene.triangle_faces == flat.triangle_faces
+            && scene.triangles.iter().zip(&flat.triangles).all(|(s, f)| {
+                (0..3).all(|k| {
+                    scene.mesh.positions[s[k] as usize] == flat.mesh.positions[f[k] as usize]
+                })
+            });
+        if !same_faces || scene.centre != flat.centre || scene.radius != flat.radius {
+            return Err(format!(
+                "{shown}: the smooth mesh's faces differ from the flat mesh's"
+            ));
+        }
+        let png = path.with_file_name(format!("{}_texture.png", flat.name));
+        let texture = if png.is_file() && !scene.mesh.uvs.is_empty() {
+            Some(Rgb565Texture::read(&png, 1)?)
+        } else {
+            None
+        };
+        Ok(Self { scene, texture })
     }
 }
 

@@ -19,8 +19,10 @@ use core::convert::Infallible;
 use embedded_3dgfx::engine::K3dengine;
 use embedded_3dgfx::pipeline::assemble::primitive::DrawPrimitive;
 use embedded_3dgfx::pipeline::command_buffer::{CommandBuffer, RenderCommand};
+use embedded_3dgfx::pipeline::rasterize::draw::draw_zbuffered_with_textures_state;
 use embedded_3dgfx::pipeline::rasterize::draw::state::RasterState;
 use embedded_3dgfx::pipeline::rasterize::draw::zbuffered::draw_zbuffered_with_state;
+use embedded_3dgfx::pipeline::rasterize::texture::{Texture, TextureManager};
 use embedded_3dgfx::pipeline::renderer::FrameCtx;
 use embedded_3dgfx::pipeline::vertex::mesh::{Geometry, K3dMesh, RenderMode};
 use embedded_3dgfx::{Z_MAX_VALUE, ZDepth};
@@ -32,7 +34,7 @@ use nalgebra::{Point2, Point3, UnitQuaternion, Vector3};
 use crate::framebuffer::Frame565;
 use crate::renderer::Renderer;
 use crate::view::{
-    BACKGROUND, Cull, FAR, FOV_Y_DEG, Mat4, NEAR, Scene, View, dot, lambert_rgb565,
+    BACKGROUND, Cull, FAR, FOV_Y_DEG, Mat4, NEAR, Scene, SmoothScene, View, dot, lambert_rgb565,
     light_direction, transform,
 };
 
@@ -50,6 +52,16 @@ pub struct MeshData<'a> {
     /// The bench's per-triangle normals ([`Scene::triangle_normals`]: a
     /// planar face's Newell normal), for the rasteriser fed by hand.
     shared_normals: Vec<[f32; 3]>,
+    /// Per-vertex normals (the smooth mesh's, for `GouraudLightDir`);
+    /// empty for the flat mesh.
+    vertex_normals: &'a [[f32; 3]],
+    /// Per-vertex texture coordinates with `v` flipped (`1 - v`: its
+    /// textures put `v = 0` at the top row, OBJ at the bottom); empty
+    /// without a texture.
+    uvs: Vec<[f32; 2]>,
+    /// The texture as embedded-3dgfx takes it (`&'static` texels, power
+    /// of two a side), when the mesh has one it can take.
+    texture: Option<Texture>,
 }
 
 impl<'a> MeshData<'a> {
@@ -67,7 +79,45 @@ impl<'a> MeshData<'a> {
             faces,
             normals,
             shared_normals: scene.triangle_normals(),
+            vertex_normals: &[],
+            uvs: Vec::new(),
+            texture: None,
         }
+    }
+
+    /// The smooth mesh's arrays: as [`Self::new`], with its vertex normals
+    /// and, when it has a texture with sides that are powers of two
+    /// (embedded-3dgfx takes no other), its texture coordinates and the
+    /// texture (its texels leaked once, as `Texture::new` takes
+    /// `&'static` data, as a `static` in firmware is).
+    pub fn smooth(smooth: &'a SmoothScene) -> Self {
+        let mut data = Self::new(&smooth.scene);
+        data.vertex_normals = &smooth.scene.mesh.vertex_normals;
+        if let Some(t) = &smooth.texture {
+            let (w, h) = (u32::from(t.width), u32::from(t.height));
+            if w.is_power_of_two() && h.is_power_of_two() {
+                let texels: Vec<Rgb565> = t
+                    .texels
+                    .iter()
+                    .map(|&raw| Rgb565::from(RawU16::new(raw)))
+                    .collect();
+                data.texture = Some(Texture::new(Box::leak(texels.into_boxed_slice()), w, h));
+                data.uvs = smooth
+                    .scene
+                    .mesh
+                    .uvs
+                    .iter()
+                    .map(|&[u, v]| [u, 1.0 - v])
+                    .collect();
+            }
+        }
+        data
+    }
+
+    /// Whether the textured row can be drawn (a texture embedded-3dgfx
+    /// takes).
+    pub fn has_texture(&self) -> bool {
+        self.texture.is_some()
     }
 }
 
@@ -78,6 +128,11 @@ pub enum Mode {
     Lit,
     /// `RenderMode::Solid`: one colour for the whole mesh.
     Unlit,
+    /// `RenderMode::GouraudLightDir`: per-vertex directional light from
+    /// the vertex normals, colours interpolated (the smooth mesh).
+    Gouraud,
+    /// `RenderMode::Textured`: unlit, texture-sampled (the smooth mesh).
+    Textured,
 }
 
 /// embedded-3dgfx 0.7's frame driver, [`Mode::Lit`] or [`Mode::Unlit`].
@@ -132,6 +187,8 @@ pub struct Embedded3dgfxRenderer<'a> {
     zbuffer: Vec<ZDepth>,
     frame: Frame565,
     mode: Mode,
+    /// The texture manager `execute_with_textures` reads (textured mode).
+    textures: Box<TextureManager<1>>,
 }
 
 impl<'a> Embedded3dgfxRenderer<'a> {
@@ -145,24 +202,43 @@ impl<'a> Embedded3dgfxRenderer<'a> {
         engine.camera.set_position(Point3::new(0.0, 0.0, 3.0));
         engine.camera.set_target(Point3::new(0.0, 0.0, 0.0));
         let normals: &[[f32; 3]] = match (mode, view.cull) {
-            (Mode::Unlit, Cull::None) => &[],
+            (Mode::Unlit | Mode::Textured, Cull::None) => &[],
             _ => &data.normals,
         };
-        let geometry = Geometry::new(&scene.mesh.positions, &data.faces).with_normals(normals);
+        let mut geometry = Geometry::new(&scene.mesh.positions, &data.faces).with_normals(normals);
+        let mut textures = Box::new(TextureManager::<1>::new());
+        match mode {
+            Mode::Gouraud => {
+                if data.vertex_normals.len() != scene.mesh.positions.len() {
+                    return Err("embedded-3dgfx gouraud: vertex normals missing".into());
+                }
+                geometry = geometry.with_vertex_normals(data.vertex_normals);
+            }
+            Mode::Textured => {
+                let texture = data
+                    .texture
+                    .ok_or("embedded-3dgfx textured: no texture it takes")?;
+                let id = textures
+                    .add_texture(texture)
+                    .ok_or("embedded-3dgfx textured: texture manager full")?;
+                geometry = geometry.with_uvs(&data.uvs).with_texture(id);
+            }
+            Mode::Lit | Mode::Unlit => {}
+        }
         let mut mesh = K3dMesh::new(geometry);
         place(&mut mesh, scene, view);
         mesh.set_color(Rgb565::from(RawU16::new(Scene::base_color())));
+        // The light as the lit row gives it: zline's direction with z
+        // negated (the lit modes negate z), scaled by the mesh's radius
+        // (undoing the model matrix's `1/r` in the turned normals).
+        let [x, y, z] = light_direction();
+        let r = scene.radius;
+        let light = Vector3::new(x * r, y * r, -z * r);
         match mode {
             Mode::Unlit => mesh.set_render_mode(RenderMode::Solid),
-            Mode::Lit => {
-                let [x, y, z] = light_direction();
-                let r = scene.radius;
-                mesh.set_render_mode(RenderMode::SolidLightDir(Vector3::new(
-                    x * r,
-                    y * r,
-                    -z * r,
-                )));
-            }
+            Mode::Lit => mesh.set_render_mode(RenderMode::SolidLightDir(light)),
+            Mode::Gouraud => mesh.set_render_mode(RenderMode::GouraudLightDir(light)),
+            Mode::Textured => mesh.set_render_mode(RenderMode::Textured),
         }
         Ok(Self {
             data,
@@ -172,6 +248,7 @@ impl<'a> Embedded3dgfxRenderer<'a> {
             zbuffer: vec![Z_MAX_VALUE; w * h],
             frame: Frame565::new(w, h),
             mode,
+            textures,
         })
     }
 }
@@ -193,6 +270,8 @@ impl Renderer for Embedded3dgfxRenderer<'_> {
         match self.mode {
             Mode::Lit => "embedded-3dgfx lit",
             Mode::Unlit => "embedded-3dgfx unlit",
+            Mode::Gouraud => "embedded-3dgfx gouraud",
+            Mode::Textured => "embedded-3dgfx textured",
         }
     }
 
@@ -213,6 +292,23 @@ impl Renderer for Embedded3dgfxRenderer<'_> {
                             `engine.execute` (z-buffer cleared, triangles filled pixel by pixel \
                             through `draw_iter`); 32-bit z-buffer of integer depths"
             }
+            Mode::Gouraud => {
+                "colour frame cleared (`DrawTarget::clear`), `engine.record` with \
+                 `RenderMode::GouraudLightDir` (corners transformed per triangle past the first \
+                 256 vertices, back faces always culled, per corner its vertex normal turned by \
+                 the model matrix and lit with its own one-sided rule, 10 % ambient, to Rgb565, \
+                 no clipping), `engine.execute` (z-buffer cleared, colours interpolated over \
+                 each triangle, filled pixel by pixel through `draw_iter`); 32-bit z-buffer of \
+                 integer depths"
+            }
+            Mode::Textured => {
+                "colour frame cleared (`DrawTarget::clear`), `engine.record` with \
+                 `RenderMode::Textured` (corners transformed with their clip w, culled with \
+                 `--cull back`, no clipping), `engine.execute_with_textures` (z-buffer \
+                 cleared, its default `TextureMapping::PerspectiveCorrect`, nearest texel, \
+                 repeating, filled pixel by pixel through `draw_iter`); texture as \
+                 `Texture::new` over the same texels; 32-bit z-buffer of integer depths"
+            }
         }
         .into()
     }
@@ -227,9 +323,21 @@ impl Renderer for Embedded3dgfxRenderer<'_> {
             width: self.frame.width,
             height: self.frame.height,
         };
-        self.engine
-            .execute(&mut self.frame, &mut ctx, &self.commands, None)
-            .map_err(|e| format!("embedded-3dgfx: execute: {e:?}"))?;
+        if self.mode == Mode::Textured {
+            self.engine
+                .execute_with_textures(
+                    &mut self.frame,
+                    &mut ctx,
+                    &self.commands,
+                    &self.textures,
+                    None,
+                )
+                .map_err(|e| format!("embedded-3dgfx: execute: {e:?}"))?;
+        } else {
+            self.engine
+                .execute(&mut self.frame, &mut ctx, &self.commands, None)
+                .map_err(|e| format!("embedded-3dgfx: execute: {e:?}"))?;
+        }
         Ok(())
     }
 
@@ -252,12 +360,22 @@ impl Renderer for Embedded3dgfxRenderer<'_> {
                 RenderCommand::Draw(primitive) => {
                     target.current = owners[draws];
                     draws += 1;
-                    draw_zbuffered_with_state(
-                        primitive.clone(),
-                        &mut target,
-                        &mut self.zbuffer,
-                        &state,
-                    );
+                    if self.mode == Mode::Textured {
+                        draw_zbuffered_with_textures_state(
+                            primitive.clone(),
+                            &mut target,
+                            &mut self.zbuffer,
+                            &self.textures,
+                            &state,
+                        );
+                    } else {
+                        draw_zbuffered_with_state(
+                            primitive.clone(),
+                            &mut target,
+                            &mut self.zbuffer,
+                            &state,
+                        );
+                    }
                 }
                 RenderCommand::ClearDepth(value) => self.zbuffer.fill(*value),
                 RenderCommand::ClearColor(_) => return Ok(None),
@@ -283,6 +401,19 @@ impl Embedded3dgfxRenderer<'_> {
         let scene = self.data.scene;
         let p = &scene.mesh.positions;
         let corners: Vec<[[f32; 3]; 3]> = self.data.faces.iter().map(|f| f.map(|v| p[v])).collect();
+        let geometry = &self.mesh.geometry;
+        let vertex_normals: Vec<[[f32; 3]; 3]> = if geometry.vertex_normals.is_empty() {
+            Vec::new()
+        } else {
+            let n = geometry.vertex_normals;
+            self.data.faces.iter().map(|f| f.map(|v| n[v])).collect()
+        };
+        let uvs: Vec<[[f32; 2]; 3]> = if geometry.uvs.is_empty() {
+            Vec::new()
+        } else {
+            let uv = geometry.uvs;
+            self.data.faces.iter().map(|f| f.map(|v| uv[v])).collect()
+        };
         let cull = !self.mesh.geometry.normals.is_empty();
         let single = [[0usize, 1, 2]];
         let mut probe = K3dMesh::new(Geometry::new(&corners[0], &single));
@@ -300,6 +431,12 @@ impl Embedded3dgfxRenderer<'_> {
             let normal = &self.data.normals[t..t + 1];
             probe.geometry =
                 Geometry::new(tri, &single).with_normals(if cull { normal } else { &[] });
+            if let Some(n) = vertex_normals.get(t) {
+                probe.geometry = probe.geometry.with_vertex_normals(n);
+            }
+            if let (Some(uv), Some(id)) = (uvs.get(t), geometry.texture_id) {
+                probe.geometry = probe.geometry.with_uvs(uv).with_texture(id);
+            }
             self.engine
                 .record(core::iter::once(&probe), &mut small, None)
                 .map_err(|e| format!("embedded-3dgfx: record: {e:?}"))?;
@@ -499,6 +636,34 @@ fn same(a: &DrawPrimitive, b: &DrawPrimitive) -> bool {
                 color: cb,
             },
         ) => pa == pb && da == db && ca == cb,
+        (
+            DrawPrimitive::GouraudTriangleWithDepth {
+                points: pa,
+                depths: da,
+                colors: ca,
+            },
+            DrawPrimitive::GouraudTriangleWithDepth {
+                points: pb,
+                depths: db,
+                colors: cb,
+            },
+        ) => pa == pb && da == db && ca == cb,
+        (
+            DrawPrimitive::TexturedTriangleWithDepth {
+                points: pa,
+                depths: da,
+                ws: wa,
+                uvs: ua,
+                texture_id: ia,
+            },
+            DrawPrimitive::TexturedTriangleWithDepth {
+                points: pb,
+                depths: db,
+                ws: wb,
+                uvs: ub,
+                texture_id: ib,
+            },
+        ) => pa == pb && da == db && wa == wb && ua == ub && ia == ib,
         _ => false,
     }
 }
