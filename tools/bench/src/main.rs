@@ -21,9 +21,21 @@
 //! `zline z24 N threads` (wall clock). Each row's timed region is printed
 //! with the table.
 //!
+//! With `--shading gouraud|textured|all` (the default, `flat`, is the
+//! rows above alone), smooth rows over the mesh read with
+//! `HostMesh::from_obj_smooth(.., DEFAULT_CREASE_DEGREES)`, every one
+//! lighting or sampling inside its timed frame: `zline gouraud z24`,
+//! `embedded-3dgfx gouraud` and `euc gouraud` (Lambert per vertex from the
+//! smooth mesh's vertex normals, interpolated), and, on meshes with a
+//! `NAME_texture.png` beside `NAME.obj`, `zline textured z24`,
+//! `embedded-3dgfx textured` and `euc textured` (nearest texel,
+//! perspective-correct).
+//!
 //! Ratio ([`ratio_base`]): a row's median over the median of `zline z24`
 //! in the same mesh, size and cull, except a `drawtarget` row, whose base
-//! is zline in place with the same depth. Above 1.00, zline is faster.
+//! is zline in place with the same depth, a Gouraud row, whose base is
+//! `zline gouraud z24`, and a textured row, whose base is `zline textured
+//! z24`. Above 1.00, zline is faster.
 //!
 //! Build: `cargo bench-peers` builds with the root `Cargo.toml`'s
 //! `[profile.peers]` (release with fat LTO and one codegen unit for every

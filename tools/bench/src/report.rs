@@ -3,6 +3,8 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
+use crate::Kind;
+
 /// The CSV header, exactly.
 pub const CSV_HEADER: &str = "mesh,size,cull,renderer,median_ms,min_ms,ratio";
 
@@ -141,10 +143,12 @@ pub fn markdown(rows: &[Row]) -> String {
     t
 }
 
-/// The run against the issue's bar: for zline z24 and z16, how many peer
-/// rows are at or below 1.00 (peer median over zline's) and the lowest,
-/// and the largest cost of drawing through a plain `DrawTarget` over
-/// drawing in place.
+/// The run against the issue's bar: for zline z24 and z16, how many flat
+/// peer rows are at or below 1.00 (peer median over zline's) and the
+/// lowest, and the largest cost of drawing through a plain `DrawTarget`
+/// over drawing in place; then the same count for the Gouraud peer rows
+/// against `zline gouraud z24` and the textured ones against `zline
+/// textured z24`, when they ran.
 pub fn checks(rows: &[Row]) -> String {
     let config = |r: &Row| (r.mesh.clone(), r.size.clone(), r.cull.clone());
     let median = |r: &Row, name: &str| {
@@ -157,7 +161,7 @@ pub fn checks(rows: &[Row]) -> String {
         let zline = format!("zline {depth}");
         let ratios: Vec<(f64, &Row)> = rows
             .iter()
-            .filter(|r| !r.renderer.starts_with("zline"))
+            .filter(|r| !r.renderer.starts_with("zline") && crate::kind(&r.renderer) == Kind::Flat)
             .filter_map(|r| median(r, &zline).map(|z| (r.median_ms / z, r)))
             .collect();
         let below = ratios.iter().filter(|(q, _)| *q <= 1.0).count();
@@ -183,6 +187,29 @@ pub fn checks(rows: &[Row]) -> String {
                 t,
                 "- `{zline} drawtarget` over `{zline}` in place: at most {q:.2} ({} {} {})",
                 r.mesh, r.size, r.cull
+            );
+        }
+    }
+    for (kind, zline) in [
+        (Kind::Gouraud, "zline gouraud z24"),
+        (Kind::Textured, "zline textured z24"),
+    ] {
+        let ratios: Vec<(f64, &Row)> = rows
+            .iter()
+            .filter(|r| !r.renderer.starts_with("zline") && crate::kind(&r.renderer) == kind)
+            .filter_map(|r| median(r, zline).map(|z| (r.median_ms / z, r)))
+            .collect();
+        let below = ratios.iter().filter(|(q, _)| *q <= 1.0).count();
+        if let Some((q, r)) = ratios.iter().min_by(|a, b| a.0.total_cmp(&b.0)) {
+            let _ = writeln!(
+                t,
+                "- peers against `{zline}`: {below} of {} peer rows at or below 1.00 (peer as \
+                 fast as zline or faster); lowest: `{}` on {} {} {} at {q:.2}",
+                ratios.len(),
+                r.renderer,
+                r.mesh,
+                r.size,
+                r.cull
             );
         }
     }

@@ -173,6 +173,18 @@ pub enum Mode {
 /// it). The lit mode gives a
 /// triangle its first corner's depth at all three.
 ///
+/// Gouraud (`RenderMode::GouraudLightDir(dir)`, over the smooth mesh
+/// with its vertex normals as `Geometry::vertex_normals`): as lit, but
+/// each corner gets its colour from its vertex normal turned by the model
+/// matrix (the same rule and light), and the rasteriser interpolates the
+/// three Rgb565 colours over the triangle; each corner keeps its own
+/// depth. Textured (`RenderMode::Textured`, the smooth mesh's texture
+/// coordinates with `v` flipped and the texture in a `TextureManager`):
+/// corners transformed with their clip w, culled as unlit is, not
+/// clipped, drawn by `engine.execute_with_textures` with the engine's
+/// default `TextureMapping::PerspectiveCorrect`, nearest texel,
+/// repeating; no lighting.
+///
 /// Face ids: recovered untimed. Each triangle is recorded alone (same
 /// camera and model matrix) to learn how many primitives it makes, and
 /// the frame's command buffer is replayed through the same

@@ -12,6 +12,11 @@
 //! no flat varyings); the fragment shader returns it. Colour target:
 //! [`Frame565`]; depth: euc's own `Buffer2d<f32>` with its default
 //! `IfLessWrite` (`<=`) test.
+//!
+//! [`EucPaintedRenderer`] draws the smooth mesh the same way, Gouraud
+//! ([`GouraudPipeline`]: Lambert per vertex in the vertex shader, colour
+//! interpolated) or textured ([`TexturedPipeline`]: the vertex's `vt`
+//! interpolated, the texel looked up in the fragment shader).
 
 use euc::buffer::Buffer2d;
 use euc::rasterizer::{BackfaceCullingDisabled, BackfaceCullingEnabled, BackfaceMode, Triangles};
