@@ -136,8 +136,7 @@ fn run(args: &[String]) -> Result<(), String> {
          - timing: median (and min) of {} interleaved rounds per configuration after a second \
          of warm-up, per-thread CPU time, single-threaded (the `threads` row: wall clock)\n\
          - ratio: a row's median / the median of `zline z24` in the same configuration \
-         (a `drawtarget` row: / zline in place with its depth; a `gouraud` row: / `zline \
-         gouraud z24`; a `textured` row: / `zline textured z24`); above 1.00 zline is faster\n\
+         (a `drawtarget` row: / zline in place with its depth{}); above 1.00 zline is faster\n\
          - wrong faces: pixels whose face differs from the float64 reference's, as a share of \
          the pixels the reference's object covers (not of the frame)\n",
         report::machine(),
@@ -146,7 +145,12 @@ fn run(args: &[String]) -> Result<(), String> {
         options.yaw,
         options.pitch,
         smooth_note(&options),
-        options.rounds
+        options.rounds,
+        if options.shading.smooth() {
+            "; a `gouraud` row: / `zline gouraud z24`; a `textured` row: / `zline textured z24`"
+        } else {
+            ""
+        }
     ))?;
 
     let mut rows = Vec::new();
@@ -273,6 +277,12 @@ fn smooth_note(options: &Options) -> String {
         note.push_str(
             "; textured rows (meshes with `NAME_texture.png` only): unlit, nearest texel, \
              repeating, perspective-correct",
+        );
+    }
+    if rows.smooth() {
+        note.push_str(
+            "; zline's Gouraud and textured rows' wrong faces: the face ids of zline's flat scan \
+             of the same smooth mesh (its painted rows hold slots, not face ids)",
         );
     }
     if !rows.flat {
