@@ -139,12 +139,19 @@ impl<'a> Texture<'a> {
             .unwrap_or(0)
     }
 
+    /// The texel nearest `(u, v)` (texel units with [`TEXEL_FRAC_BITS`]
+    /// fractional bits), as stored.
+    #[inline(always)]
+    pub(crate) fn nearest(&self, u: i32, v: i32) -> u16 {
+        self.texel(u >> TEXEL_FRAC_BITS, v >> TEXEL_FRAC_BITS)
+    }
+
     /// The colour at `(u, v)` (texel units with [`TEXEL_FRAC_BITS`]
     /// fractional bits) as 8.8 channels.
     #[inline(always)]
     pub(crate) fn sample(&self, u: i32, v: i32) -> [u32; 3] {
         match self.filter {
-            Filter::Nearest => channels(self.texel(u >> TEXEL_FRAC_BITS, v >> TEXEL_FRAC_BITS)),
+            Filter::Nearest => channels(self.nearest(u, v)),
             Filter::Bilinear => {
                 // The texel centres around the point: `u - 1/2`'s floor and
                 // the next, weighted by its fraction.
@@ -192,6 +199,16 @@ const WIDE5: [u8; 32] = widened(31);
 /// 6-bit channels widened to 8 bits.
 const WIDE6: [u8; 64] = widened(63);
 
+/// An Rgb565 texel's own levels (0..=31, 0..=63, 0..=31).
+#[inline(always)]
+pub(crate) fn levels(texel: u16) -> [u32; 3] {
+    let texel = u32::from(texel);
+    [texel >> 11, (texel >> 5) & 0x3F, texel & 0x1F]
+}
+
+/// The levels of an Rgb565 texel's channels ([`levels`]).
+pub(crate) const TEXEL_MAX: [u32; 3] = [31, 63, 31];
+
 /// An Rgb565 texel's channels in 8.8, each widened to 8 bits as
 /// embedded-graphics converts `Rgb565` to `Rgb888`.
 #[inline(always)]
@@ -228,6 +245,12 @@ mod tests {
                 "{raw:#06x}"
             );
             assert_eq!(Rgb565::from_channels(ch, None), c, "{raw:#06x}");
+            // So a colour of the texels' levels takes them as they are.
+            assert_eq!(Rgb565::MAX, TEXEL_MAX);
+            assert_eq!(Rgb565::from_levels(levels(raw)), c, "{raw:#06x}");
+            type Bgr = embedded_graphics_core::pixelcolor::Bgr565;
+            let bgr = Bgr::from_channels(ch, None);
+            assert_eq!(Bgr::from_levels(levels(raw)), bgr, "{raw:#06x}");
             assert_eq!(RawU16::from(c).into_inner(), raw);
         }
     }

@@ -33,7 +33,9 @@ use crate::front::clip_w::ClipW;
 use crate::front::tex_coord::TexCoord;
 use crate::paint::PaintMode;
 use crate::paint::color::{PaintColor, bayer_threshold};
-use crate::paint::texture::{Filter, TEXEL_FRAC_BITS, Texture, Wrap};
+use crate::paint::texture::{
+    Filter, TEXEL_FRAC_BITS, TEXEL_MAX, Texture, Wrap, levels as texel_levels,
+};
 use crate::raster::attribute::{AttributePlane, attribute_planes, exact_value_at};
 use crate::raster::vertex::ScreenVertex;
 
@@ -146,6 +148,12 @@ impl<'a, C: PaintColor> Textured<'a, C> {
                 Wrap::Clamp => c.clamp(-period, 2 * period) as i32,
             }
         });
+        if threshold.is_none() && C::MAX == TEXEL_MAX && self.texture.filter() == Filter::Nearest {
+            // A texel of the colour's own levels, undithered: the levels it
+            // has (the channels' round trip gives them back, as the
+            // texture's tests check for every texel).
+            return C::from_levels(texel_levels(self.texture.nearest(u, v)));
+        }
         C::from_channels(self.texture.sample(u, v), threshold)
     }
 
