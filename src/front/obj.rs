@@ -641,6 +641,40 @@ impl<'a, const N: usize> ObjReader<'a, N> {
     }
 }
 
+impl<'a, const N: usize> ObjReader<'a, N> {
+    /// The next statement, as [`Iterator::next`] gives it, but with a
+    /// face's corners handed to `corner` as they are read (at most `N`, as
+    /// there) and the face itself empty: for a loader that stores them
+    /// anyway, which then never moves a statement holding `N` corners.
+    #[cfg_attr(not(feature = "std"), allow(dead_code))]
+    pub(crate) fn next_streamed(
+        &mut self,
+        corner: &mut impl FnMut(ObjCorner),
+    ) -> Option<Result<Statement<'a, 0>, ObjError>> {
+        let mut count = 0usize;
+        let parsed = self.parser.next_with(&mut |index| {
+            if count == N {
+                return Err(ObjErrorKind::TooManyCorners);
+            }
+            count += 1;
+            corner(index);
+            Ok(())
+        })?;
+        Some(parsed.map(|parsed| statement(parsed, Vec::new())))
+    }
+}
+
+/// The statement of a parsed line, a face's corners in `face`.
+fn statement<const N: usize>(parsed: Parsed<'_>, face: Vec<ObjCorner, N>) -> Statement<'_, N> {
+    match parsed {
+        Parsed::Vertex(position) => Statement::Vertex(position),
+        Parsed::TexCoord(uv) => Statement::TexCoord(uv),
+        Parsed::Normal(n) => Statement::Normal(n),
+        Parsed::Face => Statement::Face(face),
+        Parsed::Other(keyword) => Statement::Other(keyword),
+    }
+}
+
 impl<'a, const N: usize> Iterator for ObjReader<'a, N> {
     type Item = Result<Statement<'a, N>, ObjError>;
 
@@ -649,13 +683,7 @@ impl<'a, const N: usize> Iterator for ObjReader<'a, N> {
         let parsed = self
             .parser
             .next_with(&mut |index| face.push(index).map_err(|_| ObjErrorKind::TooManyCorners))?;
-        Some(parsed.map(|parsed| match parsed {
-            Parsed::Vertex(position) => Statement::Vertex(position),
-            Parsed::TexCoord(uv) => Statement::TexCoord(uv),
-            Parsed::Normal(n) => Statement::Normal(n),
-            Parsed::Face => Statement::Face(face),
-            Parsed::Other(keyword) => Statement::Other(keyword),
-        }))
+        Some(parsed.map(|parsed| statement(parsed, face)))
     }
 }
 
@@ -886,6 +914,38 @@ impl<const V: usize, const C: usize, const F: usize, const N: usize> MeshArrays
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Streamed statements are the iterator's, a face's corners handed
+    /// over one by one, at most `N` of them.
+    #[test]
+    fn streamed_statements_are_the_iterators() {
+        let file = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvt 0 1\no x\nf 1 2/1 3\nf 1 2 4 3\nf 1 2 3 4 1\n";
+        let mut reader = ObjReader::<4>::new(file);
+        let mut streamed = ObjReader::<4>::new(file);
+        loop {
+            let mut corners: Vec<ObjCorner, 4> = Vec::new();
+            let got = streamed.next_streamed(&mut |c| corners.push(c).unwrap());
+            let want = reader.next();
+            assert_eq!(streamed.line(), reader.line());
+            match (got, want) {
+                (None, None) => break,
+                (Some(Ok(Statement::Face(empty))), Some(Ok(Statement::Face(face)))) => {
+                    assert!(empty.is_empty());
+                    assert_eq!(corners, face);
+                }
+                (Some(Ok(got)), Some(Ok(want))) => {
+                    assert_eq!(std::format!("{got:?}"), std::format!("{want:?}"));
+                    assert!(corners.is_empty());
+                }
+                (Some(Err(got)), Some(Err(want))) => {
+                    assert_eq!(got, want);
+                    assert_eq!(got.kind, ObjErrorKind::TooManyCorners);
+                    assert_eq!(got.line, 9);
+                }
+                (got, want) => panic!("{got:?} against {want:?}"),
+            }
+        }
+    }
 
     #[test]
     fn lines_number_and_strip() {

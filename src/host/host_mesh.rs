@@ -124,13 +124,18 @@ impl HostMesh {
     /// ([`Self::with_face_analysis`]).
     pub fn from_obj(bytes: &[u8]) -> Result<Self, ObjError> {
         let mut mesh = Self::default();
-        for statement in ObjReader::<MAX_FACE_CORNERS>::new(bytes) {
+        let mut reader = ObjReader::<MAX_FACE_CORNERS>::new(bytes);
+        loop {
+            // A face's corners go straight into the mesh (an error drops
+            // the mesh, so a face cut short by one is never kept).
+            let start = mesh.corners.len() as u32;
+            let corners = &mut mesh.corners;
+            let Some(statement) = reader.next_streamed(&mut |c| corners.push(c.vertex)) else {
+                break;
+            };
             match statement? {
                 Statement::Vertex(p) => mesh.positions.push(p),
-                Statement::Face(corners) => {
-                    mesh.face_starts.push(mesh.corners.len() as u32);
-                    mesh.corners.extend(corners.iter().map(|c| c.vertex));
-                }
+                Statement::Face(_) => mesh.face_starts.push(start),
                 Statement::TexCoord(_) | Statement::Normal(_) | Statement::Other(_) => {}
             }
         }
@@ -149,14 +154,18 @@ impl HostMesh {
     pub fn from_obj_smooth(bytes: &[u8], crease_degrees: f32) -> Result<Self, ObjError> {
         let mut file = AttributedFaces::default();
         let mut reader = ObjReader::<MAX_FACE_CORNERS>::new(bytes);
-        while let Some(statement) = reader.next() {
+        loop {
+            let start = file.corners.len() as u32;
+            let corners = &mut file.corners;
+            let Some(statement) = reader.next_streamed(&mut |c| corners.push(c)) else {
+                break;
+            };
             match statement? {
                 Statement::Vertex(p) => file.positions.push(p),
                 Statement::TexCoord(uv) => file.texcoords.push(uv),
                 Statement::Normal(n) => file.normals.push(n),
-                Statement::Face(corners) => {
-                    file.face_starts.push(file.corners.len() as u32);
-                    file.corners.extend_from_slice(&corners);
+                Statement::Face(_) => {
+                    file.face_starts.push(start);
                     file.face_lines.push(reader.line());
                 }
                 Statement::Other(_) => {}
