@@ -919,7 +919,8 @@ mod tests {
     /// over one by one, at most `N` of them.
     #[test]
     fn streamed_statements_are_the_iterators() {
-        let file = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvt 0 1\no x\nf 1 2/1 3\nf 1 2 4 3\nf 1 2 3 4 1\n";
+        let file =
+            b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvt 0 1\no x\nf 1 2/1 3\nf 1 2 4 3\nf 1 2 3 4 1\n";
         let mut reader = ObjReader::<4>::new(file);
         let mut streamed = ObjReader::<4>::new(file);
         loop {
