@@ -1,6 +1,7 @@
 //! Prepares the emulated firmware on the host:
-//! 1. the memory map (`memory.x`, QEMU mps2-an385) and cortex-m-rt's linker
-//!    script;
+//! 1. the memory map (`memory-mps2.x` for QEMU's mps2-an385 and mps2-an386,
+//!    which share it; `memory-an505.x` for mps2-an505, the Cortex-M33
+//!    board) and cortex-m-rt's linker script;
 //! 2. the scenes' meshes (and the textured scenes' texture) as Rust
 //!    statics, quantized for the integer front end, so they live in flash;
 //! 3. each scene's expected CRC, from rendering it on the host with the
@@ -68,10 +69,19 @@ const HOST_CAPACITIES: Capacities = Capacities {
 
 fn main() {
     let out = PathBuf::from(std::env::var("OUT_DIR").expect("OUT_DIR"));
-    std::fs::copy("memory.x", out.join("memory.x")).expect("copy memory.x");
+    let target = std::env::var("TARGET").expect("TARGET");
+    let (memory, board) = match target.as_str() {
+        t if t.starts_with("thumbv8m") => ("memory-an505.x", "mps2-an505"),
+        t if t.starts_with("thumbv7em") => ("memory-mps2.x", "mps2-an386"),
+        _ => ("memory-mps2.x", "mps2-an385"),
+    };
+    std::fs::copy(memory, out.join("memory.x")).expect("copy the memory map");
     println!("cargo:rustc-link-search={}", out.display());
     println!("cargo:rustc-link-arg=-Tlink.x");
-    println!("cargo:rerun-if-changed=memory.x");
+    println!("cargo:rustc-env=ZLINE_QEMU_BOARD={board}");
+    println!("cargo:rustc-env=ZLINE_QEMU_TARGET={target}");
+    println!("cargo:rerun-if-changed=memory-mps2.x");
+    println!("cargo:rerun-if-changed=memory-an505.x");
     println!("cargo:rerun-if-changed=src/frame.rs");
     println!("cargo:rerun-if-env-changed=ZLINE_QEMU_SCENE");
     println!("cargo:rerun-if-env-changed=ZLINE_QEMU_BAD_CRC");

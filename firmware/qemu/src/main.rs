@@ -1,5 +1,7 @@
-//! zline on an emulated Cortex-M: QEMU `-machine mps2-an385`, code built for
-//! `thumbv6m-none-eabi` (Cortex-M0+; it runs on the board's Cortex-M3).
+//! zline on an emulated Cortex-M: QEMU `-machine mps2-an385` with code
+//! built for `thumbv6m-none-eabi` (Cortex-M0+ code; it runs on the board's
+//! Cortex-M3), `mps2-an386` with `thumbv7em-none-eabihf` (Cortex-M4F) or
+//! `mps2-an505` with `thumbv8m.main-none-eabihf` (Cortex-M33).
 //!
 //! For every scene (built-in meshes in flash, two views, both depth formats,
 //! 240x240; then Gouraud-shaded and texture-mapped frames) it renders one
@@ -9,7 +11,8 @@
 //! with SysTick under `-icount shift=0`. It prints one line per scene and
 //! exits through semihosting: 0 when every CRC matched, 1 otherwise.
 //!
-//! Run with `cargo qemu` from the repository root.
+//! Run with `cargo qemu`, `cargo qemu-m4f` or `cargo qemu-m33` from the
+//! repository root.
 
 #![no_std]
 #![no_main]
@@ -347,7 +350,9 @@ fn main() -> ! {
     syst.enable_counter();
     let per_tick = instructions_per_tick(syst);
     hprintln!(
-        "zline on qemu mps2-an385 (thumbv6m code), {}x{}, SysTick tick = {} instructions",
+        "zline on qemu {} ({} code), {}x{}, SysTick tick = {} instructions",
+        env!("ZLINE_QEMU_BOARD"),
+        env!("ZLINE_QEMU_TARGET"),
         frame::SIZE,
         frame::SIZE,
         per_tick
