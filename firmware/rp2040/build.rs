@@ -1,7 +1,9 @@
 //! Build script of the RP2040 firmware.
 //!
-//! 1. Puts the repository's `memory.x` (RP2040 memory map with BOOT2) on
-//!    the linker's search path, and passes cortex-m-rt's `link.x`.
+//! 1. Puts the repository's `memory.x` (RP2040 memory map with BOOT2), or
+//!    with the `rp2350` feature `memory-rp2350.x` (the Pico 2's, with the
+//!    IMAGE_DEF block), on the linker's search path as `memory.x`, and
+//!    passes cortex-m-rt's `link.x`.
 //! 2. Writes the mesh as Rust statics (`OUT_DIR/mesh.rs`), so it stays in
 //!    flash: the built-in torus knot, or the OBJ file named by the
 //!    environment variable `ZLINE_MESH`.
@@ -60,8 +62,16 @@ const PITCH_DEG: f32 = 20.0;
 const DEFAULT_SHAPE: &str = "torus-knot";
 /// Built-in mesh of the `textured` feature when `ZLINE_MESH` is not set.
 const TEXTURED_SHAPE: &str = "textured-torus-knot";
-/// RAM in `memory.x` (SRAM0-3; the two 4 KiB banks SRAM4/5 are left out).
-const RAM: usize = 256 * 1024;
+/// RAM in `memory.x` (the RP2040's SRAM0-3; the two 4 KiB banks SRAM4/5
+/// are left out).
+const RAM_RP2040: usize = 256 * 1024;
+/// RAM in `memory-rp2350.x` (the RP2350's SRAM0-7; SRAM8/9 are left out).
+const RAM_RP2350: usize = 512 * 1024;
+
+/// Whether this build is for the Pico 2 (feature `rp2350`).
+fn rp2350() -> bool {
+    env::var_os("CARGO_FEATURE_RP2350").is_some()
+}
 /// Stack kept free for start-up and the render loop (the largest frames in
 /// the loop are about 3 KiB; `src/stack.rs` measures the real use on the
 /// board).
@@ -103,8 +113,12 @@ fn run() -> Result<(), String> {
     let manifest = PathBuf::from(env::var_os("CARGO_MANIFEST_DIR").ok_or("no manifest dir")?);
     println!("cargo:rerun-if-changed=build.rs");
 
-    // 1. Memory map and linker scripts.
-    let memory_x = manifest.join("../../memory.x");
+    // 1. Memory map and linker scripts: the repository's for the RP2040,
+    // this crate's memory-rp2350.x for the Pico 2.
+    let memory_x = match rp2350() {
+        false => manifest.join("../../memory.x"),
+        true => manifest.join("memory-rp2350.x"),
+    };
     fs::copy(&memory_x, out.join("memory.x"))
         .map_err(|e| format!("copying {}: {e}", memory_x.display()))?;
     println!("cargo:rerun-if-changed={}", memory_x.display());
@@ -404,11 +418,15 @@ fn measure_views(
     // The renderer is built at compile time in its static
     // (`Renderer::new_in_static`), so it needs room once.
     let needed = ram + STACK_RESERVE;
-    if needed > RAM {
+    let (chip, map, ram_size) = match rp2350() {
+        false => ("RP2040", "memory.x", RAM_RP2040),
+        true => ("RP2350", "memory-rp2350.x", RAM_RP2350),
+    };
+    if needed > ram_size {
         return Err(format!(
-            "{origin}: too big for the RP2040's RAM: the renderer's tables for this mesh take \
+            "{origin}: too big for the {chip}'s RAM: the renderer's tables for this mesh take \
              about {renderer} bytes, {needed} bytes in all with the vertex cache, the SPI buffer, \
-             the DMA row queue and {STACK_RESERVE} bytes of stack, over the {RAM} bytes in memory.x; use a \
+             the DMA row queue and {STACK_RESERVE} bytes of stack, over the {ram_size} bytes in {map}; use a \
              smaller mesh ({} vertices, {} faces here)",
             mesh.vertex_count(),
             mesh.face_count()

@@ -10,14 +10,14 @@ use embedded_hal::spi::{Operation, SpiBus, SpiDevice};
 use mipidsi::Builder;
 use mipidsi::interface::SpiInterface;
 use mipidsi::models::ST7789;
-use rp2040_hal::Clock;
-use rp2040_hal::dma::DMAExt;
-use rp2040_hal::fugit::RateExtU32;
-use rp2040_hal::gpio::{FunctionSpi, OutputDriveStrength, OutputSlewRate, Pins};
-use rp2040_hal::{self as hal, pac};
 use static_cell::ConstStaticCell;
 
 use crate::Fault;
+use crate::hal::Clock;
+use crate::hal::dma::DMAExt;
+use crate::hal::fugit::RateExtU32;
+use crate::hal::gpio::{FunctionSpi, OutputDriveStrength, OutputSlewRate, Pins};
+use crate::hal::{self, pac};
 use crate::lcd::LcdRows;
 use crate::sizes::{HEIGHT, SPI_BUFFER, WIDTH};
 use crate::wiring::{COLOR_ORDER, INVERSION, LcdCs, LcdSpi, OFFSET, ORIENTATION, SPI_HZ, SPI_MODE};
@@ -51,8 +51,12 @@ impl SpiDevice for LcdDevice {
                 Operation::Read(bytes) => self.spi.read(bytes)?,
                 Operation::DelayNs(ns) => {
                     self.spi.flush()?;
-                    // 125 cycles a microsecond at 125 MHz.
+                    // 125 cycles a microsecond at 125 MHz (RP2040)...
+                    #[cfg(feature = "rp2040")]
                     cortex_m::asm::delay(ns.div_ceil(8));
+                    // ...150 at 150 MHz (RP2350).
+                    #[cfg(feature = "rp2350")]
+                    cortex_m::asm::delay((u64::from(*ns) * 150).div_ceil(1000) as u32);
                 }
             }
         }
@@ -61,7 +65,14 @@ impl SpiDevice for LcdDevice {
     }
 }
 
-/// Crystal on the Pico.
+/// The microsecond timer.
+#[cfg(feature = "rp2040")]
+pub type Timer = hal::Timer;
+/// The microsecond timer (the RP2350 has two; this is TIMER0).
+#[cfg(feature = "rp2350")]
+pub type Timer = hal::Timer<hal::timer::CopyableTimer0>;
+
+/// Crystal on the Pico and the Pico 2.
 const XTAL_HZ: u32 = 12_000_000;
 /// mipidsi's SPI buffer: one row of Rgb565, so each row the renderer
 /// sends goes out in one SPI write. In `.bss`, not on the stack.
@@ -71,10 +82,11 @@ static SPI_BUF: ConstStaticCell<[u8; SPI_BUFFER]> = ConstStaticCell::new([0; SPI
 /// mipidsi, cleared to black, backlight on), then hands SPI0, CS, DC and
 /// DMA channel 0 to the row stream. Returns the row stream and the timer
 /// (a microsecond clock and delay).
-pub fn init() -> Result<(LcdRows, hal::Timer), Fault> {
+pub fn init() -> Result<(LcdRows, Timer), Fault> {
     let mut pac = pac::Peripherals::take().ok_or(Fault::Peripherals)?;
     let mut watchdog = hal::Watchdog::new(pac.WATCHDOG);
-    // 125 MHz system and peripheral clocks from the 12 MHz crystal.
+    // System and peripheral clocks from the 12 MHz crystal: 125 MHz on the
+    // RP2040, 150 MHz on the RP2350.
     let clocks = hal::clocks::init_clocks_and_plls(
         XTAL_HZ,
         pac.XOSC,
@@ -85,7 +97,10 @@ pub fn init() -> Result<(LcdRows, hal::Timer), Fault> {
         &mut watchdog,
     )
     .map_err(|_| Fault::Clocks)?;
+    #[cfg(feature = "rp2040")]
     let mut timer = hal::Timer::new(pac.TIMER, &mut pac.RESETS, &clocks);
+    #[cfg(feature = "rp2350")]
+    let mut timer = hal::Timer::new_timer0(pac.TIMER0, &mut pac.RESETS, &clocks);
     let sio = hal::Sio::new(pac.SIO);
     let pins = Pins::new(
         pac.IO_BANK0,

@@ -26,12 +26,12 @@ use core::cell::RefCell;
 use cortex_m::interrupt::{Mutex, free as without_interrupts};
 use embedded_hal::digital::OutputPin;
 use embedded_hal::spi::SpiBus;
-use rp2040_hal::dma::{CH0, CH1, Channel, SingleChannel, single_buffer};
-use rp2040_hal::pac::{self, interrupt};
 use static_cell::ConstStaticCell;
 use zline::{LentRow, RowSink};
 
 use crate::frame::{WIRE_BLACK, WireColor};
+use crate::hal::dma::{CH0, CH1, Channel, SingleChannel, single_buffer};
+use crate::hal::pac::{self, interrupt};
 use crate::sizes::{HEIGHT, ROW_BUFFERS, ROWS_PER_BUFFER, WIDTH};
 use crate::wiring::{LcdCs, LcdDc, LcdSpi, OFFSET};
 
@@ -241,7 +241,7 @@ impl LcdRows {
         });
         // SAFETY: the handler only touches `QUEUE`, inside a critical
         // section; unmasking cannot break a critical section in progress.
-        unsafe { pac::NVIC::unmask(pac::Interrupt::DMA_IRQ_0) };
+        unsafe { cortex_m::peripheral::NVIC::unmask(pac::Interrupt::DMA_IRQ_0) };
         Some(Self {
             cs,
             dc,

@@ -28,9 +28,10 @@
 
 use embedded_hal::spi::{MODE_3, Mode};
 use mipidsi::options::{ColorInversion, ColorOrder, Orientation};
-use rp2040_hal::gpio::bank0::{Gpio16, Gpio17, Gpio18, Gpio19};
-use rp2040_hal::gpio::{FunctionSio, FunctionSpi, Pin, PullDown, SioOutput};
-use rp2040_hal::{self as hal, pac};
+
+use crate::hal::gpio::bank0::{Gpio16, Gpio17, Gpio18, Gpio19};
+use crate::hal::gpio::{FunctionSio, FunctionSpi, Pin, PullDown, SioOutput};
+use crate::hal::{self, pac};
 
 /// SPI0 with MOSI on GP19 and SCK on GP18, 8-bit frames.
 pub type LcdSpi = hal::Spi<
@@ -47,9 +48,11 @@ pub type LcdCs = Pin<Gpio17, FunctionSio<SioOutput>, PullDown>;
 /// The LCD's data/command pin, GP16.
 pub type LcdDc = Pin<Gpio16, FunctionSio<SioOutput>, PullDown>;
 
-/// SPI clock asked for. The SPI block divides the peripheral clock (125
-/// MHz) by at least 2, so this is the fastest it can go: exactly 62.5 MHz.
-/// Lower it (e.g. to 31.25 MHz) if long wires garble the picture.
+/// SPI clock asked for. The SPI block divides the peripheral clock by at
+/// least 2: on the RP2040 (125 MHz) this is the fastest it can go, exactly
+/// 62.5 MHz; on the RP2350 (150 MHz) the HAL takes the fastest rate at or
+/// below it, 37.5 MHz (75 MHz is beyond the ST7789). Lower it (e.g. to
+/// 31.25 MHz) if long wires garble the picture.
 pub const SPI_HZ: u32 = 62_500_000;
 /// SPI mode 3: clock idle high, data sampled on the rising edge (see the
 /// module notes about modules without CS).
