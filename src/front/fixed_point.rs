@@ -103,6 +103,7 @@ impl Exact {
     /// `None` for NaN and infinities. Read from the bits, so the value is
     /// the same on every target whatever its floating-point unit (or ROM
     /// routines) would round.
+    #[inline(never)]
     fn of(v: f32) -> Option<Self> {
         if !v.is_finite() {
             return None;
@@ -146,6 +147,7 @@ fn bit_length(v: u128) -> i32 {
 
 /// `v · 2^k`, rounded to nearest (ties away from zero) when `k < 0`; the
 /// caller keeps `v · 2^k` below `2^126`.
+#[inline(never)]
 fn scale_round(v: i128, k: i32) -> i128 {
     if v == 0 {
         0
@@ -167,6 +169,7 @@ fn scale_round(v: i128, k: i32) -> i128 {
 /// integer at scale `2^base`, `base` 100 bits below the largest term (so
 /// the sum stays below `2^103`); smaller bits are dropped (rounded), the
 /// same way on every target.
+#[inline(never)]
 fn exact_sum(terms: &[Exact]) -> (i128, i32) {
     let top = terms.iter().map(|t| t.top()).max().unwrap_or(i32::MIN / 2);
     let base = top - 100;
@@ -179,6 +182,7 @@ fn exact_sum(terms: &[Exact]) -> (i128, i32) {
 }
 
 /// `floor(sqrt(v))`, bit by bit.
+#[inline(never)]
 fn isqrt(v: u128) -> u128 {
     let mut root = 0u128;
     let mut bit = 1u128 << ((bit_length(v).max(1) - 1) & !1);
@@ -208,6 +212,7 @@ impl FixedFrame {
     /// arithmetic, so the integers are the same on every target. `None`
     /// when an input is not finite or the matrix scales a quantized unit
     /// beyond `2^13`: the caller then uses the `f32` front end.
+    #[inline(never)]
     pub fn new(
         mvp: &Mat4,
         model_view: &Mat4,
@@ -428,6 +433,7 @@ impl FixedFrame {
 /// abs(v))` per component), in exact integer arithmetic from the `f32`
 /// bits with an integer square root: the same on every target. `None` for
 /// a zero or non-finite vector.
+#[inline(never)]
 pub fn unit_q15(v: [f32; 3]) -> Option<[i32; 3]> {
     let e = [Exact::of(v[0])?, Exact::of(v[1])?, Exact::of(v[2])?];
     let top = e.iter().map(|x| x.top()).max()?;
@@ -461,6 +467,7 @@ pub fn fraction_bits(v: f32, bits: i32) -> i32 {
 /// integer arithmetic from the `f32` entries (each rounded to a multiple
 /// of `2^-30` of the largest: well below the result's `2^-15`), with an
 /// integer square root: the same on every target.
+#[inline(never)]
 fn view_rotation(m: &Mat4) -> Option<[[i32; 3]; 3]> {
     let mut entries = [[Exact { m: 0, e: 0 }; 3]; 3];
     for (i, row) in entries.iter_mut().enumerate() {
