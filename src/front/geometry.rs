@@ -168,8 +168,8 @@ impl Mat4 {
     /// Rotation about +X by `radians` (y towards z).
     ///
     /// The rotations take sine and cosine from one `libm::sincosf` (one
-    /// argument reduction, about 3 KB less flash on a Cortex-M0+ than
-    /// `sinf` and `cosf`); it returns the same bits as the two for every
+    /// argument reduction, about 1 KB less flash in the RP2040 firmware
+    /// than `sinf` and `cosf`); it returns the same bits as the two for every
     /// finite `f32` (all 4,278,190,080 checked on the host, 2026-11-28).
     pub fn rotation_x(radians: f32) -> Self {
         let (s, c) = libm::sincosf(radians);
