@@ -71,6 +71,10 @@ pub enum Error {
     /// distance), or the projection is singular and has no frustum (for
     /// example a near and far plane whose product underflows `f32`).
     ClipRange,
+    /// A mesh face crosses the near or far plane or the guard band and
+    /// needs clipping, but zline was built without its `clipping` feature
+    /// (the `f64` clipper).
+    NeedsClipping,
     /// A painted renderer's storage
     /// ([`PaintStorage`](crate::paint::PaintStorage)) holds values for
     /// fewer vertices than its vertex table, planes for fewer polygons than
@@ -127,6 +131,10 @@ impl fmt::Display for Error {
             Error::ClipRange => f.write_str(
                 "face too large for its distance from the eye to be clipped exactly \
                  (clip-space size over 2^28 times the near plane's w), or a singular projection",
+            ),
+            Error::NeedsClipping => f.write_str(
+                "face crosses the near or far plane or the guard band and needs clipping, \
+                 but zline was built without its `clipping` feature",
             ),
             Error::PaintStorageTooSmall => f.write_str(
                 "the paint storage holds fewer vertex values, active-polygon planes or \

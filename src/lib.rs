@@ -84,6 +84,7 @@ mod sink;
 pub mod host;
 pub use front::obj;
 pub use raster::inspect;
+#[cfg(feature = "zbuffer")]
 pub use raster::zbuffer;
 
 pub use error::{Error, RenderError};

@@ -28,6 +28,9 @@
 //! already projected, shared with faces that are not clipped) counts as
 //! inside every plane, so it is never moved by a cut.
 
+// Without the `clipping` feature nothing calls the clipper.
+#![cfg_attr(not(feature = "clipping"), allow(dead_code))]
+
 /// A point in homogeneous clip space.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct ClipPoint {

@@ -390,6 +390,7 @@ impl<'a> EdgePool<'a> {
     }
 
     /// Empties the pool: every list in it is forgotten.
+    #[cfg(feature = "zbuffer")]
     pub fn reset(&mut self) {
         self.edges.truncate(0);
         self.free = NO_EDGE;

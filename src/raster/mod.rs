@@ -48,6 +48,7 @@ pub(crate) mod stats;
 pub(crate) mod stepping;
 pub(crate) mod tables;
 pub(crate) mod vertex;
+#[cfg(feature = "zbuffer")]
 pub mod zbuffer;
 
 pub use active::ActivePolygon;

@@ -120,6 +120,7 @@ impl<'a, T: Copy> OrderedSlots<'a, T> {
     }
 
     /// Removes every entry.
+    #[cfg(feature = "zbuffer")]
     pub fn clear(&mut self) {
         self.len = 0;
     }
@@ -140,6 +141,7 @@ impl<'a, T: Copy> OrderedSlots<'a, T> {
     }
 
     /// The first entry in use, mutably.
+    #[cfg(feature = "zbuffer")]
     pub fn first_mut(&mut self) -> Option<&mut T> {
         let slot = *self.live_slots().first()?;
         self.items.get_mut(usize::from(slot))

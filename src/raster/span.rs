@@ -48,11 +48,11 @@ impl<C: Copy, D: DepthFormat> RowBuffers<'_, C, D> {
         }
         let (first, last) = (start as usize, end as usize);
         let (mut acc, step) = accumulator_at(start);
-        if self.write != PixelWrite::NearerOrFirstAdded {
+        if self.write.in_effect() != PixelWrite::NearerOrFirstAdded {
             // The other methods' rules, out of line: the scanline's span
             // loop stays as it was.
             let (depths, colors) = (&mut self.depth[first..last], &mut self.color[first..last]);
-            other_rule_in_range::<C, D>(depths, colors, color, (acc, step), self.write);
+            other_rule_in_range::<C, D>(depths, colors, color, (acc, step), self.write.in_effect());
             return true;
         }
         let mut first = first;
@@ -128,7 +128,7 @@ impl<C: Copy, D: DepthFormat> RowBuffers<'_, C, D> {
                 break;
             };
             let depth = D::value(accumulator_at(x as i32).0);
-            let wins = match self.write {
+            let wins = match self.write.in_effect() {
                 PixelWrite::NearerOrFirstAdded => {
                     depth < *stored || (depth == *stored && depth != D::CLEAR && key < *stored_key)
                 }
@@ -174,7 +174,7 @@ impl<C: Copy, D: DepthFormat> RowBuffers<'_, C, D> {
         // |dz_dx| < 2^40, start < 2^12, |row_value| < 2^57: no overflow.
         let value = row_value + mul_i64_small(dz_dx, start);
         let pixel = (key, color);
-        match self.write {
+        match self.write.in_effect() {
             PixelWrite::NearerOrFirstAdded => {
                 round_each_pixel::<C, D, NEARER_OR_FIRST_ADDED>(slices, value, dz_dx, pixel)
             }
@@ -210,7 +210,7 @@ impl<C: Copy, D: DepthFormat> RowBuffers<'_, C, D> {
             &mut self.color[range.clone()],
             &mut self.key[range],
         );
-        if self.write == PixelWrite::NearerOrFirstAdded {
+        if self.write.in_effect() == PixelWrite::NearerOrFirstAdded {
             fill_span::<C, D, NEARER_OR_FIRST_ADDED>(
                 depths,
                 colors,
@@ -230,7 +230,7 @@ impl<C: Copy, D: DepthFormat> RowBuffers<'_, C, D> {
                 start,
                 (key, color),
                 source,
-                self.write,
+                self.write.in_effect(),
             );
         }
         true
@@ -239,6 +239,7 @@ impl<C: Copy, D: DepthFormat> RowBuffers<'_, C, D> {
 
 /// How a covered pixel is written.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(not(feature = "zbuffer"), allow(dead_code))]
 pub(crate) enum PixelWrite {
     /// Where nearer, or equally near and added earlier (the key row): the
     /// scanline z-buffer, whatever order its polygons are scanned in.
@@ -248,6 +249,20 @@ pub(crate) enum PixelWrite {
     Nearer,
     /// Always: the painter's pass.
     Overwrite,
+}
+
+impl PixelWrite {
+    /// The rule the span loops take: this one, or without the `zbuffer`
+    /// feature (whose methods alone write by the other rules) always the
+    /// scanline's, so that the other rules' loops are left out of the code.
+    #[inline(always)]
+    fn in_effect(self) -> Self {
+        if cfg!(feature = "zbuffer") {
+            self
+        } else {
+            PixelWrite::NearerOrFirstAdded
+        }
+    }
 }
 
 /// [`RowBuffers::fill_in_range`] for [`PixelWrite::Nearer`] and

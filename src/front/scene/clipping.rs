@@ -3,11 +3,19 @@
 //! ([`CLIP_RANGE`]), and its corners streamed through the guard-band
 //! clipper in `f64` and projected.
 
+// Without the `clipping` feature only `CLIP_RANGE` is left.
+
+#[cfg(feature = "clipping")]
 use crate::error::Error;
+#[cfg(feature = "clipping")]
 use crate::front::clip::{self, ClipPoint, ClipValue, ClipVertex, Clipper};
+#[cfg(feature = "clipping")]
 use crate::front::mesh::Mesh;
+#[cfg(feature = "clipping")]
 use crate::front::scene::cache::NEEDS_CLIP;
+#[cfg(feature = "clipping")]
 use crate::front::scene::transform::Frame;
+#[cfg(feature = "clipping")]
 use crate::raster::vertex::ScreenVertex;
 
 /// How far a face that needs clipping may reach, relative to the view
@@ -29,6 +37,7 @@ use crate::raster::vertex::ScreenVertex;
 /// range.)
 pub const CLIP_RANGE: f64 = (1u64 << 28) as f64;
 
+#[cfg(feature = "clipping")]
 /// A bound on the `f64` transform's error on a plane's distance to a
 /// corner, per unit of the corner's clip-space size: the product of the
 /// three matrices (two products of four terms) and the transform (four
@@ -37,6 +46,7 @@ pub const CLIP_RANGE: f64 = (1u64 << 28) as f64;
 /// times that.
 const CLIP_ERROR: f64 = 1.0 / (1u64 << 46) as f64;
 
+#[cfg(feature = "clipping")]
 impl Frame {
     /// Whether a face that needs clipping lies wholly outside one frustum
     /// plane beyond doubt, whatever its size: each corner farther outside
@@ -102,6 +112,7 @@ impl Frame {
     }
 }
 
+#[cfg(feature = "clipping")]
 /// Runs a face's corners through the guard-band clipper into `out`, each
 /// with its value from `value` (of the mesh vertex's index; `()` for
 /// none). Corners the cache holds as stored vertices go in tagged with

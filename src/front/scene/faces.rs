@@ -9,18 +9,25 @@ use core::fmt;
 use crate::arith::wide::cross;
 use crate::error::Error;
 use crate::front::backface::{EyeTest, Side};
-use crate::front::clip::{ClipValue, ClipVertex};
+use crate::front::clip::ClipValue;
+#[cfg(feature = "clipping")]
+use crate::front::clip::ClipVertex;
 use crate::front::geometry::Mat4;
 use crate::front::mesh::{Mesh, SharedPlane};
 use crate::front::scene::cache::{CacheStorage, EMPTY, NEEDS_CLIP, NON_FINITE};
 use crate::front::scene::camera::Camera;
+#[cfg(feature = "clipping")]
 use crate::front::scene::clipping::clip_face;
 use crate::front::scene::cull::Cull;
 use crate::front::scene::face_info::FaceInfo;
 use crate::front::scene::transform::{Frame, ProjectedVertex, TransformEach, VertexSource};
 use crate::front::scene::vertex_info::VertexInfo;
-use crate::limits::{MAX_FACE_CORNERS, MAX_POLYGON_CORNERS};
-use crate::raster::vertex::{Outline, OutlineBuilder, ScreenVertex};
+use crate::limits::MAX_FACE_CORNERS;
+#[cfg(feature = "clipping")]
+use crate::limits::MAX_POLYGON_CORNERS;
+#[cfg(feature = "clipping")]
+use crate::raster::vertex::OutlineBuilder;
+use crate::raster::vertex::{Outline, ScreenVertex};
 use crate::raster::{Admission, PolygonTables};
 
 /// Counts of what happened to a mesh's faces in one draw.
@@ -537,7 +544,10 @@ where
             return Ok(());
         }
         if clip {
+            #[cfg(feature = "clipping")]
             return self.clipped_part(face, corners);
+            #[cfg(not(feature = "clipping"))]
+            return Err(Error::NeedsClipping);
         }
         self.stored_polygon(face, corners)
     }
@@ -772,6 +782,7 @@ where
     /// into the tables by the second, identical pass. Corners that need no
     /// clipping keep their shared vertex. Out of line: rare, and its
     /// clipper's state stays off the common path's stack.
+    #[cfg(feature = "clipping")]
     #[inline(never)]
     fn clipped_part(&mut self, face: usize, corners: &[u16]) -> Result<(), Error> {
         let frame = self.frame;
@@ -898,4 +909,30 @@ fn shade_front_face<C, M: Mesh>(
         return None;
     }
     Some(shade(&frame.face_info(mesh, face, corners, front)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::front::mesh::StaticMesh;
+    use crate::front::scene::VertexCache;
+    use crate::{Depth16, Renderer, ScanArrays, TableArrays};
+
+    /// A triangle with a corner behind the eye is clipped. (Without the
+    /// `clipping` feature it is refused with [`Error::NeedsClipping`]:
+    /// `tools/minimal` checks that build, which this workspace's tests
+    /// cannot make, its lab enabling the feature.)
+    #[test]
+    fn a_face_behind_the_eye_is_clipped() {
+        let corners = [[-1.0, -1.0, -5.0], [1.0, -1.0, -5.0], [0.0, 1.0, 5.0]];
+        let mesh = StaticMesh::new(&corners, &[0, 1, 2], &[0]).unwrap();
+        let camera = Camera::perspective(Mat4::IDENTITY, 60.0, 32, 32, 0.5, 100.0);
+        let mut renderer: Renderer<
+            TableArrays<u8, 8, 4, 16>,
+            ScanArrays<u8, Depth16, 32, 4, 8>,
+            VertexCache<3>,
+        > = Renderer::new(32, 32, 0).unwrap();
+        let drawn = renderer.draw_mesh(&mesh, &Mat4::IDENTITY, &camera, Cull::None, |_| 1);
+        assert_eq!(drawn.map(|stats| stats.clipped), Ok(1));
+    }
 }

@@ -5,9 +5,11 @@
 //! that clipping starts from, and [`project_vertices`], the same step on
 //! its own.
 
+#[cfg(feature = "clipping")]
 use core::cell::OnceCell;
 
 use crate::error::Error;
+#[cfg(feature = "clipping")]
 use crate::front::clip::ClipPoint;
 use crate::front::clip_w::ClipW;
 use crate::front::fixed_point::FixedFrame;
@@ -29,6 +31,7 @@ use crate::raster::vertex::ScreenVertex;
 /// pixels off.)
 const NEAR_FAR_ERROR: f32 = 1.0 / (1u32 << 20) as f32;
 
+#[cfg(feature = "clipping")]
 /// The `f64` state of a frame for faces that need clipping.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Clip64 {
@@ -42,6 +45,7 @@ pub(super) struct Clip64 {
     pub(super) w_near: f64,
 }
 
+#[cfg(feature = "clipping")]
 impl Clip64 {
     fn new([projection, view, model]: &[Mat4; 3]) -> Self {
         let abs = |m: &Mat4| m.m.map(|row| row.map(|v| f64::from(v).abs()));
@@ -55,6 +59,7 @@ impl Clip64 {
     }
 }
 
+#[cfg(feature = "clipping")]
 /// The smallest clip-space `w` of a point of view space inside the
 /// frustum `|x|, |y| <= g·w`, `|z| <= w` of `projection` (`0` when it cannot
 /// be found: a singular projection).
@@ -148,11 +153,13 @@ pub(super) fn normalised_view_normal(n: Vec3, model_view: &Mat4) -> Vec3 {
 /// Per-draw constants.
 pub(super) struct Frame {
     mvp: Mat4,
+    #[cfg(feature = "clipping")]
     /// The same product and the frustum's nearest `w` in `f64`, for faces
     /// that need clipping: made the first time one does (on a core without
     /// an FPU it is hundreds of soft-float operations, every frame).
     clip64: OnceCell<Clip64>,
     /// What `mvp64` is the product of: projection, view and model.
+    #[cfg(feature = "clipping")]
     factors: [Mat4; 3],
     pub(super) model_view: Mat4,
     /// One over the scale of `model_view` when it is a rotation with
@@ -176,6 +183,7 @@ pub(super) struct Frame {
     pub(super) fixed: Option<FixedFrame>,
 }
 
+#[cfg(feature = "clipping")]
 /// `a · b` in `f64`.
 fn mul64(a: &[[f64; 4]; 4], b: &[[f64; 4]; 4]) -> [[f64; 4]; 4] {
     let mut r = [[0.0f64; 4]; 4];
@@ -187,6 +195,7 @@ fn mul64(a: &[[f64; 4]; 4], b: &[[f64; 4]; 4]) -> [[f64; 4]; 4] {
     r
 }
 
+#[cfg(feature = "clipping")]
 fn to64(m: &Mat4) -> [[f64; 4]; 4] {
     m.m.map(|row| row.map(f64::from))
 }
@@ -233,7 +242,9 @@ impl Frame {
             mvp,
             near_far_terms,
             inverse_scale,
+            #[cfg(feature = "clipping")]
             clip64: OnceCell::new(),
+            #[cfg(feature = "clipping")]
             factors: [camera.projection, camera.view, *model],
             model_view,
             fixed,
@@ -315,9 +326,16 @@ impl Frame {
         } else {
             None
         };
+        // Without the clipper, a vertex that cannot be projected as it is
+        // always needs clipping: its faces are refused with
+        // `Error::NeedsClipping`, none is dropped as non-finite.
+        #[cfg(feature = "clipping")]
+        let finite = self.clip_position64(mesh, index).is_finite();
+        #[cfg(not(feature = "clipping"))]
+        let finite = true;
         match stored {
             Some(v) => screen(v),
-            None if self.clip_position64(mesh, index).is_finite() => Ok(needs_clip),
+            None if finite => Ok(needs_clip),
             None => Ok(non_finite),
         }
     }
@@ -338,6 +356,7 @@ impl Frame {
     }
 
     /// The frame's `f64` state for clipping, made on first use.
+    #[cfg(feature = "clipping")]
     pub(super) fn clip64(&self) -> &Clip64 {
         self.clip64.get_or_init(|| {
             let mut clip = Clip64::new(&self.factors);
@@ -348,6 +367,7 @@ impl Frame {
     }
 
     /// Clip-space position in `f64`.
+    #[cfg(feature = "clipping")]
     pub(super) fn clip_position64<M: Mesh + ?Sized>(&self, mesh: &M, index: usize) -> ClipPoint {
         let p = mesh.position(index).map(f64::from);
         let row = |r: [f64; 4]| r[0] * p[0] + r[1] * p[1] + r[2] * p[2] + r[3];
