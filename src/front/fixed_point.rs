@@ -92,10 +92,12 @@ pub struct FixedFrame {
     scale_bits: i32,
 }
 
-/// A finite `f32`, exactly: `m · 2^e` with `abs(m) < 2^24`.
+/// A finite `f32`, exactly: `m · 2^e` with `abs(m) < 2^24`, or a product
+/// of two (`abs(m) < 2^48`): `i64`, whose arithmetic a 32-bit core makes
+/// in far less code than `i128`'s.
 #[derive(Debug, Clone, Copy)]
 struct Exact {
-    m: i128,
+    m: i64,
     e: i32,
 }
 
@@ -110,7 +112,7 @@ impl Exact {
         }
         let bits = v.to_bits();
         let biased = ((bits >> 23) & 0xff) as i32;
-        let fraction = i128::from(bits & 0x7f_ffff);
+        let fraction = i64::from(bits & 0x7f_ffff);
         let (m, e) = if biased == 0 {
             (fraction, -149)
         } else {
@@ -135,7 +137,7 @@ impl Exact {
         if self.m == 0 {
             i32::MIN / 2
         } else {
-            bit_length(self.m.unsigned_abs()) + self.e
+            bit_length(u128::from(self.m.unsigned_abs())) + self.e
         }
     }
 }
@@ -176,7 +178,7 @@ fn exact_sum(terms: &[Exact]) -> (i128, i32) {
     let sum = terms
         .iter()
         .filter(|t| t.m != 0)
-        .map(|t| scale_round(t.m, t.e - base))
+        .map(|t| scale_round(i128::from(t.m), t.e - base))
         .sum();
     (sum, base)
 }
@@ -271,9 +273,9 @@ impl FixedFrame {
             }
             let k = l.e + t;
             let q = if k >= 0 {
-                div_round_away_i128(l.m << k, scale)
+                div_round_away_i128(i128::from(l.m) << k, scale)
             } else if k > -80 {
-                div_round_away_i128(l.m, scale << -k)
+                div_round_away_i128(i128::from(l.m), scale << -k)
             } else {
                 0
             };
@@ -448,7 +450,7 @@ pub fn unit_q15(v: [f32; 3]) -> Option<[i32; 3]> {
     // 2^62, exact in `i64`.
     let mut x = [0i64; 3];
     for (c, e) in x.iter_mut().zip(&e) {
-        *c = i64::try_from(scale_round(e.m, e.e - base)).ok()?;
+        *c = i64::try_from(scale_round(i128::from(e.m), e.e - base)).ok()?;
     }
     let length = isqrt(u128::from(
         (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]).unsigned_abs(),
@@ -463,7 +465,7 @@ pub fn unit_q15(v: [f32; 3]) -> Option<[i32; 3]> {
 /// (from its bits); 0 for anything else.
 pub fn fraction_bits(v: f32, bits: i32) -> i32 {
     match Exact::of(v) {
-        Some(x) if v.abs() <= 1.0 => scale_round(x.m, x.e + bits) as i32,
+        Some(x) if v.abs() <= 1.0 => scale_round(i128::from(x.m), x.e + bits) as i32,
         _ => 0,
     }
 }
@@ -497,7 +499,7 @@ fn view_rotation(m: &Mat4) -> Option<[[i32; 3]; 3]> {
     let mut v = [[0i64; 3]; 3];
     for (row, exact) in v.iter_mut().zip(&entries) {
         for (x, e) in row.iter_mut().zip(exact) {
-            *x = i64::try_from(scale_round(e.m, e.e - base)).ok()?;
+            *x = i64::try_from(scale_round(i128::from(e.m), e.e - base)).ok()?;
         }
     }
     let col = |j: usize| [v[0][j], v[1][j], v[2][j]];
@@ -656,7 +658,7 @@ mod tests {
         if top == i32::MIN / 2 {
             return None;
         }
-        let x = e.map(|x| scale_round(x.m, x.e - (top - 30)));
+        let x = e.map(|x| scale_round(i128::from(x.m), x.e - (top - 30)));
         let length = isqrt((x[0] * x[0] + x[1] * x[1] + x[2] * x[2]).unsigned_abs()) as i128;
         if length == 0 {
             return None;
@@ -676,7 +678,7 @@ mod tests {
         if top == i32::MIN / 2 {
             return None;
         }
-        let v = entries.map(|row| row.map(|x| scale_round(x.m, x.e - (top - 30))));
+        let v = entries.map(|row| row.map(|x| scale_round(i128::from(x.m), x.e - (top - 30))));
         let col = |j: usize| [v[0][j], v[1][j], v[2][j]];
         let dot = |a: [i128; 3], b: [i128; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
         let (c0, c1, c2) = (col(0), col(1), col(2));

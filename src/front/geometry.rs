@@ -8,6 +8,8 @@
 
 use core::ops::{Add, Mul, Neg, Sub};
 
+use crate::front::trig::sin_cos;
+
 /// A 3-vector.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Vec3 {
@@ -167,12 +169,11 @@ impl Mat4 {
 
     /// Rotation about +X by `radians` (y towards z).
     ///
-    /// The rotations take sine and cosine from one `libm::sincosf` (one
-    /// argument reduction, about 1 KB less flash in the RP2040 firmware
-    /// than `sinf` and `cosf`); it returns the same bits as the two for every
-    /// finite `f32` (all 4,278,190,080 checked on the host, 2026-11-28).
+    /// The rotations take sine and cosine from one reduction in `f32`
+    /// arithmetic alone (`front::trig`: within `2^-23` of the exact values
+    /// for angles up to 8192 radians, the same bits on every target).
     pub fn rotation_x(radians: f32) -> Self {
-        let (s, c) = libm::sincosf(radians);
+        let (s, c) = sin_cos(radians);
         let mut r = Self::IDENTITY;
         r.m[1][1] = c;
         r.m[1][2] = -s;
@@ -183,7 +184,7 @@ impl Mat4 {
 
     /// Rotation about +Y by `radians` (z towards x).
     pub fn rotation_y(radians: f32) -> Self {
-        let (s, c) = libm::sincosf(radians);
+        let (s, c) = sin_cos(radians);
         let mut r = Self::IDENTITY;
         r.m[0][0] = c;
         r.m[0][2] = s;
@@ -194,7 +195,7 @@ impl Mat4 {
 
     /// Rotation about +Z by `radians` (x towards y).
     pub fn rotation_z(radians: f32) -> Self {
-        let (s, c) = libm::sincosf(radians);
+        let (s, c) = sin_cos(radians);
         let mut r = Self::IDENTITY;
         r.m[0][0] = c;
         r.m[0][1] = -s;
@@ -336,22 +337,6 @@ pub fn radians(degrees: f32) -> f32 {
 
 #[cfg(test)]
 mod tests {
-    /// The rotations' `sincosf` against `sinf` and `cosf`, bit for bit, on
-    /// every 4,099th finite `f32` (the whole range was checked once).
-    #[test]
-    fn sincosf_is_sinf_and_cosf() {
-        let mut bits = 0u32;
-        while let Some(next) = bits.checked_add(4_099) {
-            let x = f32::from_bits(bits);
-            if x.is_finite() {
-                let (s, c) = libm::sincosf(x);
-                assert_eq!(s.to_bits(), libm::sinf(x).to_bits(), "{x:e}");
-                assert_eq!(c.to_bits(), libm::cosf(x).to_bits(), "{x:e}");
-            }
-            bits = next;
-        }
-    }
-
     #[test]
     fn look_at_gives_a_view_for_any_eye_but_the_target() {
         let orthonormal = |m: &Mat4| {
