@@ -91,6 +91,12 @@ pub enum Error {
     /// (`-8..8` texture sizes: [`UV_SCALE`](crate::limits::UV_SCALE)), or is
     /// not finite.
     TexCoordRange,
+    /// A face of a [`Triangles`](crate::Triangles) mesh has other than
+    /// three corners.
+    NotATriangle,
+    /// A polygon of more than three corners was offered to the tables,
+    /// but zline was built without its `polygons` feature.
+    NeedsPolygons,
 }
 
 impl fmt::Display for Error {
@@ -142,6 +148,13 @@ impl fmt::Display for Error {
             ),
             Error::ValueCountMismatch => {
                 f.write_str("a polygon's corner values are not one per corner")
+            }
+            Error::NeedsPolygons => f.write_str(
+                "polygon of more than three corners, but zline was built without its \
+                 `polygons` feature",
+            ),
+            Error::NotATriangle => {
+                f.write_str("a face of a mesh of triangles has other than three corners")
             }
             Error::TexCoordRange => {
                 f.write_str("a texture coordinate is outside -8..8 or not finite")

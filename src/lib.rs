@@ -101,6 +101,7 @@ pub use front::scene::{
     draw_mesh_projected, project_vertices, reference_model, reference_model_around,
 };
 pub use front::shade::{Lambert, Shading, face_id_color};
+pub use front::triangles::Triangles;
 pub use raster::paint::{NO_SLOT, RowPainter, scan_painted};
 pub use raster::{
     ActiveEdge, ActivePolygon, Admission, Capacities, Depth16, Depth24, DepthFormat, EdgeEntry,

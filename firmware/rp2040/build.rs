@@ -173,6 +173,12 @@ fn run() -> Result<(), String> {
     // floating point per vertex or face.
     let source = quantized_mesh_source(&mesh, "MESH", &origin)?;
     write(&out.join("mesh.rs"), &source)?;
+    // A mesh of triangles alone is drawn as `zline::Triangles`, which
+    // leaves the code for faces of more corners out of the flash.
+    println!("cargo:rustc-check-cfg=cfg(mesh_triangles)");
+    if (0..mesh.face_count()).all(|face| mesh.face(face).len() == 3) {
+        println!("cargo:rustc-cfg=mesh_triangles");
+    }
 
     // 4. The texture (before the capacities: the host frames map it).
     let texture = if textured {

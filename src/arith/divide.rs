@@ -8,10 +8,22 @@ use super::wide::{mul_i64_i32, mul_u32, mul_u32_by_size, shr_u64};
 
 /// `num / den` rounded to the nearest integer (ties towards +inf), for any
 /// non-zero `den`.
+///
+/// Its division is [`div_rem_bitwise`]'s, one bit at a time: it is the
+/// rare path of [`div_round_q16`] (operands beyond `i64` or `2^45`), and
+/// `i128`'s division took 1.2 KB of a Cortex-M0+ firmware's flash.
 pub(crate) fn div_round_i128(num: i128, den: i128) -> i128 {
     debug_assert!(den != 0);
     let (num, den) = if den < 0 { (-num, -den) } else { (num, den) };
-    (2 * num + den).div_euclid(2 * den)
+    // floor((2·num + den) / (2·den)), from the magnitudes: for a negative
+    // dividend the floor is minus the ceiling of the magnitude's quotient.
+    let (n, d) = (2 * num + den, (2 * den).unsigned_abs());
+    let (q, r) = div_rem_bitwise(n.unsigned_abs(), d);
+    if n >= 0 {
+        q as i128
+    } else {
+        -(q as i128) - i128::from(r != 0)
+    }
 }
 
 /// `num · 2^16 / den` rounded to the nearest integer (ties towards +inf),
@@ -289,18 +301,38 @@ pub(crate) fn div_round_away_i128(n: i128, d: i128) -> i128 {
             -((-2 * n + d) / (2 * d))
         });
     }
-    if let Ok(small) = u16::try_from(d) {
+    let (magnitude, divisor) = (n.unsigned_abs(), d.unsigned_abs());
+    let q = if magnitude < LIMIT && divisor >= LIMIT {
+        // A quotient below 1 (the per-frame set-up's tiny matrix entries):
+        // 1 when at least a half, else 0.
+        u128::from(2 * magnitude >= divisor)
+    } else if let Ok(small) = u16::try_from(d) {
         // A divisor below 2^16 (the dequantization's 32767): long division
         // in 16-bit digits, each step a 32-bit division.
-        let (q, r) = div_rem_by_u16(n.unsigned_abs(), small);
-        let q = q + u128::from(2 * u32::from(r) >= u32::from(small));
-        return if n >= 0 { q as i128 } else { -(q as i128) };
-    }
-    if n >= 0 {
-        (2 * n + d) / (2 * d)
+        let (q, r) = div_rem_by_u16(magnitude, small);
+        q + u128::from(2 * u32::from(r) >= u32::from(small))
     } else {
-        -((-2 * n + d) / (2 * d))
+        // Never in a frame: bit by bit, in far less code than `i128`'s
+        // division (2 KB of a Cortex-M0+ firmware's flash).
+        let (q, r) = div_rem_bitwise(magnitude, divisor);
+        q + u128::from(2 * r >= divisor)
+    };
+    if n >= 0 { q as i128 } else { -(q as i128) }
+}
+
+/// `n / d` and `n % d` for `0 < d < 2^127`, one bit at a time from the
+/// top (the remainder stays below `d`, so doubling it cannot overflow).
+fn div_rem_bitwise(n: u128, d: u128) -> (u128, u128) {
+    let (mut q, mut r) = (0u128, 0u128);
+    for k in (0..128 - n.leading_zeros()).rev() {
+        r = (r << 1) | ((n >> k) & 1);
+        q <<= 1;
+        if r >= d {
+            r -= d;
+            q |= 1;
+        }
     }
+    (q, r)
 }
 
 /// `n / d` and `n % d` for `d > 0`, by 16-bit digits from the top: each
@@ -604,6 +636,23 @@ mod tests {
         }
     }
 
+    /// Quotients below 1 with a divisor of `2^61` and more: exactly a
+    /// half rounds away from zero, less than a half to zero.
+    #[test]
+    fn rounded_division_of_quotients_below_one_rounds_half_away() {
+        let d = (1i128 << 61) + 2;
+        for (n, q) in [
+            (d / 2, 1),
+            (-d / 2, -1),
+            (d / 2 - 1, 0),
+            (-(d / 2 - 1), 0),
+            (0, 0),
+        ] {
+            assert_eq!(div_round_away_i128(n, d), q, "{n} / {d}");
+            assert_eq!(div_round_wide(n, d), q, "{n} / {d}");
+        }
+    }
+
     #[test]
     fn rounded_division_is_exact_on_both_paths() {
         const LIMIT: i128 = 1 << 61;
@@ -666,6 +715,33 @@ mod tests {
             n in proptest::prelude::any::<i128>().prop_map(|n| n >> 2),
             d in 1i128..(1i128 << 16),
         ) {
+            proptest::prop_assert_eq!(div_round_away_i128(n, d), div_round_wide(n, d));
+        }
+
+        #[test]
+        fn nearest_division_matches_its_definition(
+            num in proptest::prelude::any::<i128>().prop_map(|n| n >> 4),
+            den_bits in 1u32..=124,
+            den in proptest::prelude::any::<i128>(),
+        ) {
+            // Any sign, divisors from 1 to 2^123, dividends to 2^123:
+            // against i128's own floor division.
+            let den = (den >> (128 - den_bits)).max(1) * if den < 0 { -1 } else { 1 };
+            let (n, d) = if den < 0 { (-num, -den) } else { (num, den) };
+            proptest::prop_assert_eq!(div_round_i128(num, den), (2 * n + d).div_euclid(2 * d));
+        }
+
+        #[test]
+        fn rounded_division_by_a_long_divisor_matches_its_definition(
+            n in proptest::prelude::any::<i128>().prop_map(|n| n >> 8),
+            d_bits in 16u32..120,
+            d in proptest::prelude::any::<u128>(),
+            small_n: bool,
+        ) {
+            // Divisors from 2^16 to 2^120, dividends to 2^119, or below
+            // 2^61 (the quotients below 1 of the per-frame set-up).
+            let d = (d >> (128 - d_bits)).max(1) as i128;
+            let n = if small_n { n >> 60 } else { n };
             proptest::prop_assert_eq!(div_round_away_i128(n, d), div_round_wide(n, d));
         }
 

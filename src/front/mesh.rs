@@ -76,6 +76,15 @@ pub trait Mesh {
         let _ = index;
         None
     }
+
+    /// Whether every face is a triangle, known to the type: `true` for a
+    /// [`Triangles`](crate::Triangles) mesh, and then
+    /// [`draw_mesh`](crate::front::scene::draw_mesh) leaves out of the code its paths
+    /// for faces of more corners (non-planar splits, convex quads, polygon
+    /// outlines). `false` (the default) for any other.
+    fn triangles_only(&self) -> bool {
+        false
+    }
 }
 
 /// A face whose depth comes from a plane it shares with other faces of

@@ -31,4 +31,5 @@ pub(crate) mod rgb8p8;
 pub(crate) mod scene;
 pub(crate) mod shade;
 pub(crate) mod tex_coord;
+pub(crate) mod triangles;
 pub(crate) mod trig;

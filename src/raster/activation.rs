@@ -42,7 +42,8 @@ impl<C: Copy> ScanState<'_, '_, C> {
         row: u16,
         rows: &mut RowBuffers<'_, C, D>,
     ) -> Result<(), Error> {
-        if self.tables.polygons[position].corner_count() == 3 {
+        // (Without the `polygons` feature the tables hold triangles alone.)
+        if !cfg!(feature = "polygons") || self.tables.polygons[position].corner_count() == 3 {
             self.activate_triangle::<D, AT_ONCE>(position, row, rows)
         } else {
             self.activate_general(position, row)
@@ -122,7 +123,9 @@ impl<C: Copy> ScanState<'_, '_, C> {
             // A triangle sharing a plane: its corners from the list.
             None => match *entry_corner_ids(&polygon, corners) {
                 [a, b, c] => [a, b, c],
-                _ => return self.activate_general(position, row),
+                _ if cfg!(feature = "polygons") => return self.activate_general(position, row),
+                // (Three corners: the tables hold triangles alone.)
+                _ => return Err(Error::NeedsPolygons),
             },
         };
         // Not `ids.map`: on a Cortex-M0+ that became a loop through

@@ -156,7 +156,10 @@ fn painted_rows<D: DepthFormat, P: RowPainter, K: RowSink<P::Color, D::Value>>(
                 painter.enter(slot, entry.position as usize, row, tables);
             }
         }
-        while let Some(entry) = tables.edges.get(next_edge).filter(|e| e.row() == row) {
+        // (Without the `polygons` feature the edge table is empty.)
+        while cfg!(feature = "polygons")
+            && let Some(entry) = tables.edges.get(next_edge).filter(|e| e.row() == row)
+        {
             next_edge += 1;
             let slot = state
                 .find_slot(entry.position() as u32)

@@ -287,7 +287,10 @@ fn scan_rows<C: Copy, D: DepthFormat, K: RowSink<C, D::Value>>(
             state.activate_polygon::<D, true>(next_polygon, row, &mut row_buffers)?;
             next_polygon += 1;
         }
-        while let Some(entry) = tables.edges.get(next_edge).filter(|e| e.row() == row) {
+        // (Without the `polygons` feature the edge table is empty.)
+        while cfg!(feature = "polygons")
+            && let Some(entry) = tables.edges.get(next_edge).filter(|e| e.row() == row)
+        {
             next_edge += 1;
             let slot = state
                 .find_slot(entry.position() as u32)

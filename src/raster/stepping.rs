@@ -403,7 +403,8 @@ fn fill_spans_and_step<C: Copy>(
     mut fill: impl FnMut(i32, i32) -> bool,
 ) -> bool {
     let next_row = row + 1;
-    if polygon.is_triangle() {
+    // (Without the `polygons` feature the tables hold triangles alone.)
+    if !cfg!(feature = "polygons") || polygon.is_triangle() {
         let (start, end) = polygon.triangle_span();
         if fill(start, end) {
             stats.spans += 1;

@@ -39,7 +39,7 @@ use static_cell::ConstStaticCell;
 use zline::Shading;
 use zline::Vec3;
 use zline::bounding_sphere;
-use zline::{Depth16, FrameStats, RenderError};
+use zline::{Depth16, FrameStats, Mesh, RenderError};
 
 use frame::WIRE_BLACK;
 #[cfg(not(any(feature = "gouraud", feature = "textured")))]
@@ -191,6 +191,9 @@ pub enum Fault {
     Spi = 3,
     /// The LCD did not initialise.
     Display = 4,
+    /// build.rs found the mesh all triangles, but `zline::Triangles` did
+    /// not (it cannot happen).
+    Mesh = 5,
 }
 
 /// Why a frame was skipped; the numbers go to [`LAST_ERROR`].
@@ -232,6 +235,15 @@ fn run() -> Result<core::convert::Infallible, Fault> {
             (Vec3::default(), 0.0)
         }
     };
+    // A mesh of triangles (build.rs checked) is drawn as one, with no
+    // code for faces of more corners; any other as it is.
+    #[cfg(mesh_triangles)]
+    let mesh = match zline::Triangles::new(&MESH) {
+        Ok(mesh) => mesh,
+        Err(_) => return Err(Fault::Mesh),
+    };
+    #[cfg(not(mesh_triangles))]
+    let mesh = &MESH;
     // So is the shading: its light's unit vector is made once.
     let shading = Shading::lambert();
     let mut step = 0u32;
@@ -248,7 +260,7 @@ fn run() -> Result<core::convert::Infallible, Fault> {
         // The same yaw angles build.rs sized the tables for.
         let yaw = step as f32 * sizes::YAW_STEP_DEG;
         step = (step + 1) % sizes::YAW_STEPS;
-        match draw_frame(renderer, &mut rows, (&shading, sphere), yaw) {
+        match draw_frame(renderer, &mut rows, &mesh, (&shading, sphere), yaw) {
             Ok(stats) => {
                 FRAMES.store(FRAMES.load(Ordering::Relaxed) + 1, Ordering::Relaxed);
                 POLYGONS.store(stats.polygons, Ordering::Relaxed);
@@ -273,6 +285,7 @@ fn run() -> Result<core::convert::Infallible, Fault> {
 fn draw_frame(
     renderer: &mut Zr,
     rows: &mut LcdRows,
+    mesh: &impl Mesh,
     (shading, sphere): (&Shading, (Vec3, f32)),
     yaw: f32,
 ) -> Result<FrameStats, FrameError> {
@@ -282,7 +295,7 @@ fn draw_frame(
     let render = frame::render_frame_painted;
     render(
         renderer,
-        &MESH,
+        mesh,
         shading,
         sphere,
         (yaw, sizes::PITCH_DEG),

@@ -466,6 +466,10 @@ where
     fn face(&mut self, face: usize) -> Result<(), Error> {
         let corners = self.mesh.face(face);
         self.face_corners = corners.len();
+        if self.mesh.triangles_only() && corners.len() != 3 {
+            // (`Triangles::new` checked; a mesh of triangles draws none.)
+            return Err(Error::NotATriangle);
+        }
         if corners.len() > MAX_FACE_CORNERS {
             return Err(Error::TooManyCorners);
         }
@@ -492,7 +496,7 @@ where
                 return Ok(());
             }
         }
-        if corners.len() > 3 && !self.mesh.face_is_planar(face) {
+        if !self.mesh.triangles_only() && corners.len() > 3 && !self.mesh.face_is_planar(face) {
             self.stats.split += 1;
             for k in 1..corners.len() - 1 {
                 self.part(
@@ -548,6 +552,12 @@ where
             return self.clipped_part(face, corners);
             #[cfg(not(feature = "clipping"))]
             return Err(Error::NeedsClipping);
+        }
+        // Every corner is in the vertex table: a triangle took the fast
+        // path above, so this is a face of more corners, which a mesh of
+        // triangles never has (and whose code it leaves out).
+        if self.mesh.triangles_only() {
+            return Err(Error::NotATriangle);
         }
         self.stored_polygon(face, corners)
     }

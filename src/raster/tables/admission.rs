@@ -355,6 +355,9 @@ impl<C: Copy> TablesMut<'_, C> {
             outline.add(*vertex.ok_or(Error::VertexOutOfRange)?);
         }
         let outline = outline.finish();
+        if !cfg!(feature = "polygons") && outline.corners > 3 {
+            return Err(Error::NeedsPolygons);
+        }
         let rows = match self.judge(&outline)? {
             Ok(rows) => rows,
             Err(admission) => return Ok(admission),
@@ -563,6 +566,10 @@ impl<C: Copy> TablesMut<'_, C> {
             outline.add(vertices[usize::from(index)]);
         }
         let outline = outline.finish();
+        if !cfg!(feature = "polygons") && self.corners.len() - start > 3 {
+            self.discard_polygon();
+            return Err(Error::NeedsPolygons);
+        }
         let rows = match self.judge(&outline) {
             Ok(Ok(rows)) => rows,
             Ok(Err(admission)) => {

@@ -152,6 +152,10 @@ impl<C: Copy> TablesMut<'_, C> {
     /// per (row, polygon), sorted by row.
     fn build_edge_table(&mut self) {
         self.edges.set_len(0);
+        if !cfg!(feature = "polygons") {
+            // Triangles alone: every edge enters with its polygon.
+            return;
+        }
         let height = i32::from(self.counts.height);
         let (vertices, corners) = (self.vertices.as_slice(), self.corners.as_slice());
         let mut count = 0usize;
