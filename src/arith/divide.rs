@@ -11,7 +11,8 @@ use super::wide::{mul_i64_i32, mul_u32, mul_u32_by_size, shr_u64};
 ///
 /// Its division is [`div_rem_bitwise`]'s, one bit at a time: it is the
 /// rare path of [`div_round_q16`] (operands beyond `i64` or `2^45`), and
-/// `i128`'s division took 1.2 KB of a Cortex-M0+ firmware's flash.
+/// `i128`'s division cost 248 bytes more of a Cortex-M0+ firmware's
+/// flash (the bit-by-bit routine is shared).
 pub(crate) fn div_round_i128(num: i128, den: i128) -> i128 {
     debug_assert!(den != 0);
     let (num, den) = if den < 0 { (-num, -den) } else { (num, den) };
@@ -313,7 +314,7 @@ pub(crate) fn div_round_away_i128(n: i128, d: i128) -> i128 {
         q + u128::from(2 * u32::from(r) >= u32::from(small))
     } else {
         // Never in a frame: bit by bit, in far less code than `i128`'s
-        // division (2 KB of a Cortex-M0+ firmware's flash).
+        // division (832 bytes of a Cortex-M0+ firmware's flash).
         let (q, r) = div_rem_bitwise(magnitude, divisor);
         q + u128::from(2 * r >= divisor)
     };

@@ -494,7 +494,7 @@ fn view_rotation(m: &Mat4) -> Option<[[i32; 3]; 3]> {
     let base = top - 30;
     // Each entry is below 2^top, so at most 2^30 scaled: its products at
     // most 2^60 and their sums of three below 2^62, exact in `i64` (whose
-    // products a 32-bit core makes far more cheaply than `i128`'s: 2.7 KB
+    // products a 32-bit core makes far more cheaply than `i128`'s: 3.5 KB
     // less of a Cortex-M0+ firmware's flash).
     let mut v = [[0i64; 3]; 3];
     for (row, exact) in v.iter_mut().zip(&entries) {
