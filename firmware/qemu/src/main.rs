@@ -18,14 +18,16 @@
 #![no_main]
 
 mod frame;
+mod harness;
 
 use core::convert::Infallible;
 
 use cortex_m::peripheral::SYST;
 use cortex_m::peripheral::syst::SystClkSource;
 use cortex_m_rt::entry;
-use cortex_m_semihosting::{debug, hprintln};
+use cortex_m_semihosting::hprintln;
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
+use harness::{finish, instructions_per_tick, ticks};
 use static_cell::ConstStaticCell;
 use zline::QuantizedMesh;
 use zline::VertexCache;
@@ -179,29 +181,6 @@ fn run_zbuffer<S: ScanStorage<Color = Rgb565>>(
     Ok((crc.value(), ticks))
 }
 
-/// SysTick ticks elapsed while running `f`; the counter runs down from
-/// 2^24 - 1 and frames stay well below one wrap.
-fn ticks<T>(syst: &mut SYST, f: impl FnOnce() -> T) -> (T, u32) {
-    syst.clear_current();
-    let start = SYST::get_current();
-    let result = f();
-    let end = SYST::get_current();
-    (result, start.wrapping_sub(end) & 0x00FF_FFFF)
-}
-
-/// Instructions per SysTick tick, measured with a loop of known length:
-/// `subs` + `bne`, two instructions an iteration.
-fn instructions_per_tick(syst: &mut SYST) -> u32 {
-    const ITERATIONS: u32 = 200_000;
-    let ((), t) = ticks(syst, || {
-        // SAFETY: a register-only countdown loop; it touches no memory.
-        unsafe {
-            core::arch::asm!("1:", "subs {0}, #1", "bne 1b", inout(reg) ITERATIONS => _, options(nomem, nostack));
-        }
-    });
-    (2 * ITERATIONS + t / 2) / t.max(1)
-}
-
 struct Outcome {
     crc: u32,
     ticks: u32,
@@ -338,11 +317,14 @@ fn painted_scenes<R: PaintedFrame>(
     all_ok
 }
 
+/// What the firmware prints when every check passed (`.ci/run` reads it).
+const PASSED: &str = "all frames match the host";
+
 #[entry]
 fn main() -> ! {
     let stack_floor = stack::paint();
     let Some(mut peripherals) = cortex_m::Peripherals::take() else {
-        finish(false)
+        finish(false, PASSED)
     };
     let syst = &mut peripherals.SYST;
     syst.set_clock_source(SystClkSource::Core);
@@ -446,35 +428,7 @@ fn main() -> ! {
         core::mem::size_of::<Gouraud16>(),
         core::mem::size_of::<Textured16>()
     );
-    finish(all_ok)
-}
-
-fn finish(ok: bool) -> ! {
-    hprintln!(
-        "{}",
-        if ok {
-            "all frames match the host"
-        } else {
-            "FAILED"
-        }
-    );
-    debug::exit(if ok {
-        debug::EXIT_SUCCESS
-    } else {
-        debug::EXIT_FAILURE
-    });
-    loop {
-        cortex_m::asm::wfi();
-    }
-}
-
-#[panic_handler]
-fn panic(info: &core::panic::PanicInfo) -> ! {
-    hprintln!("panic: {}", info);
-    debug::exit(debug::EXIT_FAILURE);
-    loop {
-        cortex_m::asm::wfi();
-    }
+    finish(all_ok, PASSED)
 }
 
 /// Stack painting: fill the free stack with a pattern at boot, then find how

@@ -13,13 +13,15 @@
 // scenes and textures this firmware does not use (and never links).
 #![allow(dead_code)]
 
+mod harness;
+
 use core::convert::Infallible;
 
-use cortex_m::peripheral::SYST;
 use cortex_m::peripheral::syst::SystClkSource;
 use cortex_m_rt::entry;
-use cortex_m_semihosting::{debug, hprintln};
+use cortex_m_semihosting::hprintln;
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
+use harness::{finish, instructions_per_tick, ticks};
 use static_cell::ConstStaticCell;
 use zline::reference_model_around;
 use zline::{Camera, Cull, Depth16, QuantizedMesh, Renderer, ScanArrays, Shading, TableArrays};
@@ -56,10 +58,13 @@ static RENDERER: ConstStaticCell<Minimal> =
     ConstStaticCell::new(Minimal::new_in_static(SIZE, SIZE, Rgb565::BLACK));
 static CACHE: ConstStaticCell<VertexCache<VM>> = ConstStaticCell::new(VertexCache::new());
 
+/// What the firmware prints when every check passed (`.ci/run` reads it).
+const PASSED: &str = "the frame matches the host";
+
 #[entry]
 fn main() -> ! {
     let Some(mut peripherals) = cortex_m::Peripherals::take() else {
-        finish(false)
+        finish(false, PASSED)
     };
     let syst = &mut peripherals.SYST;
     syst.set_clock_source(SystClkSource::Core);
@@ -68,7 +73,7 @@ fn main() -> ! {
     let per_tick = instructions_per_tick(syst);
     // The first scene: the torus knot at yaw 30, pitch 20, z16.
     let Some(scene) = SCENES.first() else {
-        finish(false)
+        finish(false, PASSED)
     };
     let (yaw, pitch, expected) = (scene.yaw, scene.pitch, scene.expected_crc);
     let (renderer, cache) = (RENDERER.take(), CACHE.take());
@@ -76,7 +81,7 @@ fn main() -> ! {
         Triangles::new(&TORUS_KNOT),
         zline::bounding_sphere(&TORUS_KNOT),
     ) else {
-        finish(false)
+        finish(false, PASSED)
     };
     let shading = Shading::lambert();
     let view = (sphere, yaw, pitch, &shading);
@@ -95,7 +100,7 @@ fn main() -> ! {
         if ok { "ok" } else { "MISMATCH" },
         u64::from(t) * u64::from(per_tick)
     );
-    finish(ok)
+    finish(ok, PASSED)
 }
 
 /// The frame: `mesh` in the reference view at `yaw`/`pitch` (its bounding
@@ -114,53 +119,4 @@ fn render<K: RowSink<Rgb565, u16>>(
         Rgb565::from(shading.color(f))
     })?;
     renderer.render(sink).map(|_| ())
-}
-
-/// SysTick ticks elapsed while running `f` (as `zline-qemu`'s).
-fn ticks<T>(syst: &mut SYST, f: impl FnOnce() -> T) -> (T, u32) {
-    syst.clear_current();
-    let start = SYST::get_current();
-    let result = f();
-    let end = SYST::get_current();
-    (result, start.wrapping_sub(end) & 0x00FF_FFFF)
-}
-
-/// Instructions per SysTick tick (as `zline-qemu`'s).
-fn instructions_per_tick(syst: &mut SYST) -> u32 {
-    const ITERATIONS: u32 = 200_000;
-    let ((), t) = ticks(syst, || {
-        // SAFETY: a register-only countdown loop; it touches no memory.
-        unsafe {
-            core::arch::asm!("1:", "subs {0}, #1", "bne 1b", inout(reg) ITERATIONS => _, options(nomem, nostack));
-        }
-    });
-    (2 * ITERATIONS + t / 2) / t.max(1)
-}
-
-fn finish(ok: bool) -> ! {
-    hprintln!(
-        "{}",
-        if ok {
-            "the frame matches the host"
-        } else {
-            "FAILED"
-        }
-    );
-    debug::exit(if ok {
-        debug::EXIT_SUCCESS
-    } else {
-        debug::EXIT_FAILURE
-    });
-    loop {
-        cortex_m::asm::wfi();
-    }
-}
-
-#[panic_handler]
-fn panic(info: &core::panic::PanicInfo) -> ! {
-    hprintln!("panic: {}", info);
-    debug::exit(debug::EXIT_FAILURE);
-    loop {
-        cortex_m::asm::wfi();
-    }
 }
