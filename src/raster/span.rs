@@ -33,7 +33,7 @@ impl<C: Copy, D: DepthFormat> RowBuffers<'_, C, D> {
     /// [`IN_RANGE`]: crate::raster::depth::IN_RANGE
     #[cfg_attr(feature = "profile", inline(never))]
     #[cfg_attr(not(feature = "profile"), inline(always))]
-    pub(super) fn fill_in_range(
+    pub(super) fn fill_in_range<const SCANLINE: bool>(
         &mut self,
         start: i32,
         end: i32,
@@ -48,7 +48,7 @@ impl<C: Copy, D: DepthFormat> RowBuffers<'_, C, D> {
         }
         let (first, last) = (start as usize, end as usize);
         let (mut acc, step) = accumulator_at(start);
-        if self.write.in_effect() != PixelWrite::NearerOrFirstAdded {
+        if !SCANLINE && self.write.in_effect() != PixelWrite::NearerOrFirstAdded {
             // The other methods' rules, out of line: the scanline's span
             // loop stays as it was.
             let (depths, colors) = (&mut self.depth[first..last], &mut self.color[first..last]);

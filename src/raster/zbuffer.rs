@@ -208,7 +208,7 @@ fn draw_rows<C: Copy, D: DepthFormat>(
         let Some(entry) = state.active.first_mut() else {
             break;
         };
-        let alive = fill_and_step(entry, tables, pool, stats, y, &mut buffers);
+        let alive = fill_and_step::<C, D, false>(entry, tables, pool, stats, y, &mut buffers);
         if !alive || next >= rows.end {
             break;
         }
