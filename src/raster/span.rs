@@ -28,7 +28,8 @@ impl<C: Copy, D: DepthFormat> RowBuffers<'_, C, D> {
     /// and no call per span, on a host in branch-free blocks
     /// ([`crate::raster::lanes`]); whether any pixel was in the row. (With
     /// the `profile` feature it is kept out of line: the profile's "spans"
-    /// stage.)
+    /// stage.) With `SCANLINE` the caller knows the row is written by the
+    /// scanline's rule, and the row's rule is not looked at.
     ///
     /// [`IN_RANGE`]: crate::raster::depth::IN_RANGE
     #[cfg_attr(feature = "profile", inline(never))]

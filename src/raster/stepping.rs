@@ -261,7 +261,9 @@ pub(crate) fn switch_triangle<C: Copy>(
 /// Fills an active polygon's spans on `row` into the row buffers and steps
 /// it down to the next row; returns whether it is still active there. The
 /// common case inline ([`fill_and_step_triangle`]), every other polygon
-/// out of line.
+/// out of line. `SCANLINE`: the row is known to be written by the
+/// scanline's rule (the row loop's case), so an in-range triangle's span
+/// does not look at the row's rule.
 #[inline(always)]
 pub(crate) fn fill_and_step<C: Copy, D: DepthFormat, const SCANLINE: bool>(
     polygon: &mut ActivePolygon<C>,
