@@ -148,7 +148,7 @@ pub(crate) const DIVISION_IS_CHEAP: bool = cfg!(feature = "hardware-divider")
 /// division (a Cortex-M0+ has no divide instruction, and compiler-builtins'
 /// 64-bit division costs hundreds of instructions there): a 32-bit
 /// reciprocal from one 32-bit division and a Newton step
-/// ([`crate::front::fixed_point::reciprocal62`]), a quotient estimate from
+/// ([`reciprocal62`]), a quotient estimate from
 /// two 64-bit products, and at most a few corrections against the exact
 /// remainder. For quotients below `2^26`; larger ones are refused.
 ///

@@ -4,7 +4,7 @@
 //! build script) and kept in flash.
 //!
 //! A vertex `q` stands for the position `centre + radius · q / 32767`
-//! ([`POSITION_SCALE`]), so every coordinate of a mesh inside its bounding
+//! ([`POSITION_SCALE`](crate::limits::POSITION_SCALE)), so every coordinate of a mesh inside its bounding
 //! sphere is held to `radius / 65534`. A face normal `n` stands for the
 //! unit vector `n / 32767` ([`NORMAL_SCALE`]), from Newell's method over
 //! the face's original corners.

@@ -16,7 +16,7 @@
 //!   from row to row; its spans depth-tested and written into the row.
 //!   `entry_geometry`: a queued polygon's corners, edges and plane, as
 //!   they all read them (internal).
-//! * [`capacities`]: the capacities, named, and the [`Renderer`] bundle of
+//! * [`capacities`]: the capacities, named, and the [`Renderer`](crate::Renderer) bundle of
 //!   tables and scanner.
 //! * [`zbuffer`]: the z-buffer methods it is compared with (a full-frame
 //!   or banded depth buffer, and the painter's pass), on the same tables.

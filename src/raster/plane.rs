@@ -10,7 +10,7 @@
 //! nearest plane unit once per polygon; the renderer then steps them, so a
 //! stored value differs from the exact plane by at most
 //! `2^-17 · (1 + rows stepped + pixels stepped)` input steps plus the
-//! format's final rounding (see [`crate::depth`]).
+//! format's final rounding (see [`crate::raster::depth`]).
 //!
 //! # Ranges
 //! For every input the API accepts (corners inside the guard band, so
