@@ -141,8 +141,7 @@ impl Reciprocal {
 /// feature says the chip has one of its own (the RP2040's SIO divider,
 /// which rp2040-hal uses for `/`). Where it is not, exact divisions that
 /// can take a [`Divisor`]'s reciprocal do.
-pub(crate) const DIVISION_IS_CHEAP: bool = cfg!(feature = "hardware-divider")
-    || !cfg!(all(target_arch = "arm", not(target_has_atomic = "32")));
+pub(crate) const DIVISION_IS_CHEAP: bool = cfg!(feature = "hardware-divider") || !super::ARMV6M;
 
 /// Exact division by one 31-bit divisor, several times, without a 64-bit
 /// division (a Cortex-M0+ has no divide instruction, and compiler-builtins'

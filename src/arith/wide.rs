@@ -15,9 +15,8 @@
 //! compiled and tested on every target.
 
 /// Whether this target lacks a 32x32→64 multiply: ARMv6-M, the one Arm
-/// profile without it, is also the one without compare-and-swap atomics,
-/// which is what `cfg` can see.
-const HALVES: bool = cfg!(all(target_arch = "arm", not(target_has_atomic = "32")));
+/// profile without it.
+const HALVES: bool = super::ARMV6M;
 
 /// `a·b` for unsigned 32-bit operands, from four 16-bit products.
 #[inline(always)]

@@ -76,11 +76,6 @@ use crate::error::Error;
 /// is tested against its branching one on the host.
 pub(crate) const BRANCH_FREE: bool = !cfg!(target_arch = "arm");
 
-/// Whether this is an ARMv6-M core (Cortex-M0/M0+: no divide instruction,
-/// no 32-bit atomics), where some loops keep the shape measured fastest
-/// there.
-pub(crate) const ARMV6M: bool = cfg!(all(target_arch = "arm", not(target_has_atomic = "32")));
-
 /// What scene building needs from a renderer: its frame, its vertex table
 /// and its polygon table. [`Renderer`](crate::Renderer) implements it for every
 /// configuration, so [`draw_mesh`](crate::draw_mesh) needs none of the capacities.

@@ -3,12 +3,13 @@
 //! of a polygon into it, by the scanline's rule or the other methods'
 //! ([`PixelWrite`]).
 
+use crate::arith::ARMV6M;
 use crate::arith::wide::mul_i64_small;
+use crate::raster::BRANCH_FREE;
 use crate::raster::depth::DepthFormat;
 use crate::raster::lanes::{LANES, block, fill_block};
 use crate::raster::plane::Plane;
 use crate::raster::small::SmallCoverage;
-use crate::raster::{ARMV6M, BRANCH_FREE};
 
 /// The row being built: depth, colour and tie-break key per pixel.
 pub(crate) struct RowBuffers<'a, C, D: DepthFormat> {
