@@ -78,11 +78,19 @@ const XTAL_HZ: u32 = 12_000_000;
 /// sends goes out in one SPI write. In `.bss`, not on the stack.
 static SPI_BUF: ConstStaticCell<[u8; SPI_BUFFER]> = ConstStaticCell::new([0; SPI_BUFFER]);
 
+/// What [`init`] returns: the row stream and the timer (a microsecond
+/// clock and delay).
+#[cfg(not(feature = "dual-core"))]
+pub type Board = (LcdRows, Timer);
+/// What [`init`] returns: the row stream, the timer (a microsecond clock
+/// and delay) and core 1, waiting for jobs (feature `dual-core`).
+#[cfg(feature = "dual-core")]
+pub type Board = (LcdRows, Timer, crate::dual::Core1);
+
 /// Brings up clocks, the timer, SPI and the LCD (reset, initialised by
 /// mipidsi, cleared to black, backlight on), then hands SPI0, CS, DC and
-/// DMA channel 0 to the row stream. Returns the row stream and the timer
-/// (a microsecond clock and delay).
-pub fn init() -> Result<(LcdRows, Timer), Fault> {
+/// DMA channel 0 to the row stream (and, with `dual-core`, starts core 1).
+pub fn init() -> Result<Board, Fault> {
     let mut pac = pac::Peripherals::take().ok_or(Fault::Peripherals)?;
     let mut watchdog = hal::Watchdog::new(pac.WATCHDOG);
     // System and peripheral clocks from the 12 MHz crystal: 125 MHz on the
@@ -158,5 +166,12 @@ pub fn init() -> Result<(LcdRows, Timer), Fault> {
     let (spi, cs) = device.into_parts();
     let dma = pac.DMA.split(&mut pac.RESETS);
     let rows = LcdRows::new(spi, cs, dc, dma.ch0, dma.ch1).ok_or(Fault::Display)?;
-    Ok((rows, timer))
+    #[cfg(not(feature = "dual-core"))]
+    return Ok((rows, timer));
+    #[cfg(feature = "dual-core")]
+    Ok((
+        rows,
+        timer,
+        crate::dual::Core1::start(&mut pac.PSM, &mut pac.PPB, sio.fifo)?,
+    ))
 }

@@ -5,6 +5,8 @@
 
 use embedded_graphics_core::pixelcolor::Rgb565;
 use embedded_graphics_core::prelude::IntoStorage;
+#[cfg(feature = "dual-core")]
+use zline::DrawError;
 use zline::Mesh;
 use zline::Shading;
 use zline::Vec3;
@@ -33,7 +35,10 @@ pub fn wire(c: Rgb565) -> WireColor {
 /// culled, and sends the frame to `sink` row by row, in wire order
 /// ([`WireColor`]).
 #[allow(clippy::too_many_arguments)]
-#[cfg_attr(any(feature = "gouraud", feature = "textured"), allow(dead_code))]
+#[cfg_attr(
+    any(feature = "gouraud", feature = "textured", feature = "dual-core"),
+    allow(dead_code)
+)]
 pub fn render_frame<T, S, C, K, M>(
     renderer: &mut Renderer<T, S, C>,
     mesh: &M,
@@ -57,6 +62,32 @@ where
     })?;
     let frame = renderer.render(sink)?;
     Ok((draw, frame))
+}
+
+/// The scene of [`render_frame`] alone (feature `dual-core`, where two
+/// cores scan it in bands): `renderer`'s tables cleared and `mesh` drawn
+/// into them, as `render_frame` draws it.
+#[cfg(feature = "dual-core")]
+#[allow(dead_code)] // The build script includes this file for `render_frame`.
+pub fn draw_scene<T, S, C, M>(
+    renderer: &mut Renderer<T, S, C>,
+    mesh: &M,
+    shading: &Shading,
+    (centre, radius): (Vec3, f32),
+    (yaw, pitch): (f32, f32),
+) -> Result<DrawStats, DrawError>
+where
+    T: TableStorage<Color = WireColor>,
+    S: ScanStorage<Color = WireColor>,
+    C: CacheStorage,
+    M: Mesh,
+{
+    renderer.clear();
+    let model = reference_model_around(centre, radius, yaw, pitch);
+    let camera = Camera::reference(renderer.width(), renderer.height());
+    renderer.draw_mesh(mesh, &model, &camera, Cull::Back, |f| {
+        wire(Rgb565::from(shading.color(f)))
+    })
 }
 
 /// A Gouraud-painted pixel in wire order: the bytes of a [`WireColor`].

@@ -23,6 +23,7 @@
 
 use core::cell::RefCell;
 
+#[cfg(not(feature = "dual-core"))]
 use cortex_m::interrupt::{Mutex, free as without_interrupts};
 use embedded_hal::digital::OutputPin;
 use embedded_hal::spi::SpiBus;
@@ -39,8 +40,24 @@ use crate::wiring::{LcdCs, LcdDc, LcdSpi, OFFSET};
 pub const ROW_BYTES: usize = 2 * WIDTH as usize;
 /// Bytes of one buffer: [`ROWS_PER_BUFFER`] rows.
 const BUFFER_BYTES: usize = ROWS_PER_BUFFER * ROW_BYTES;
-/// Buffers in the ring: [`ROW_BUFFERS`] rows of them.
-const BUFFERS: usize = ROW_BUFFERS / ROWS_PER_BUFFER;
+/// Buffers in the ring: [`ROW_BUFFERS`] rows of them (twice that with
+/// `dual-core`, where core 0 starts a frame while core 1's rows of the
+/// last one may still be leaving).
+const BUFFERS: usize =
+    if cfg!(feature = "dual-core") { 2 } else { 1 } * ROW_BUFFERS / ROWS_PER_BUFFER;
+/// Rows core 1 may draw in a frame (feature `dual-core`): its own
+/// buffers hold them all, so it never waits for core 0's rows to leave.
+#[cfg(feature = "dual-core")]
+pub const POOL_ROWS: usize = 128;
+/// Core 1's buffers.
+#[cfg(feature = "dual-core")]
+const POOL_BUFFERS: usize = POOL_ROWS / ROWS_PER_BUFFER;
+/// Buffers in all, the capacity of every ring.
+#[cfg(feature = "dual-core")]
+const ALL_BUFFERS: usize = BUFFERS + POOL_BUFFERS;
+/// Buffers in all, the capacity of every ring.
+#[cfg(not(feature = "dual-core"))]
+const ALL_BUFFERS: usize = BUFFERS;
 
 /// One buffer of rows, lent to DMA while it is sent.
 type RowBuf = &'static mut [u8; BUFFER_BYTES];
@@ -67,6 +84,11 @@ struct RowBytes([u8; BUFFER_BYTES]);
 static ROWS: ConstStaticCell<[RowBytes; BUFFERS]> =
     ConstStaticCell::new([const { RowBytes([0; BUFFER_BYTES]) }; BUFFERS]);
 
+/// Core 1's row buffers, in `.bss` (feature `dual-core`).
+#[cfg(feature = "dual-core")]
+static POOL: ConstStaticCell<[RowBytes; POOL_BUFFERS]> =
+    ConstStaticCell::new([const { RowBytes([0; BUFFER_BYTES]) }; POOL_BUFFERS]);
+
 /// ST7789 commands.
 const CASET: u8 = 0x2A;
 const RASET: u8 = 0x2B;
@@ -79,31 +101,32 @@ enum Bus {
     Sending(Transfer),
 }
 
-/// A first-in first-out ring of row buffers.
-struct Ring {
-    slots: [Option<RowBuf>; BUFFERS],
+/// A first-in first-out ring of row buffers (or of queued ones).
+struct Ring<T = RowBuf> {
+    slots: [Option<T>; ALL_BUFFERS],
     head: usize,
     len: usize,
 }
 
-impl Ring {
+impl<T> Ring<T> {
     const fn new() -> Self {
         Self {
-            slots: [const { None }; BUFFERS],
+            slots: [const { None }; ALL_BUFFERS],
             head: 0,
             len: 0,
         }
     }
 
-    /// Appends `buf` (never full: there are `BUFFERS` buffers in all).
-    fn push(&mut self, buf: RowBuf) {
-        debug_assert!(self.len < BUFFERS);
+    /// Appends `buf` (never full: there are `ALL_BUFFERS` buffers in
+    /// all).
+    fn push(&mut self, buf: T) {
+        debug_assert!(self.len < ALL_BUFFERS);
         self.slots[wrap(self.head + self.len)] = Some(buf);
         self.len += 1;
     }
 
     #[inline]
-    fn pop(&mut self) -> Option<RowBuf> {
+    fn pop(&mut self) -> Option<T> {
         let buf = self.slots[self.head].take()?;
         self.head = wrap(self.head + 1);
         self.len -= 1;
@@ -111,11 +134,11 @@ impl Ring {
     }
 }
 
-/// `index mod BUFFERS` for `index < 2·BUFFERS`, by a compare: `%`
-/// would be a call to the divider on every row.
+/// `index mod ALL_BUFFERS` for `index < 2·ALL_BUFFERS`, by a compare:
+/// `%` would be a call to the divider on every row.
 fn wrap(index: usize) -> usize {
-    if index >= BUFFERS {
-        index - BUFFERS
+    if index >= ALL_BUFFERS {
+        index - ALL_BUFFERS
     } else {
         index
     }
@@ -133,11 +156,46 @@ enum Clearer {
 struct Queue {
     /// `None` only while the sink sends commands with the SPI.
     bus: Option<Bus>,
-    queued: Ring,
+    queued: Ring<Queued>,
     sent: Ring,
     free: Ring,
     /// `None` only inside [`Queue::advance`].
     clearer: Option<Clearer>,
+    /// Core 1's share of the frame and the LCD's pins (feature
+    /// `dual-core`).
+    #[cfg(feature = "dual-core")]
+    dual: Dual,
+}
+
+/// A full buffer queued for the wire. (With one core, the sink opens each
+/// frame's window before queueing its first buffer.)
+#[cfg(not(feature = "dual-core"))]
+type Queued = RowBuf;
+
+/// A full buffer queued for the wire (feature `dual-core`): the first of a
+/// frame opens the panel's window before it is sent, since core 1's rows
+/// of the last frame may still be leaving when core 0 starts the next.
+#[cfg(feature = "dual-core")]
+struct Queued {
+    buf: RowBuf,
+    opens_frame: bool,
+}
+
+/// What the queue holds for two cores (feature `dual-core`).
+#[cfg(feature = "dual-core")]
+struct Dual {
+    /// Chip select and data/command, to open a frame's window.
+    pins: (LcdCs, LcdDc),
+    /// Core 1's free buffers.
+    free: Ring,
+    /// Core 1's full buffers, held until core 0's rows above are queued.
+    held: Ring,
+    /// Whether core 0 has queued its rows of this frame: core 1's full
+    /// buffers then go straight to the wire.
+    top_done: bool,
+    /// The addresses core 1's buffers lie in, to send a cleared buffer
+    /// home.
+    addresses: core::ops::Range<usize>,
 }
 
 impl Queue {
@@ -159,7 +217,15 @@ impl Queue {
             Some(Clearer::Clearing(transfer)) if transfer.is_done() => {
                 let (mut dma, _, buf) = transfer.wait();
                 dma.check_irq0();
+                #[cfg(not(feature = "dual-core"))]
                 self.free.push(buf);
+                // Home to the free ring of the core it came from.
+                #[cfg(feature = "dual-core")]
+                if self.dual.addresses.contains(&(buf.as_ptr() as usize)) {
+                    self.dual.free.push(buf);
+                } else {
+                    self.free.push(buf);
+                }
                 Some(Clearer::Idle(dma))
             }
             other => other,
@@ -173,9 +239,18 @@ impl Queue {
             ));
         }
         if let Some(Bus::Idle { .. }) = self.bus
-            && let Some(buf) = self.queued.pop()
+            && let Some(next) = self.queued.pop()
             && let Some(Bus::Idle { dma, spi }) = self.bus.take()
         {
+            #[cfg(not(feature = "dual-core"))]
+            let buf = next;
+            #[cfg(feature = "dual-core")]
+            let (mut spi, buf) = (spi, next.buf);
+            #[cfg(feature = "dual-core")]
+            if next.opens_frame {
+                let (cs, dc) = &mut self.dual.pins;
+                open_window(&mut spi, cs, dc);
+            }
             self.bus = Some(Bus::Sending(
                 single_buffer::Config::new(dma, buf, spi).start(),
             ));
@@ -183,14 +258,63 @@ impl Queue {
     }
 }
 
-/// The queue. Only core 0 touches it (the render loop and its DMA
-/// interrupt), so masking interrupts is enough to share it: no spinlock.
+/// Opens the whole panel for writing: CS cycled, CASET, RASET, RAMWR,
+/// then DC high for pixel data. (A few microseconds of blocking SPI, in
+/// the interrupt or the sink's call that finds the bus idle, so the CPU
+/// never waits for the last frame's rows to leave before drawing the
+/// next.) The pins and the SPI cannot fail on this chip.
+#[cfg(feature = "dual-core")]
+fn open_window(spi: &mut LcdSpi, cs: &mut LcdCs, dc: &mut LcdDc) {
+    let span = |offset: u16, size: u16| {
+        let (a, b) = (offset, offset + size - 1);
+        [(a >> 8) as u8, a as u8, (b >> 8) as u8, b as u8]
+    };
+    let Ok(()) = cs.set_high();
+    let Ok(()) = cs.set_low();
+    command(spi, dc, CASET, &span(OFFSET.0, WIDTH));
+    command(spi, dc, RASET, &span(OFFSET.1, HEIGHT));
+    command(spi, dc, RAMWR, &[]);
+}
+
+/// Sends one command over the SPI (DC low for the command byte, high for
+/// the parameters).
+#[cfg(feature = "dual-core")]
+fn command(spi: &mut LcdSpi, dc: &mut LcdDc, cmd: u8, params: &[u8]) {
+    let Ok(()) = dc.set_low();
+    let Ok(()) = spi.write(&[cmd]);
+    let Ok(()) = spi.flush();
+    let Ok(()) = dc.set_high();
+    if !params.is_empty() {
+        let Ok(()) = spi.write(params);
+        let Ok(()) = spi.flush();
+    }
+}
+
+/// The queue. With one core drawing, only core 0 touches it (the render
+/// loop and its DMA interrupt), so masking interrupts is enough to share
+/// it: no spinlock.
+#[cfg(not(feature = "dual-core"))]
 static QUEUE: Mutex<RefCell<Option<Queue>>> = Mutex::new(RefCell::new(None));
 
 /// Runs `f` on the queue with interrupts held off; `None` before
 /// [`LcdRows::new`].
+#[cfg(not(feature = "dual-core"))]
 fn with_queue<R>(f: impl FnOnce(&mut Queue) -> R) -> Option<R> {
     without_interrupts(|cs| QUEUE.borrow(cs).borrow_mut().as_mut().map(f))
+}
+
+/// The queue, shared by both cores (feature `dual-core`): taken under
+/// rp2040-hal's critical section, a hardware spinlock with interrupts
+/// held off on the taking core.
+#[cfg(feature = "dual-core")]
+static QUEUE: critical_section::Mutex<RefCell<Option<Queue>>> =
+    critical_section::Mutex::new(RefCell::new(None));
+
+/// Runs `f` on the queue under the two cores' critical section; `None`
+/// before [`LcdRows::new`].
+#[cfg(feature = "dual-core")]
+fn with_queue<R>(f: impl FnOnce(&mut Queue) -> R) -> Option<R> {
+    critical_section::with(|cs| QUEUE.borrow_ref_mut(cs).as_mut().map(f))
 }
 
 /// A row has left: free its buffer, start the next.
@@ -201,11 +325,19 @@ fn DMA_IRQ_0() {
 
 /// The LCD as a row sink: see the module notes.
 pub struct LcdRows {
+    /// Chip select and data/command (with one core; with two, the queue
+    /// holds them).
+    #[cfg(not(feature = "dual-core"))]
     cs: LcdCs,
+    #[cfg(not(feature = "dual-core"))]
     dc: LcdDc,
     /// The buffer being filled, row after row, and how many of its rows
     /// are done.
     filling: Option<(RowBuf, usize)>,
+    /// Whether the buffer being filled is its frame's first (feature
+    /// `dual-core`).
+    #[cfg(feature = "dual-core")]
+    opens_frame: bool,
 }
 
 /// The SPI or a pin failed.
@@ -230,6 +362,7 @@ impl LcdRows {
             free.push(&mut row.0);
         }
         dma.enable_irq0();
+        #[cfg(not(feature = "dual-core"))]
         without_interrupts(|cs| {
             QUEUE.borrow(cs).borrow_mut().replace(Queue {
                 bus: Some(Bus::Idle { dma, spi }),
@@ -239,16 +372,50 @@ impl LcdRows {
                 clearer: Some(Clearer::Idle(clear_dma)),
             })
         });
+        #[cfg(feature = "dual-core")]
+        {
+            let buffers = POOL.try_take()?;
+            let start = buffers.as_ptr() as usize;
+            let addresses = start..start + core::mem::size_of_val(buffers);
+            let mut pool = Ring::new();
+            for row in buffers {
+                pool.push(&mut row.0);
+            }
+            let queue = Queue {
+                bus: Some(Bus::Idle { dma, spi }),
+                queued: Ring::new(),
+                sent: Ring::new(),
+                free,
+                clearer: Some(Clearer::Idle(clear_dma)),
+                dual: Dual {
+                    pins: (cs, dc),
+                    free: pool,
+                    held: Ring::new(),
+                    top_done: false,
+                    addresses,
+                },
+            };
+            critical_section::with(|cs| QUEUE.borrow_ref_mut(cs).replace(queue));
+        }
         // SAFETY: the handler only touches `QUEUE`, inside a critical
         // section; unmasking cannot break a critical section in progress.
         unsafe { cortex_m::peripheral::NVIC::unmask(pac::Interrupt::DMA_IRQ_0) };
-        Some(Self {
+        #[cfg(not(feature = "dual-core"))]
+        return Some(Self {
             cs,
             dc,
             filling: None,
+        });
+        #[cfg(feature = "dual-core")]
+        Some(Self {
+            filling: None,
+            opens_frame: false,
         })
     }
+}
 
+#[cfg(not(feature = "dual-core"))]
+impl LcdRows {
     /// Sends one command over the SPI (DC low for the command byte, high
     /// for the parameters).
     fn command(spi: &mut LcdSpi, dc: &mut LcdDc, cmd: u8, params: &[u8]) -> Result<(), LcdError> {
@@ -330,7 +497,7 @@ fn free_buffer() -> Result<RowBuf, LcdError> {
 
 /// Queues a finished buffer of rows for the wire, starting it if the bus
 /// is idle (while it is busy, the interrupt starts the next one).
-fn queue_row(buf: RowBuf) -> Result<(), LcdError> {
+fn queue_row(buf: Queued) -> Result<(), LcdError> {
     with_queue(|q| {
         q.queued.push(buf);
         if let Some(Bus::Idle { .. }) = q.bus {
@@ -347,7 +514,16 @@ impl LcdRows {
     /// makes way for a free one.
     fn row_slot(&mut self, y: u16) -> Result<(&mut [u8; BUFFER_BYTES], usize), LcdError> {
         if y == 0 {
+            // With one core the window opens now, once the last frame's
+            // rows are out; with two, when the wire reaches this frame's
+            // first buffer (core 1's rows of the last frame may still be
+            // leaving).
+            #[cfg(not(feature = "dual-core"))]
             self.begin_frame()?;
+            #[cfg(feature = "dual-core")]
+            {
+                self.opens_frame = true;
+            }
             if let Some((buf, _)) = self.filling.take() {
                 with_queue(|q| {
                     q.sent.push(buf);
@@ -367,7 +543,13 @@ impl LcdRows {
     /// Row done: a full buffer is queued for the wire.
     fn row_done(&mut self) -> Result<(), LcdError> {
         match self.filling.take() {
+            #[cfg(not(feature = "dual-core"))]
             Some((buf, done)) if done + 1 == ROWS_PER_BUFFER => queue_row(buf),
+            #[cfg(feature = "dual-core")]
+            Some((buf, done)) if done + 1 == ROWS_PER_BUFFER => queue_row(Queued {
+                buf,
+                opens_frame: core::mem::take(&mut self.opens_frame),
+            }),
             Some((buf, done)) => {
                 self.filling = Some((buf, done + 1));
                 Ok(())
@@ -434,5 +616,143 @@ impl RowSink<WireColor, u16> for LcdRows {
 
     fn send_lent_row(&mut self, _y: u16, _depths: &[u16]) -> Result<(), LcdError> {
         self.row_done()
+    }
+}
+/// Core 1's rows (feature `dual-core`): the bottom rows of each frame,
+/// drawn in place into core 1's own buffers. A full buffer is held until
+/// core 0 has queued its rows above ([`LcdRows::top_done`]), then queued
+/// behind them; after that, each goes to the wire as it fills.
+#[cfg(feature = "dual-core")]
+pub struct PoolRows {
+    filling: Option<(RowBuf, usize)>,
+}
+
+#[cfg(feature = "dual-core")]
+impl PoolRows {
+    /// Core 1's sink, with no buffer yet.
+    pub const fn new() -> Self {
+        Self { filling: None }
+    }
+
+    /// The buffer the next row goes into and the byte offset of its row
+    /// there (a core-1 part starts on a buffer's first row).
+    fn row_slot(&mut self) -> Result<(&mut [u8; BUFFER_BYTES], usize), LcdError> {
+        let (buf, done) = match self.filling.take() {
+            Some((buf, done)) if done < ROWS_PER_BUFFER => (buf, done),
+            _ => (pool_buffer()?, 0),
+        };
+        let (buf, done) = self.filling.insert((buf, done));
+        Ok((buf, *done * ROW_BYTES))
+    }
+
+    /// Row done: a full buffer is held, or queued once core 0's rows are.
+    fn row_done(&mut self) -> Result<(), LcdError> {
+        match self.filling.take() {
+            Some((buf, done)) if done + 1 == ROWS_PER_BUFFER => with_queue(|q| {
+                if q.dual.top_done {
+                    q.queued.push(Queued {
+                        buf,
+                        opens_frame: false,
+                    });
+                    if let Some(Bus::Idle { .. }) = q.bus {
+                        q.advance();
+                    }
+                } else {
+                    q.dual.held.push(buf);
+                }
+            })
+            .ok_or(LcdError),
+            Some((buf, done)) => {
+                self.filling = Some((buf, done + 1));
+                Ok(())
+            }
+            None => Err(LcdError),
+        }
+    }
+}
+
+/// A free buffer of core 1's; when all are held or on their way out,
+/// waits for the wire (taking the queue's lock each time: the cores share
+/// no flag outside it).
+#[cfg(feature = "dual-core")]
+fn pool_buffer() -> Result<RowBuf, LcdError> {
+    loop {
+        if let Some(buf) = with_queue(|q| {
+            q.dual.free.pop().or_else(|| {
+                q.advance();
+                q.dual.free.pop()
+            })
+        })
+        .ok_or(LcdError)?
+        {
+            return Ok(buf);
+        }
+        core::hint::spin_loop();
+    }
+}
+
+#[cfg(feature = "dual-core")]
+impl RowSink<WireColor, u16> for PoolRows {
+    type Error = LcdError;
+
+    /// A row from the renderer's own colour row: copied into a buffer.
+    fn write_row(
+        &mut self,
+        _y: u16,
+        colors: &[WireColor],
+        _depths: &[u16],
+    ) -> Result<(), LcdError> {
+        let (buf, at) = self.row_slot()?;
+        let bytes: &[u8] = bytemuck::cast_slice(colors);
+        let len = bytes.len().min(ROW_BYTES);
+        buf[at..at + len].copy_from_slice(&bytes[..len]);
+        self.row_done()
+    }
+
+    /// Lends the next row of a buffer, black already.
+    fn lend_row(
+        &mut self,
+        _y: u16,
+        _width: usize,
+        background: WireColor,
+    ) -> Result<Option<LentRow<'_, WireColor>>, LcdError> {
+        let (buf, at) = self.row_slot()?;
+        let colors =
+            bytemuck::try_cast_slice_mut(&mut buf[at..at + ROW_BYTES]).map_err(|_| LcdError)?;
+        Ok(Some(LentRow {
+            colors,
+            filled: background == WIRE_BLACK,
+        }))
+    }
+
+    fn send_lent_row(&mut self, _y: u16, _depths: &[u16]) -> Result<(), LcdError> {
+        self.row_done()
+    }
+}
+
+#[cfg(feature = "dual-core")]
+impl LcdRows {
+    /// Core 0's rows of this frame are queued: core 1's held buffers
+    /// follow them, and its later ones go straight to the wire.
+    pub fn top_done(&mut self) -> Result<(), LcdError> {
+        with_queue(|q| {
+            while let Some(buf) = q.dual.held.pop() {
+                q.queued.push(Queued {
+                    buf,
+                    opens_frame: false,
+                });
+            }
+            q.dual.top_done = true;
+            if let Some(Bus::Idle { .. }) = q.bus {
+                q.advance();
+            }
+        })
+        .ok_or(LcdError)
+    }
+
+    /// Both cores' rows of this frame are queued: the next frame's core-1
+    /// buffers are held again until core 0's rows are queued.
+    pub fn frame_done(&mut self) -> Result<(), LcdError> {
+        with_queue(|q| q.dual.top_done = false).ok_or(LcdError)
     }
 }

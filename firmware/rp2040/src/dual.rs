@@ -1,0 +1,84 @@
+//! The second core (feature `dual-core`): core 1 waits on the SIO FIFO
+//! for a job from core 0, runs it and answers on the FIFO. [`Core1::join`]
+//! runs one job on each core and returns when both are done, so a job may
+//! borrow what core 0 owns (as `std::thread::scope` lets a thread), and
+//! the cores meet only through the FIFO: no flag in memory is polled.
+//!
+//! This file and the stack's paint are the firmware's only raw-pointer
+//! code: the job's address crosses the FIFO as a word.
+
+use crate::Fault;
+use crate::hal::multicore::{Multicore, Stack};
+use crate::hal::pac;
+use crate::hal::sio::{Sio, SioFifo};
+
+/// Words of core 1's stack: its job draws a frame's scene and scans
+/// rows, as core 0 does in about 5 KiB.
+const CORE1_STACK_WORDS: usize = 2048;
+
+/// Core 1's stack, in `.bss`.
+static CORE1_STACK: Stack<CORE1_STACK_WORDS> = Stack::new();
+
+/// What core 1 answers when a job is done.
+const DONE: u32 = 0x0D0E;
+
+/// A job for core 1: a closure on core 0's stack, borrowed for the length
+/// of one [`Core1::join`].
+type Job<'a> = &'a mut (dyn FnMut() + Send);
+
+/// Core 0's end of the link to core 1.
+pub struct Core1 {
+    fifo: SioFifo,
+}
+
+impl Core1 {
+    /// Starts core 1 (through the boot ROM's launch protocol on the FIFO)
+    /// waiting for jobs.
+    pub fn start(psm: &mut pac::PSM, ppb: &mut pac::PPB, mut fifo: SioFifo) -> Result<Self, Fault> {
+        let stack = CORE1_STACK.take().ok_or(Fault::Core1)?;
+        let mut multicore = Multicore::new(psm, ppb, &mut fifo);
+        let core1 = multicore.cores().get_mut(1).ok_or(Fault::Core1)?;
+        core1.spawn(stack, core1_main).map_err(|_| Fault::Core1)?;
+        Ok(Self { fifo })
+    }
+
+    /// Runs `theirs` on core 1 and `ours` here; returns `ours`' result
+    /// once both have returned.
+    pub fn join<R>(&mut self, theirs: impl FnOnce() + Send, ours: impl FnOnce() -> R) -> R {
+        let mut theirs = Some(theirs);
+        let mut call = move || {
+            if let Some(job) = theirs.take() {
+                job();
+            }
+        };
+        let mut job: Job<'_> = &mut call;
+        // The address of `job` (a fat reference on this stack frame),
+        // which outlives core 1's use of it: this function returns only
+        // after core 1 has answered.
+        let address = core::ptr::addr_of_mut!(job) as u32;
+        self.fifo.write_blocking(address);
+        let result = ours();
+        // Anything but DONE cannot come (core 1 writes nothing else);
+        // either way core 1 is no longer running the job.
+        let _ = self.fifo.read_blocking();
+        result
+    }
+}
+
+/// Core 1's loop: each word from the FIFO is the address of a [`Job`].
+fn core1_main() {
+    // SAFETY: core 1 touches only its own end of the SIO FIFO (each core
+    // sees its own FIFO registers at the same addresses); core 0's `Sio`
+    // never reads core 1's end.
+    let pac = unsafe { pac::Peripherals::steal() };
+    let mut fifo = Sio::new(pac.SIO).fifo;
+    loop {
+        let address = fifo.read_blocking();
+        // SAFETY: core 0 sent the address of a live `Job` in
+        // `Core1::join`, which does not return (ending the borrow) until
+        // the DONE below; the closure is `Send`.
+        let job = unsafe { &mut *(address as *mut Job<'static>) };
+        job();
+        fifo.write_blocking(DONE);
+    }
+}
