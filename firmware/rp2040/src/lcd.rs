@@ -48,7 +48,7 @@ const BUFFERS: usize =
 /// Rows core 1 may draw in a frame (feature `dual-core`): its own
 /// buffers hold them all, so it never waits for core 0's rows to leave.
 #[cfg(feature = "dual-core")]
-pub const POOL_ROWS: usize = 128;
+pub const POOL_ROWS: usize = 160;
 /// Core 1's buffers.
 #[cfg(feature = "dual-core")]
 const POOL_BUFFERS: usize = POOL_ROWS / ROWS_PER_BUFFER;
@@ -196,7 +196,20 @@ struct Dual {
     /// The addresses core 1's buffers lie in, to send a cleared buffer
     /// home.
     addresses: core::ops::Range<usize>,
+    /// The first row core 1 draws this frame ([`choose_cut`]); the
+    /// frame's height until it has chosen.
+    cut: u16,
+    /// The rows core 0 has started this frame (a whole buffer's at a
+    /// time): core 1 cuts no higher.
+    core0_rows: u16,
+    /// Microseconds each buffer of rows took to draw, in the last frame
+    /// that drew it (on either core): what [`choose_cut`] balances.
+    profile: [u32; PROFILE_BUFFERS],
 }
+
+/// Buffers of rows in a frame (feature `dual-core`).
+#[cfg(feature = "dual-core")]
+const PROFILE_BUFFERS: usize = HEIGHT as usize / ROWS_PER_BUFFER;
 
 impl Queue {
     /// Takes back the buffers of finished transfers (clearing their
@@ -338,6 +351,47 @@ pub struct LcdRows {
     /// `dual-core`).
     #[cfg(feature = "dual-core")]
     opens_frame: bool,
+    /// What the cut between the cores needs (feature `dual-core`).
+    #[cfg(feature = "dual-core")]
+    band: Band,
+}
+
+/// A core's band of rows (feature `dual-core`): the clock its buffers are
+/// timed by, the buffer being filled and when it began, and whether the
+/// band ended at the cut.
+#[cfg(feature = "dual-core")]
+struct Band {
+    timer: Option<crate::board::Timer>,
+    buffer: usize,
+    began: u32,
+    stopped: bool,
+}
+
+#[cfg(feature = "dual-core")]
+impl Band {
+    const fn new() -> Self {
+        Self {
+            timer: None,
+            buffer: 0,
+            began: 0,
+            stopped: false,
+        }
+    }
+
+    /// A buffer of rows starts at row `y`.
+    fn start(&mut self, y: u16) {
+        self.buffer = usize::from(y) / ROWS_PER_BUFFER;
+        self.began = self.now();
+    }
+
+    /// Microseconds since the buffer began.
+    fn elapsed(&self) -> u32 {
+        self.now().wrapping_sub(self.began)
+    }
+
+    fn now(&self) -> u32 {
+        self.timer.as_ref().map_or(0, |t| t.get_counter_low())
+    }
 }
 
 /// The SPI or a pin failed.
@@ -393,6 +447,9 @@ impl LcdRows {
                     held: Ring::new(),
                     top_done: false,
                     addresses,
+                    cut: HEIGHT,
+                    core0_rows: 0,
+                    profile: [0; PROFILE_BUFFERS],
                 },
             };
             critical_section::with(|cs| QUEUE.borrow_ref_mut(cs).replace(queue));
@@ -410,6 +467,7 @@ impl LcdRows {
         Some(Self {
             filling: None,
             opens_frame: false,
+            band: Band::new(),
         })
     }
 }
@@ -476,6 +534,7 @@ impl LcdRows {
     }
 }
 
+#[cfg(not(feature = "dual-core"))]
 /// A free buffer; when every buffer is queued or being cleared, waits for
 /// the wire. (The queue moves on only when none is free: the interrupt
 /// moves it on as each row leaves.)
@@ -534,7 +593,10 @@ impl LcdRows {
         }
         let (buf, done) = match self.filling.take() {
             Some((buf, done)) if done < ROWS_PER_BUFFER => (buf, done),
+            #[cfg(not(feature = "dual-core"))]
             _ => (free_buffer()?, 0),
+            #[cfg(feature = "dual-core")]
+            _ => (self.claim_buffer(y)?, 0),
         };
         let (buf, done) = self.filling.insert((buf, done));
         Ok((buf, *done * ROW_BYTES))
@@ -546,10 +608,19 @@ impl LcdRows {
             #[cfg(not(feature = "dual-core"))]
             Some((buf, done)) if done + 1 == ROWS_PER_BUFFER => queue_row(buf),
             #[cfg(feature = "dual-core")]
-            Some((buf, done)) if done + 1 == ROWS_PER_BUFFER => queue_row(Queued {
-                buf,
-                opens_frame: core::mem::take(&mut self.opens_frame),
-            }),
+            Some((buf, done)) if done + 1 == ROWS_PER_BUFFER => {
+                let (index, micros) = (self.band.buffer, self.band.elapsed());
+                with_queue(|q| {
+                    if let Some(slot) = q.dual.profile.get_mut(index) {
+                        *slot = micros;
+                    }
+                })
+                .ok_or(LcdError)?;
+                queue_row(Queued {
+                    buf,
+                    opens_frame: core::mem::take(&mut self.opens_frame),
+                })
+            }
             Some((buf, done)) => {
                 self.filling = Some((buf, done + 1));
                 Ok(())
@@ -625,21 +696,34 @@ impl RowSink<WireColor, u16> for LcdRows {
 #[cfg(feature = "dual-core")]
 pub struct PoolRows {
     filling: Option<(RowBuf, usize)>,
+    band: Band,
 }
 
 #[cfg(feature = "dual-core")]
 impl PoolRows {
     /// Core 1's sink, with no buffer yet.
     pub const fn new() -> Self {
-        Self { filling: None }
+        Self {
+            filling: None,
+            band: Band::new(),
+        }
+    }
+
+    /// Times each buffer of rows by `timer` (for the cut's balance).
+    pub fn set_timer(&mut self, timer: crate::board::Timer) {
+        self.band.timer = Some(timer);
     }
 
     /// The buffer the next row goes into and the byte offset of its row
     /// there (a core-1 part starts on a buffer's first row).
-    fn row_slot(&mut self) -> Result<(&mut [u8; BUFFER_BYTES], usize), LcdError> {
+    fn row_slot(&mut self, y: u16) -> Result<(&mut [u8; BUFFER_BYTES], usize), LcdError> {
         let (buf, done) = match self.filling.take() {
             Some((buf, done)) if done < ROWS_PER_BUFFER => (buf, done),
-            _ => (pool_buffer()?, 0),
+            _ => {
+                let buf = pool_buffer()?;
+                self.band.start(y);
+                (buf, 0)
+            }
         };
         let (buf, done) = self.filling.insert((buf, done));
         Ok((buf, *done * ROW_BYTES))
@@ -649,6 +733,9 @@ impl PoolRows {
     fn row_done(&mut self) -> Result<(), LcdError> {
         match self.filling.take() {
             Some((buf, done)) if done + 1 == ROWS_PER_BUFFER => with_queue(|q| {
+                if let Some(slot) = q.dual.profile.get_mut(self.band.buffer) {
+                    *slot = self.band.elapsed();
+                }
                 if q.dual.top_done {
                     q.queued.push(Queued {
                         buf,
@@ -696,13 +783,8 @@ impl RowSink<WireColor, u16> for PoolRows {
     type Error = LcdError;
 
     /// A row from the renderer's own colour row: copied into a buffer.
-    fn write_row(
-        &mut self,
-        _y: u16,
-        colors: &[WireColor],
-        _depths: &[u16],
-    ) -> Result<(), LcdError> {
-        let (buf, at) = self.row_slot()?;
+    fn write_row(&mut self, y: u16, colors: &[WireColor], _depths: &[u16]) -> Result<(), LcdError> {
+        let (buf, at) = self.row_slot(y)?;
         let bytes: &[u8] = bytemuck::cast_slice(colors);
         let len = bytes.len().min(ROW_BYTES);
         buf[at..at + len].copy_from_slice(&bytes[..len]);
@@ -712,11 +794,11 @@ impl RowSink<WireColor, u16> for PoolRows {
     /// Lends the next row of a buffer, black already.
     fn lend_row(
         &mut self,
-        _y: u16,
+        y: u16,
         _width: usize,
         background: WireColor,
     ) -> Result<Option<LentRow<'_, WireColor>>, LcdError> {
-        let (buf, at) = self.row_slot()?;
+        let (buf, at) = self.row_slot(y)?;
         let colors =
             bytemuck::try_cast_slice_mut(&mut buf[at..at + ROW_BYTES]).map_err(|_| LcdError)?;
         Ok(Some(LentRow {
@@ -751,8 +833,95 @@ impl LcdRows {
     }
 
     /// Both cores' rows of this frame are queued: the next frame's core-1
-    /// buffers are held again until core 0's rows are queued.
+    /// buffers are held again until core 0's rows are queued, and core 0
+    /// draws every row until core 1 cuts its share.
     pub fn frame_done(&mut self) -> Result<(), LcdError> {
-        with_queue(|q| q.dual.top_done = false).ok_or(LcdError)
+        self.band.stopped = false;
+        with_queue(|q| {
+            q.dual.top_done = false;
+            q.dual.cut = HEIGHT;
+            q.dual.core0_rows = 0;
+        })
+        .ok_or(LcdError)
     }
+
+    /// Times each buffer of rows by `timer` (for the cut's balance).
+    pub fn set_timer(&mut self, timer: crate::board::Timer) {
+        self.band.timer = Some(timer);
+    }
+
+    /// Whether this frame's scan ended at the cut (its error is then the
+    /// band's end, not a fault).
+    pub fn stopped_at_cut(&self) -> bool {
+        self.band.stopped
+    }
+
+    /// A free buffer for the rows from `y` (a buffer's first row), or the
+    /// band's end when core 1 has cut its share at or above `y`; the
+    /// rows taken are noted, so that core 1 cuts below them. Waits for the
+    /// wire when every buffer is in use.
+    fn claim_buffer(&mut self, y: u16) -> Result<RowBuf, LcdError> {
+        loop {
+            let claimed = with_queue(|q| {
+                if y >= q.dual.cut {
+                    return Err(());
+                }
+                let buf = q.free.pop().or_else(|| {
+                    q.advance();
+                    q.free.pop()
+                });
+                if buf.is_some() {
+                    q.dual.core0_rows = y + ROWS_PER_BUFFER as u16;
+                }
+                Ok(buf)
+            })
+            .ok_or(LcdError)?;
+            match claimed {
+                Err(()) => {
+                    self.band.stopped = true;
+                    return Err(LcdError);
+                }
+                Ok(Some(buf)) => {
+                    self.band.start(y);
+                    return Ok(buf);
+                }
+                Ok(None) => core::hint::spin_loop(),
+            }
+        }
+    }
+}
+
+#[cfg(feature = "dual-core")]
+/// Core 1's share of this frame (feature `dual-core`): the first row it
+/// draws, chosen once it has drawn the next frame's scene, and noted for
+/// core 0 (which stops there). By the last frame's time per buffer of
+/// rows: the lowest cut (a buffer's edge, below the rows core 0 has
+/// started, leaving core 1 no more rows than its buffers hold) at which
+/// core 0's rows still to draw, plus `bias` microseconds (what the rows'
+/// times leave out: core 0's waits for the wire, the rest of the buffer
+/// it is in), take at least as long as core 1's.
+pub fn choose_cut(bias: i32) -> Option<u16> {
+    with_queue(|q| {
+        let d = &mut q.dual;
+        let per_buffer = ROWS_PER_BUFFER as u16;
+        let first = usize::from(d.core0_rows.div_ceil(per_buffer))
+            .max(PROFILE_BUFFERS.saturating_sub(POOL_BUFFERS));
+        let mut core1: i64 = d
+            .profile
+            .get(first..)
+            .map_or(0, |p| p.iter().map(|&m| i64::from(m)).sum());
+        let mut core0 = i64::from(bias);
+        let mut cut = first;
+        for (buffer, &micros) in d.profile.iter().enumerate().skip(first) {
+            if core0 >= core1 {
+                break;
+            }
+            core0 += i64::from(micros);
+            core1 -= i64::from(micros);
+            cut = buffer + 1;
+        }
+        // (`cut` is at most PROFILE_BUFFERS, so the row fits the frame.)
+        d.cut = (cut as u16) * per_buffer;
+        d.cut
+    })
 }

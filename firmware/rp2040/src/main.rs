@@ -296,19 +296,22 @@ fn run() -> Result<core::convert::Infallible, Fault> {
 }
 
 /// The render loop on both cores (feature `dual-core`). Frame `n`'s scene
-/// is in one renderer's tables; core 0 scans its rows above the cut into
-/// the LCD's ring, while core 1 first draws frame `n + 1`'s scene into the
-/// other renderer's tables and then scans frame `n`'s rows below the cut
-/// into its own buffers, which follow core 0's rows to the wire. The cut
-/// moves a buffer of rows a frame towards the core that finished first.
+/// is in one renderer's tables. Core 0 scans its rows from the top into
+/// the LCD's ring; core 1 first draws frame `n + 1`'s scene into the other
+/// renderer's tables, then cuts frame `n`'s rows ([`lcd::choose_cut`]: by
+/// the last frame's time per buffer of rows, so that both finish
+/// together) and scans those below the cut into its own buffers, which
+/// follow core 0's rows to the wire; core 0's sink ends its band there.
 /// Bands of one set of tables give the rows one scan gives, so every
 /// frame is the one-core firmware's.
 #[cfg(feature = "dual-core")]
 fn run() -> Result<core::convert::Infallible, Fault> {
-    use sizes::{HEIGHT, ROWS_PER_BUFFER};
+    use sizes::HEIGHT;
     let (mut rows, timer, mut core1) = board::init()?;
     let [first, second] = RENDERERS.take();
     let mut pool = lcd::PoolRows::new();
+    rows.set_timer(timer);
+    pool.set_timer(timer);
     stack::STARTUP_HIGH_WATER_BYTES.store(stack::measure(), Ordering::Relaxed);
     stack::paint();
     let sphere = match bounding_sphere(&MESH) {
@@ -327,11 +330,6 @@ fn run() -> Result<core::convert::Infallible, Fault> {
     let mesh = &MESH;
     let shading = Shading::lambert();
     let yaw_of = |step: u32| step as f32 * sizes::YAW_STEP_DEG;
-    // Core 1 may take at most its buffers' rows, core 0 at least one
-    // buffer; the cut lies on a buffer's edge.
-    let rows_per_buffer = ROWS_PER_BUFFER as u16;
-    let lowest_cut = (HEIGHT.saturating_sub(lcd::POOL_ROWS as u16)).max(rows_per_buffer);
-    let mut cut = (HEIGHT / 2 / rows_per_buffer * rows_per_buffer).max(lowest_cut);
     // Frame 0's scene, on core 0 alone.
     let mut scene = frame::draw_scene(
         &mut *first,
@@ -343,6 +341,9 @@ fn run() -> Result<core::convert::Infallible, Fault> {
     let (mut current, mut next) = (first, second);
     let mut step = 1 % sizes::YAW_STEPS;
     let mut last_start = None;
+    // What the rows' times leave out of core 0's share (microseconds),
+    // learnt from which core finished first.
+    let mut bias = 0i32;
     loop {
         let start = timer.get_counter();
         if let Some(last) = last_start {
@@ -356,19 +357,14 @@ fn run() -> Result<core::convert::Infallible, Fault> {
         step = (step + 1) % sizes::YAW_STEPS;
         // A scene that failed is not scanned: the frame is skipped.
         let scanned_rows = if scene.is_ok() { HEIGHT } else { 0 };
-        let (top, bottom) = (
-            0..cut.min(scanned_rows),
-            cut.min(scanned_rows)..scanned_rows,
-        );
         let zline::Renderer {
             tables, scanner, ..
         } = &mut *current;
         let prepared = tables.prepare();
         let (next_renderer, pool_rows, mesh, shading) = (&mut *next, &mut pool, &mesh, &shading);
         let mut theirs = None;
-        let (ours, our_micros) = core1.join(
+        let ours = core1.join(
             || {
-                let began = timer.get_counter();
                 let drawn = frame::draw_scene(
                     &mut *next_renderer,
                     mesh,
@@ -376,37 +372,41 @@ fn run() -> Result<core::convert::Infallible, Fault> {
                     sphere,
                     (next_yaw, sizes::PITCH_DEG),
                 );
-                let drew = timer.get_counter();
-                let scanned = zline::scan(&prepared, &mut next_renderer.scanner, bottom, pool_rows);
-                let now = timer.get_counter();
-                let micros = |since| {
-                    now.checked_duration_since(since)
-                        .map_or(0, |d| d.to_micros())
-                };
-                theirs = Some((drawn, scanned, (micros(began), micros(drew))));
+                // Sorted here, while core 0 scans, not before the next
+                // frame's join (a prepared table is not sorted again).
+                let _ = next_renderer.tables.prepare();
+                let cut = lcd::choose_cut(bias).unwrap_or(HEIGHT).min(scanned_rows);
+                let scanned = zline::scan(
+                    &prepared,
+                    &mut next_renderer.scanner,
+                    cut..scanned_rows,
+                    pool_rows,
+                );
+                theirs = Some((drawn, scanned, timer.get_counter_low()));
             },
             || {
-                let began = timer.get_counter();
-                let scanned = zline::scan(&prepared, scanner, top, &mut rows);
-                let queued = rows.top_done();
-                let micros = timer
-                    .get_counter()
-                    .checked_duration_since(began)
-                    .map_or(0, |d| d.to_micros());
-                (
-                    scanned.and_then(|stats| queued.map(|()| stats).map_err(RenderError::Sink)),
-                    micros,
-                )
+                let scanned = match zline::scan(&prepared, scanner, 0..scanned_rows, &mut rows) {
+                    // The band ended at core 1's cut.
+                    Err(RenderError::Sink(_)) if rows.stopped_at_cut() => Ok(()),
+                    other => other.map(|_| ()),
+                };
+                let queued = scanned.and_then(|()| rows.top_done().map_err(RenderError::Sink));
+                (queued, timer.get_counter_low())
             },
         );
+        let (ours, our_end) = ours;
         let frame_done = rows.frame_done();
-        let Some((drawn, their_scan, (their_micros, their_scan_micros))) = theirs else {
+        let Some((drawn, their_scan, their_end)) = theirs else {
             // Core 1 ran the job (join returned), so this cannot happen.
             return Err(Fault::Core1);
         };
+        // Half the gap between the cores' ends, in the direction that
+        // closes it (by the timer: the cut does not change what is drawn).
+        let gap = our_end.wrapping_sub(their_end) as i32;
+        bias = bias.saturating_add(gap / 2).clamp(-50_000, 50_000);
         let outcome = match (&scene, ours, their_scan, frame_done) {
             (Err(_), ..) => Err(FrameError::Tables),
-            (Ok(_), Ok(stats), Ok(_), Ok(())) => Ok(stats),
+            (Ok(_), Ok(()), Ok(stats), Ok(())) => Ok(stats),
             (Ok(_), Err(RenderError::Table(_)), ..) | (Ok(_), _, Err(RenderError::Table(_)), _) => {
                 Err(FrameError::Tables)
             }
@@ -421,19 +421,6 @@ fn run() -> Result<core::convert::Infallible, Fault> {
                 SKIPPED.store(SKIPPED.load(Ordering::Relaxed) + 1, Ordering::Relaxed);
                 LAST_ERROR.store(error as u32, Ordering::Relaxed);
             }
-        }
-        // A buffer of rows towards the core that finished first, when that
-        // shortens the longer of the two: when the gap is more than the
-        // rows' time (each core's mean time per row of its share, by the
-        // timer; the cut does not change what is drawn).
-        let per_buffer =
-            |micros: u64, rows: u16| micros * u64::from(rows_per_buffer) / u64::from(rows.max(1));
-        if our_micros > their_micros + per_buffer(our_micros, cut) && cut > lowest_cut {
-            cut -= rows_per_buffer;
-        } else if their_micros > our_micros + per_buffer(their_scan_micros, HEIGHT - cut)
-            && cut + rows_per_buffer < HEIGHT
-        {
-            cut += rows_per_buffer;
         }
         scene = drawn;
         core::mem::swap(&mut current, &mut next);
