@@ -48,7 +48,7 @@ const BUFFERS: usize =
 /// Rows core 1 may draw in a frame (feature `dual-core`): its own
 /// buffers hold them all, so it never waits for core 0's rows to leave.
 #[cfg(feature = "dual-core")]
-pub const POOL_ROWS: usize = 160;
+pub const POOL_ROWS: usize = 128;
 /// Core 1's buffers.
 #[cfg(feature = "dual-core")]
 const POOL_BUFFERS: usize = POOL_ROWS / ROWS_PER_BUFFER;
