@@ -85,6 +85,11 @@ const SPI_BUFFER: usize = 2 * WIDTH as usize;
 /// scene 48 rows left the CPU waiting about 20 K cycles a frame more
 /// than 64; 96 gained nothing over 64.)
 const ROW_BUFFERS: usize = 64;
+/// Rows of core 1's own buffers with `dual-core` (`POOL_ROWS` in
+/// `src/lcd.rs`).
+const DUAL_CORE_POOL_ROWS: usize = 128;
+/// Bytes of core 1's stack with `dual-core` (`src/dual.rs`).
+const DUAL_CORE_STACK: usize = 8 * 1024;
 /// Rows per DMA buffer (`src/lcd.rs`): each buffer holds this many rows,
 /// sent and cleared by one transfer each, so the per-transfer work is paid
 /// once per eight rows. It divides both `HEIGHT` and `ROW_BUFFERS`.
@@ -420,7 +425,17 @@ fn measure_views(
         // position) and the painted row.
         renderer += 12 * vertices + 104 * active_polygons + 2 * usize::from(WIDTH);
     }
-    let ram = renderer + 2 * mesh_vertices + SPI_BUFFER + ROW_BUFFERS * 2 * usize::from(WIDTH);
+    let mut ram = renderer + 2 * mesh_vertices + SPI_BUFFER + ROW_BUFFERS * 2 * usize::from(WIDTH);
+    if env::var_os("CARGO_FEATURE_DUAL_CORE").is_some() {
+        // Both cores (`src/dual.rs`, `src/lcd.rs`): a second renderer and
+        // vertex cache, the ring doubled, core 1's 128 rows of buffers and
+        // its stack.
+        ram += renderer
+            + 2 * mesh_vertices
+            + ROW_BUFFERS * 2 * usize::from(WIDTH)
+            + DUAL_CORE_POOL_ROWS * 2 * usize::from(WIDTH)
+            + DUAL_CORE_STACK;
+    }
     // The renderer is built at compile time in its static
     // (`Renderer::new_in_static`), so it needs room once.
     let needed = ram + STACK_RESERVE;

@@ -7,6 +7,8 @@
 //! This file and the stack's paint are the firmware's only raw-pointer
 //! code: the job's address crosses the FIFO as a word.
 
+use core::sync::atomic::{Ordering, compiler_fence};
+
 use crate::Fault;
 use crate::hal::multicore::{Multicore, Stack};
 use crate::hal::pac;
@@ -56,11 +58,16 @@ impl Core1 {
         // which outlives core 1's use of it: this function returns only
         // after core 1 has answered.
         let address = core::ptr::addr_of_mut!(job) as u32;
+        // The job's stores before the FIFO write, the results' loads after
+        // the FIFO read: the FIFO's volatile accesses alone do not order
+        // them. (The SIO's accesses are in order on the bus.)
+        compiler_fence(Ordering::SeqCst);
         self.fifo.write_blocking(address);
         let result = ours();
         // Anything but DONE cannot come (core 1 writes nothing else);
         // either way core 1 is no longer running the job.
         let _ = self.fifo.read_blocking();
+        compiler_fence(Ordering::SeqCst);
         result
     }
 }
@@ -74,11 +81,13 @@ fn core1_main() {
     let mut fifo = Sio::new(pac.SIO).fifo;
     loop {
         let address = fifo.read_blocking();
+        compiler_fence(Ordering::SeqCst);
         // SAFETY: core 0 sent the address of a live `Job` in
         // `Core1::join`, which does not return (ending the borrow) until
         // the DONE below; the closure is `Send`.
         let job = unsafe { &mut *(address as *mut Job<'static>) };
         job();
+        compiler_fence(Ordering::SeqCst);
         fifo.write_blocking(DONE);
     }
 }

@@ -282,6 +282,10 @@ fn open_window(spi: &mut LcdSpi, cs: &mut LcdCs, dc: &mut LcdDc) {
         let (a, b) = (offset, offset + size - 1);
         [(a >> 8) as u8, a as u8, (b >> 8) as u8, b as u8]
     };
+    // The last frame's last bytes may still be in the FIFO or the shift
+    // register when its transfer is done: out first, before CS and DC
+    // move.
+    let Ok(()) = spi.flush();
     let Ok(()) = cs.set_high();
     let Ok(()) = cs.set_low();
     command(spi, dc, CASET, &span(OFFSET.0, WIDTH));
@@ -714,6 +718,19 @@ impl PoolRows {
         self.band.timer = Some(timer);
     }
 
+    /// Starts core 1's band of a frame: a buffer left part-filled by a
+    /// band an error cut short is cleared, not continued.
+    pub fn begin_band(&mut self) -> Result<(), LcdError> {
+        match self.filling.take() {
+            Some((buf, _)) => with_queue(|q| {
+                q.sent.push(buf);
+                q.advance();
+            })
+            .ok_or(LcdError),
+            None => Ok(()),
+        }
+    }
+
     /// The buffer the next row goes into and the byte offset of its row
     /// there (a core-1 part starts on a buffer's first row).
     fn row_slot(&mut self, y: u16) -> Result<(&mut [u8; BUFFER_BYTES], usize), LcdError> {
@@ -838,6 +855,12 @@ impl LcdRows {
     pub fn frame_done(&mut self) -> Result<(), LcdError> {
         self.band.stopped = false;
         with_queue(|q| {
+            // Held buffers are left only when core 0's rows failed: they
+            // are cleared, not sent after the next frame's rows.
+            while let Some(buf) = q.dual.held.pop() {
+                q.sent.push(buf);
+            }
+            q.advance();
             q.dual.top_done = false;
             q.dual.cut = HEIGHT;
             q.dual.core0_rows = 0;

@@ -295,6 +295,11 @@ fn run() -> Result<core::convert::Infallible, Fault> {
     }
 }
 
+/// The largest bias of the cut (feature `dual-core`), about a two-core
+/// frame's time in microseconds.
+#[cfg(feature = "dual-core")]
+const BIAS_LIMIT_US: i32 = 20_000;
+
 /// The render loop on both cores (feature `dual-core`). Frame `n`'s scene
 /// is in one renderer's tables. Core 0 scans its rows from the top into
 /// the LCD's ring; core 1 first draws frame `n + 1`'s scene into the other
@@ -376,12 +381,15 @@ fn run() -> Result<core::convert::Infallible, Fault> {
                 // frame's join (a prepared table is not sorted again).
                 let _ = next_renderer.tables.prepare();
                 let cut = lcd::choose_cut(bias).unwrap_or(HEIGHT).min(scanned_rows);
-                let scanned = zline::scan(
-                    &prepared,
-                    &mut next_renderer.scanner,
-                    cut..scanned_rows,
-                    pool_rows,
-                );
+                let begun = pool_rows.begin_band().map_err(RenderError::Sink);
+                let scanned = begun.and_then(|()| {
+                    zline::scan(
+                        &prepared,
+                        &mut next_renderer.scanner,
+                        cut..scanned_rows,
+                        pool_rows,
+                    )
+                });
                 theirs = Some((drawn, scanned, timer.get_counter_low()));
             },
             || {
@@ -403,7 +411,11 @@ fn run() -> Result<core::convert::Infallible, Fault> {
         // Half the gap between the cores' ends, in the direction that
         // closes it (by the timer: the cut does not change what is drawn).
         let gap = our_end.wrapping_sub(their_end) as i32;
-        bias = bias.saturating_add(gap / 2).clamp(-50_000, 50_000);
+        // (Within a frame's time either way: a cut pinned at a limit does
+        // not wind it up further.)
+        bias = bias
+            .saturating_add(gap / 2)
+            .clamp(-BIAS_LIMIT_US, BIAS_LIMIT_US);
         let outcome = match (&scene, ours, their_scan, frame_done) {
             (Err(_), ..) => Err(FrameError::Tables),
             (Ok(_), Ok(()), Ok(stats), Ok(())) => Ok(stats),
