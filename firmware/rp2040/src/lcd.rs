@@ -634,6 +634,33 @@ impl LcdRows {
     }
 }
 
+/// Copies a row's bytes (already big-endian Rgb565, as the ST7789 takes
+/// them over SPI) into its place at byte `at` of a buffer: one copy; a
+/// row longer than the buffer's row is cut, as the panel's window would
+/// cut it.
+#[inline(always)]
+fn copy_row(buf: &mut [u8; BUFFER_BYTES], at: usize, bytes: &[u8]) {
+    let len = bytes.len().min(ROW_BYTES);
+    buf[at..at + len].copy_from_slice(&bytes[..len]);
+}
+
+/// The row at byte `at` of a buffer, lent as pixels (black already, so
+/// filled when the background is black). A row wider than the buffer's
+/// row is the renderer's error.
+#[inline(always)]
+fn lend_row_of(
+    buf: &mut [u8; BUFFER_BYTES],
+    at: usize,
+    background: WireColor,
+) -> Result<LentRow<'_, WireColor>, LcdError> {
+    let colors =
+        bytemuck::try_cast_slice_mut(&mut buf[at..at + ROW_BYTES]).map_err(|_| LcdError)?;
+    Ok(LentRow {
+        colors,
+        filled: background == WIRE_BLACK,
+    })
+}
+
 /// Painted rows (the `gouraud` and `textured` features): the painted
 /// renderer's row, copied into a buffer as the flat rows are.
 #[cfg(any(feature = "gouraud", feature = "textured"))]
@@ -647,9 +674,7 @@ impl RowSink<crate::frame::WirePixel, u16> for LcdRows {
         _depths: &[u16],
     ) -> Result<(), LcdError> {
         let (buf, at) = self.row_slot(y)?;
-        let bytes: &[u8] = bytemuck::cast_slice(colors);
-        let len = bytes.len().min(ROW_BYTES);
-        buf[at..at + len].copy_from_slice(&bytes[..len]);
+        copy_row(buf, at, bytemuck::cast_slice(colors));
         self.row_done()
     }
 }
@@ -662,12 +687,7 @@ impl RowSink<WireColor, u16> for LcdRows {
     /// other caller.)
     fn write_row(&mut self, y: u16, colors: &[WireColor], _depths: &[u16]) -> Result<(), LcdError> {
         let (buf, at) = self.row_slot(y)?;
-        // The row's bytes are already big-endian Rgb565, as the ST7789
-        // takes it over SPI: one copy (a row longer than the buffer's row
-        // is cut, as the panel's window would cut it).
-        let bytes: &[u8] = bytemuck::cast_slice(colors);
-        let len = bytes.len().min(ROW_BYTES);
-        buf[at..at + len].copy_from_slice(&bytes[..len]);
+        copy_row(buf, at, bytemuck::cast_slice(colors));
         self.row_done()
     }
 
@@ -681,12 +701,7 @@ impl RowSink<WireColor, u16> for LcdRows {
         background: WireColor,
     ) -> Result<Option<LentRow<'_, WireColor>>, LcdError> {
         let (buf, at) = self.row_slot(y)?;
-        let colors =
-            bytemuck::try_cast_slice_mut(&mut buf[at..at + ROW_BYTES]).map_err(|_| LcdError)?;
-        Ok(Some(LentRow {
-            colors,
-            filled: background == WIRE_BLACK,
-        }))
+        lend_row_of(buf, at, background).map(Some)
     }
 
     fn send_lent_row(&mut self, _y: u16, _depths: &[u16]) -> Result<(), LcdError> {
@@ -802,9 +817,7 @@ impl RowSink<WireColor, u16> for PoolRows {
     /// A row from the renderer's own colour row: copied into a buffer.
     fn write_row(&mut self, y: u16, colors: &[WireColor], _depths: &[u16]) -> Result<(), LcdError> {
         let (buf, at) = self.row_slot(y)?;
-        let bytes: &[u8] = bytemuck::cast_slice(colors);
-        let len = bytes.len().min(ROW_BYTES);
-        buf[at..at + len].copy_from_slice(&bytes[..len]);
+        copy_row(buf, at, bytemuck::cast_slice(colors));
         self.row_done()
     }
 
@@ -816,12 +829,7 @@ impl RowSink<WireColor, u16> for PoolRows {
         background: WireColor,
     ) -> Result<Option<LentRow<'_, WireColor>>, LcdError> {
         let (buf, at) = self.row_slot(y)?;
-        let colors =
-            bytemuck::try_cast_slice_mut(&mut buf[at..at + ROW_BYTES]).map_err(|_| LcdError)?;
-        Ok(Some(LentRow {
-            colors,
-            filled: background == WIRE_BLACK,
-        }))
+        lend_row_of(buf, at, background).map(Some)
     }
 
     fn send_lent_row(&mut self, _y: u16, _depths: &[u16]) -> Result<(), LcdError> {
