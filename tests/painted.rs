@@ -416,6 +416,109 @@ fn flat_equals_painted<D: DepthFormat>(scene: &[Vec<ScreenVertex>]) -> Result<()
     Ok(())
 }
 
+/// The scene `scene` (each corner its own colour) painted in two bands,
+/// rows `0..cut` by `painted`'s scanner and `cut..` by `other`'s scanner
+/// and slots over `painted`'s prepared tables and vertex values (as a
+/// second core paints), gives the rows `painted.render` gives.
+fn bands_equal_one_scan<D: DepthFormat>(
+    scene: &[Vec<ScreenVertex>],
+    cut: u16,
+) -> Result<(), TestCaseError> {
+    use zline::paint::{PaintStorage, Painter};
+    let mut painted = Painted::<D>::new(W, H, Gouraud::new(), BACKGROUND).unwrap();
+    let mut other = Painted::<D>::new(W, H, Gouraud::new(), BACKGROUND).unwrap();
+    for (k, polygon) in scene.iter().enumerate() {
+        let values: Vec<Rgb8p8> = (0..polygon.len())
+            .map(|c| Rgb8p8::from_rgb888(color_of(k * 7 + c)))
+            .collect();
+        painted.push_polygon_vertices(polygon, &values).unwrap();
+    }
+    let want = frame::<Rgb888, D::Value>(|sink| {
+        painted.render(sink).unwrap();
+    });
+    let got = frame::<Rgb888, D::Value>(|sink| {
+        let background = painted.background();
+        let zline::paint::PaintedRenderer {
+            renderer,
+            paint,
+            mode,
+            ..
+        } = &mut painted;
+        let prepared = renderer.tables.prepare();
+        let parts = paint.parts_mut();
+        let vertices = &*parts.vertices;
+        let mut top = Painter::new(&*mode, vertices, parts.slots, background);
+        zline::scan_painted(
+            &prepared,
+            &mut renderer.scanner,
+            &mut top,
+            parts.row,
+            0..cut,
+            sink,
+        )
+        .unwrap();
+        let theirs = other.paint.parts_mut();
+        let mut bottom = Painter::new(&*mode, vertices, theirs.slots, background);
+        let scanner = &mut other.renderer.scanner;
+        zline::scan_painted(&prepared, scanner, &mut bottom, theirs.row, cut..H, sink).unwrap();
+    });
+    prop_assert_eq!(got, want);
+    Ok(())
+}
+
+/// A painter holding fewer slots than the scanner's APT, or fewer values
+/// than the tables' vertices, is refused, not read past its end.
+#[test]
+fn a_painter_too_small_for_the_scan_is_refused() {
+    use zline::paint::{PaintStorage, Painter};
+    let mut r = Painted::<Depth16>::new(W, H, Gouraud::new(), BACKGROUND).unwrap();
+    let corners = [v(0, 0, 1), v(4 * S, 0, 1), v(0, 4 * S, 1)];
+    r.push_polygon_vertices(&corners, &[rgb(1, 2, 3); 3])
+        .unwrap();
+    let zline::paint::PaintedRenderer {
+        renderer,
+        paint,
+        mode,
+        ..
+    } = &mut r;
+    let prepared = renderer.tables.prepare();
+    let parts = paint.parts_mut();
+    let (slots, row) = (parts.slots, parts.row);
+    let mut ignore = FnSink(|_: u16, _: &[Rgb888], _: &[u16]| Ok::<(), ()>(()));
+    let short_slots = slots.len() - 1;
+    let mut painter = Painter::new(
+        &*mode,
+        &*parts.vertices,
+        &mut slots[..short_slots],
+        BACKGROUND,
+    );
+    let result = zline::scan_painted(
+        &prepared,
+        &mut renderer.scanner,
+        &mut painter,
+        row,
+        0..H,
+        &mut ignore,
+    );
+    assert_eq!(
+        result.err(),
+        Some(zline::RenderError::Table(Error::PaintStorageTooSmall))
+    );
+    let mut painter = Painter::new(&*mode, &parts.vertices[..2], slots, BACKGROUND);
+    let result = zline::scan_painted(
+        &prepared,
+        &mut renderer.scanner,
+        &mut painter,
+        row,
+        0..H,
+        &mut ignore,
+    );
+    assert_eq!(
+        result.err(),
+        Some(zline::RenderError::Table(Error::PaintStorageTooSmall))
+    );
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(300))]
 
@@ -426,6 +529,17 @@ proptest! {
     ) {
         flat_equals_painted::<Depth16>(&scene)?;
         flat_equals_painted::<Depth24>(&scene)?;
+    }
+
+    /// Two scanners painting bands of one prepared scene paint the frame
+    /// one scan paints.
+    #[test]
+    fn bands_paint_the_one_scan_frame(
+        scene in prop::collection::vec(prop_oneof![polygon(), small_triangle()], 1..12),
+        cut in 0..=H,
+    ) {
+        bands_equal_one_scan::<Depth16>(&scene, cut)?;
+        bands_equal_one_scan::<Depth24>(&scene, cut)?;
     }
 }
 

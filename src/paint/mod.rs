@@ -89,14 +89,41 @@ pub trait PaintMode {
     );
 }
 
-/// A [`RowPainter`] from a [`PaintMode`] over [`PaintParts`].
-pub(crate) struct Painter<'a, M: PaintMode> {
-    pub mode: &'a M,
+/// A [`RowPainter`] from a [`PaintMode`] over [`PaintParts`]: what
+/// [`PaintedRenderer::render`] paints with. Built from the parts of two
+/// renderers, it lets a second scanner paint another renderer's prepared
+/// scene: the scene's vertex values with this scanner's own slots (for
+/// [`scan_painted`](crate::scan_painted) of a band of rows, as a second
+/// core does).
+pub struct Painter<'a, M: PaintMode> {
+    pub(crate) mode: &'a M,
     /// The values of the vertex table's vertices.
-    pub vertices: &'a [M::Vertex],
+    pub(crate) vertices: &'a [M::Vertex],
     /// The planes of the polygons in each APT slot.
-    pub slots: &'a mut [SlotPlanes<M::Planes>],
-    pub background: M::Color,
+    pub(crate) slots: &'a mut [SlotPlanes<M::Planes>],
+    pub(crate) background: M::Color,
+}
+
+impl<'a, M: PaintMode> Painter<'a, M> {
+    /// A painter with `mode` of the scene whose vertex values are
+    /// `vertices` (its tables' vertex table, in order), keeping the planes
+    /// of the polygons in its scanner's APT slots in `slots` (at least as
+    /// many as the scanner's APT holds, and `vertices` at least as many as
+    /// the tables' vertices: [`scan_painted`](crate::scan_painted) refuses
+    /// fewer) and painting `background` where no polygon is.
+    pub fn new(
+        mode: &'a M,
+        vertices: &'a [M::Vertex],
+        slots: &'a mut [SlotPlanes<M::Planes>],
+        background: M::Color,
+    ) -> Self {
+        Self {
+            mode,
+            vertices,
+            slots,
+            background,
+        }
+    }
 }
 
 impl<M: PaintMode> Painter<'_, M> {
@@ -169,6 +196,10 @@ impl<M: PaintMode> RowPainter for Painter<'_, M> {
 
     fn background(&self) -> M::Color {
         self.background
+    }
+
+    fn capacity(&self) -> (usize, usize) {
+        (self.slots.len(), self.vertices.len())
     }
 }
 

@@ -94,6 +94,11 @@ where
     }
 
     /// Colour of pixels no polygon covers.
+    pub fn background(&self) -> ColorOf<A> {
+        self.background
+    }
+
+    /// Sets the colour of pixels no polygon covers.
     pub fn set_background(&mut self, background: ColorOf<A>) {
         self.background = background;
     }

@@ -58,6 +58,14 @@ pub trait RowPainter {
 
     /// The colour of pixels no polygon covers.
     fn background(&self) -> Self::Color;
+
+    /// How many APT slots and vertex values this painter holds:
+    /// [`scan_painted`] refuses a scanner with more slots or tables with
+    /// more vertices ([`Error::PaintStorageTooSmall`]). Unbounded unless a
+    /// painter says otherwise.
+    fn capacity(&self) -> (usize, usize) {
+        (usize::MAX, usize::MAX)
+    }
 }
 
 /// Scans `rows` (clipped to the frame) of prepared tables with `scanner`,
@@ -104,6 +112,11 @@ fn painted_rows<D: DepthFormat, P: RowPainter, K: RowSink<P::Color, D::Value>>(
     .any(|&len| width > len);
     if too_narrow {
         return Err(RenderError::Table(Error::BadFrameSize));
+    }
+    // (A slot is a `u16` below NO_SLOT, so no more than 2^16 are used.)
+    let (slots, values) = painter.capacity();
+    if slots < parts.active.len().min(1 << 16) || values < tables.vertices.len() {
+        return Err(RenderError::Table(Error::PaintStorageTooSmall));
     }
     let mut pool_len = 0usize;
     let mut state = ScanState {
