@@ -11,7 +11,7 @@ use crate::front::scene::{
 };
 use crate::paint::{PaintArrays, PaintMode, PaintStorage, Painter};
 use crate::raster::depth::DepthFormat;
-use crate::raster::paint::{NO_SLOT, scan_painted};
+use crate::raster::paint::{NO_SLOT, scan_painted_prechecked};
 use crate::raster::scan::{ScanArrays, ScanStorage, Scanner};
 use crate::raster::stats::FrameStats;
 use crate::raster::tables::{Admission, TableArrays, TableStorage, Tables};
@@ -172,7 +172,7 @@ where
             slots: parts.slots,
             background: self.background,
         };
-        scan_painted(
+        scan_painted_prechecked(
             &prepared,
             &mut self.renderer.scanner,
             &mut painter,

@@ -89,6 +89,31 @@ where
     K: RowSink<P::Color, <S::Depth as DepthFormat>::Value>,
 {
     let parts = scanner.storage_mut().parts_mut();
+    // (A slot is a `u16` below NO_SLOT, so no more than 2^16 are used.)
+    let (slots, values) = painter.capacity();
+    if slots < parts.active.len().min(1 << 16) || values < tables.vertices.len() {
+        return Err(RenderError::Table(Error::PaintStorageTooSmall));
+    }
+    painted_rows::<S::Depth, P, K>(tables, parts, painter, own_row, rows, sink)
+}
+
+/// [`scan_painted`] for a painter whose capacity its owner has checked
+/// already (a [`PaintedRenderer`](crate::paint::PaintedRenderer), whose
+/// storage was checked when it was made).
+pub(crate) fn scan_painted_prechecked<S, P, K>(
+    tables: &Prepared<'_, u16>,
+    scanner: &mut Scanner<S>,
+    painter: &mut P,
+    own_row: &mut [P::Color],
+    rows: Range<u16>,
+    sink: &mut K,
+) -> Result<FrameStats, RenderError<K::Error>>
+where
+    S: ScanStorage<Color = u16>,
+    P: RowPainter,
+    K: RowSink<P::Color, <S::Depth as DepthFormat>::Value>,
+{
+    let parts = scanner.storage_mut().parts_mut();
     painted_rows::<S::Depth, P, K>(tables, parts, painter, own_row, rows, sink)
 }
 
@@ -112,11 +137,6 @@ fn painted_rows<D: DepthFormat, P: RowPainter, K: RowSink<P::Color, D::Value>>(
     .any(|&len| width > len);
     if too_narrow {
         return Err(RenderError::Table(Error::BadFrameSize));
-    }
-    // (A slot is a `u16` below NO_SLOT, so no more than 2^16 are used.)
-    let (slots, values) = painter.capacity();
-    if slots < parts.active.len().min(1 << 16) || values < tables.vertices.len() {
-        return Err(RenderError::Table(Error::PaintStorageTooSmall));
     }
     let mut pool_len = 0usize;
     let mut state = ScanState {
