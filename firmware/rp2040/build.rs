@@ -448,9 +448,13 @@ fn measure_views(
             "{origin}: too big for the {chip}'s RAM: the renderer's tables for this mesh take \
              about {renderer} bytes, {needed} bytes in all with the vertex cache, the SPI buffer, \
              the DMA row queue and {STACK_RESERVE} bytes of stack, over the {ram_size} bytes in {map}; use a \
-             smaller mesh ({} vertices, {} faces here)",
+             smaller mesh ({} vertices, {} faces here){}",
             mesh.vertex_count(),
-            mesh.face_count()
+            mesh.face_count(),
+            match env::var_os("CARGO_FEATURE_DUAL_CORE") {
+                Some(_) => " or one core (without `dual-core`, which doubles the renderer)",
+                None => "",
+            }
         ));
     }
 

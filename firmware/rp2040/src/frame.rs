@@ -5,7 +5,6 @@
 
 use embedded_graphics_core::pixelcolor::Rgb565;
 use embedded_graphics_core::prelude::IntoStorage;
-#[cfg(feature = "dual-core")]
 use zline::DrawError;
 use zline::Mesh;
 use zline::Shading;
@@ -160,12 +159,34 @@ where
     K: RowSink<WirePixel, <S::Depth as DepthFormat>::Value>,
     M: Mesh,
 {
+    let draw = draw_scene_painted(renderer, mesh, shading, (centre, radius), (yaw, pitch))?;
+    let frame = renderer.render(sink)?;
+    Ok((draw, frame))
+}
+
+/// The scene of [`render_frame_painted`] alone: `renderer`'s tables
+/// cleared and `mesh` drawn into them with each vertex's value (feature
+/// `dual-core`: two cores scan it in bands).
+#[allow(dead_code)] // The flat build uses the rest of this file only.
+pub fn draw_scene_painted<T, S, C, A, M>(
+    renderer: &mut zline::paint::PaintedRenderer<T, S, C, A>,
+    mesh: &M,
+    shading: &Shading,
+    (centre, radius): (Vec3, f32),
+    (yaw, pitch): (f32, f32),
+) -> Result<DrawStats, DrawError>
+where
+    T: TableStorage<Color = u16>,
+    S: ScanStorage<Color = u16>,
+    C: CacheStorage,
+    A: zline::paint::PaintStorage,
+    A::Mode: zline::paint::PaintMode<Color = WirePixel, Source: VertexSource>,
+    M: Mesh,
+{
     renderer.clear();
     let model = reference_model_around(centre, radius, yaw, pitch);
     let camera = Camera::reference(renderer.width(), renderer.height());
-    let draw = renderer.draw_mesh(mesh, &model, &camera, Cull::Back, |v| {
+    renderer.draw_mesh(mesh, &model, &camera, Cull::Back, |v| {
         VertexSource::of(shading, v)
-    })?;
-    let frame = renderer.render(sink)?;
-    Ok((draw, frame))
+    })
 }

@@ -810,6 +810,24 @@ fn pool_buffer() -> Result<RowBuf, LcdError> {
     }
 }
 
+/// Core 1's painted rows (`dual-core` with `gouraud` or `textured`): the
+/// painted renderer's row, copied into a buffer as core 0's are.
+#[cfg(all(feature = "dual-core", any(feature = "gouraud", feature = "textured")))]
+impl RowSink<crate::frame::WirePixel, u16> for PoolRows {
+    type Error = LcdError;
+
+    fn write_row(
+        &mut self,
+        y: u16,
+        colors: &[crate::frame::WirePixel],
+        _depths: &[u16],
+    ) -> Result<(), LcdError> {
+        let (buf, at) = self.row_slot(y)?;
+        copy_row(buf, at, bytemuck::cast_slice(colors));
+        self.row_done()
+    }
+}
+
 #[cfg(feature = "dual-core")]
 impl RowSink<WireColor, u16> for PoolRows {
     type Error = LcdError;
