@@ -428,11 +428,15 @@ fn measure_views(
     let mut ram = renderer + 2 * mesh_vertices + SPI_BUFFER + ROW_BUFFERS * 2 * usize::from(WIDTH);
     if env::var_os("CARGO_FEATURE_DUAL_CORE").is_some() {
         // Both cores (`src/dual.rs`, `src/lcd.rs`): a second renderer and
-        // vertex cache, the ring doubled, core 1's 128 rows of buffers and
-        // its stack.
+        // vertex cache, the ring doubled (not when textured), core 1's 128
+        // rows of buffers and its stack.
+        let ring = match texture {
+            Some(_) => 0,
+            None => ROW_BUFFERS * 2 * usize::from(WIDTH),
+        };
         ram += renderer
             + 2 * mesh_vertices
-            + ROW_BUFFERS * 2 * usize::from(WIDTH)
+            + ring
             + DUAL_CORE_POOL_ROWS * 2 * usize::from(WIDTH)
             + DUAL_CORE_STACK;
     }

@@ -40,11 +40,17 @@ use crate::wiring::{LcdCs, LcdDc, LcdSpi, OFFSET};
 pub const ROW_BYTES: usize = 2 * WIDTH as usize;
 /// Bytes of one buffer: [`ROWS_PER_BUFFER`] rows.
 const BUFFER_BYTES: usize = ROWS_PER_BUFFER * ROW_BYTES;
-/// Buffers in the ring: [`ROW_BUFFERS`] rows of them (twice that with
-/// `dual-core`, where core 0 starts a frame while core 1's rows of the
-/// last one may still be leaving).
-const BUFFERS: usize =
-    if cfg!(feature = "dual-core") { 2 } else { 1 } * ROW_BUFFERS / ROWS_PER_BUFFER;
+/// Rings of [`ROW_BUFFERS`] rows: two with `dual-core`, where core 0
+/// starts a frame while core 1's rows of the last one may still be
+/// leaving; one with `textured`, whose frames take many times the wire's
+/// and whose two renderers leave no room for a second.
+const RINGS: usize = if cfg!(all(feature = "dual-core", not(feature = "textured"))) {
+    2
+} else {
+    1
+};
+/// Buffers in the ring.
+const BUFFERS: usize = RINGS * ROW_BUFFERS / ROWS_PER_BUFFER;
 /// Rows core 1 may draw in a frame (feature `dual-core`): its own
 /// buffers hold them all, so it never waits for core 0's rows to leave.
 #[cfg(feature = "dual-core")]
