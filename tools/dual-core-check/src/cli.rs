@@ -16,7 +16,8 @@ ELF's EXPECTED_CRCS and prints emulated cycles per frame. With --dual, the
 last line compares the median frame periods of the two builds.
 
   --single ELF        the single-core firmware (required)
-  --dual ELF          the dual-core build of the same firmware
+  --dual ELF          the dual-core build of the same firmware (the same
+                      EXPECTED_CRCS, else the check fails)
   --frames N          frames to check after the start-up clear (default 4)
   --budget-ratio R    fail if the dual/single period ratio exceeds R (needs --dual)
   --bootrom PATH      the boot ROM module, rp2040js's bootrom.mjs (default:
@@ -33,7 +34,8 @@ last line compares the median frame periods of the two builds.
   -h, --help          this message
 
 Exit status: 0 when every frame matches; 1 on a CRC mismatch, a missing
-frame, a fault or a ratio over the budget; 2 on bad arguments or files.";
+frame, a fault, a ratio over the budget, builds of different frames or a
+panic of the emulator; 2 on bad arguments or files.";
 
 /// Default `--frames`.
 pub const DEFAULT_FRAMES: usize = 4;

@@ -79,7 +79,12 @@ fn check(options: &Options) -> Result<bool, String> {
     });
     let dual_outcome = match dual_outcome {
         Some(Ok(outcome)) => Some(outcome),
-        Some(Err(_)) => return Err("the dual-core run panicked".into()),
+        Some(Err(_)) => {
+            // The harness failed on this firmware: a failed check, not a
+            // bad argument.
+            println!("FAIL: dual: the emulator run panicked");
+            return Ok(false);
+        }
         None => None,
     };
 
@@ -93,6 +98,10 @@ fn check(options: &Options) -> Result<bool, String> {
     let dual_verdict = report::judge("dual", dual, dual_outcome, options.frames);
     print_verdict("dual", &dual_verdict);
     passed &= dual_verdict.failures.is_empty();
+    if let Some(why) = report::incomparable(&single.expected_crcs, &dual.expected_crcs) {
+        println!("FAIL: {why}");
+        passed = false;
+    }
     if let (Some(budget), Some(ratio)) = (
         options.budget_ratio,
         report::period_ratio(&single_verdict, &dual_verdict),

@@ -199,6 +199,22 @@ pub fn dual_summary(single: &Verdict, dual: &Verdict) -> String {
     )
 }
 
+/// Why the two builds' periods cannot be compared, if they cannot: both
+/// must carry the same views (`EXPECTED_CRCS`), or they draw different
+/// frames.
+pub fn incomparable(single: &[u32], dual: &[u32]) -> Option<String> {
+    (single != dual).then(|| {
+        format!(
+            "the builds carry different EXPECTED_CRCS ({} and {} views, first {:08X} and {:08X}), \
+             so they draw different frames and their periods do not compare",
+            single.len(),
+            dual.len(),
+            single.first().copied().unwrap_or(0),
+            dual.first().copied().unwrap_or(0)
+        )
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -247,5 +263,13 @@ mod tests {
             dual_summary(&single, &broken),
             "dual-core: period_ratio=nan single=4000000 dual=0 crc=MISMATCH"
         );
+    }
+
+    #[test]
+    fn builds_of_different_views_do_not_compare() {
+        assert_eq!(incomparable(&[1, 2], &[1, 2]), None);
+        assert!(incomparable(&[1, 2], &[1, 3]).is_some());
+        assert!(incomparable(&[1, 2], &[1]).is_some());
+        assert!(incomparable(&[], &[7]).is_some());
     }
 }
