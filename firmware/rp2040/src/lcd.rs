@@ -53,8 +53,10 @@ const RINGS: usize = if cfg!(all(feature = "dual-core", not(feature = "textured"
 const BUFFERS: usize = RINGS * ROW_BUFFERS / ROWS_PER_BUFFER;
 /// Rows core 1 may draw in a frame (feature `dual-core`): its own
 /// buffers hold them all, so it never waits for core 0's rows to leave.
+/// More with `textured` (whose ring is not doubled), where the frame's
+/// work would otherwise leave core 0 twice core 1's.
 #[cfg(feature = "dual-core")]
-pub const POOL_ROWS: usize = 128;
+pub const POOL_ROWS: usize = if cfg!(feature = "textured") { 176 } else { 128 };
 /// Core 1's buffers.
 #[cfg(feature = "dual-core")]
 const POOL_BUFFERS: usize = POOL_ROWS / ROWS_PER_BUFFER;
