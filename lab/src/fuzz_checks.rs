@@ -1201,6 +1201,52 @@ pub fn painted(data: &[u8]) {
                 painted
                     .render(&mut KeepRows(painted_rows))
                     .expect("painted frame");
+                // The same prepared scene painted in two bands, the lower
+                // by a second renderer's scanner and slots (as a second
+                // core paints): the same rows.
+                let mut other = HostPaintedRenderer::<Gouraud<Rgb888>, $d>::with_capacities(
+                    &caps,
+                    (width, height),
+                    Gouraud::new(),
+                    background,
+                )
+                .expect("size");
+                let cut = (corners as u16).wrapping_mul(7) % (height + 1);
+                let mut band_rows = Vec::new();
+                {
+                    use zline::paint::{PaintStorage, Painter};
+                    let zline::paint::PaintedRenderer {
+                        renderer,
+                        paint,
+                        mode,
+                        ..
+                    } = &mut painted;
+                    let prepared = renderer.tables.prepare();
+                    let parts = paint.parts_mut();
+                    let vertices = &*parts.vertices;
+                    let mut sink = KeepRows(&mut band_rows);
+                    let mut top = Painter::new(&*mode, vertices, parts.slots, background);
+                    let scanner = &mut renderer.scanner;
+                    zline::scan_painted(&prepared, scanner, &mut top, parts.row, 0..cut, &mut sink)
+                        .expect("top band");
+                    let theirs = other.paint.parts_mut();
+                    let mut bottom = Painter::new(&*mode, vertices, theirs.slots, background);
+                    let scanner = &mut other.renderer.scanner;
+                    let rows = cut..height;
+                    zline::scan_painted(
+                        &prepared,
+                        scanner,
+                        &mut bottom,
+                        theirs.row,
+                        rows,
+                        &mut sink,
+                    )
+                    .expect("bottom band");
+                }
+                assert_eq!(
+                    &band_rows, painted_rows,
+                    "two bands paint the one-scan frame"
+                );
             }};
         }
         if z24 {
