@@ -95,6 +95,45 @@ pub trait PaintMode {
 /// scene: the scene's vertex values with this scanner's own slots (for
 /// [`scan_painted`](crate::scan_painted) of a band of rows, as a second
 /// core does).
+///
+/// ```
+/// use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
+/// use zline::paint::{Gouraud, PaintStorage, PaintedRenderer, Painter, Rgb8p8};
+/// use zline::{Capacities, Depth16, FnSink, ScreenVertex, limits::SUBPIXEL_STEPS as S};
+///
+/// const CAPS: Capacities = Capacities {
+///     width: 16, vertices: 3, polygons: 1, corners: 3,
+///     active_polygons: 1, pooled_edges: 3, mesh_vertices: 0,
+/// };
+/// type Painted = zline::painted_renderer_type!(Gouraud<Rgb888>, Depth16, CAPS);
+/// let mut scene = Painted::new(16, 8, Gouraud::new(), Rgb888::BLACK)?;
+/// // Only its scanner and slots are used (on a second core, say).
+/// let mut second = Painted::new(16, 8, Gouraud::new(), Rgb888::BLACK)?;
+/// let corners = [(0, 0), (16, 0), (0, 8)].map(|(x, y)| ScreenVertex { x: x * S, y: y * S, z: 1 });
+/// let red = Rgb8p8::from_rgb888(Rgb888::RED);
+/// scene.push_polygon_vertices(&corners, &[red; 3])?;
+///
+/// let background = scene.background();
+/// let PaintedRenderer { renderer, paint, mode, .. } = &mut scene;
+/// let prepared = renderer.tables.prepare();
+/// let ours = paint.parts_mut();
+/// let vertices = &*ours.vertices;
+/// let mut painted = 0;
+/// let mut sink = FnSink(|_: u16, row: &[Rgb888], _: &[u16]| {
+///     painted += row.iter().filter(|&&c| c != Rgb888::BLACK).count();
+///     Ok::<(), ()>(())
+/// });
+/// // Rows 0..4 with the scene's own scanner and slots...
+/// let mut top = Painter::new(&*mode, vertices, ours.slots, background);
+/// zline::scan_painted(&prepared, &mut renderer.scanner, &mut top, ours.row, 0..4, &mut sink)?;
+/// // ...rows 4..8 with the second renderer's.
+/// let theirs = second.paint.parts_mut();
+/// let mut bottom = Painter::new(&*mode, vertices, theirs.slots, background);
+/// let scanner = &mut second.renderer.scanner;
+/// zline::scan_painted(&prepared, scanner, &mut bottom, theirs.row, 4..8, &mut sink)?;
+/// assert!(painted > 40);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub struct Painter<'a, M: PaintMode> {
     pub(crate) mode: &'a M,
     /// The values of the vertex table's vertices.
