@@ -5,12 +5,14 @@
 //! the cores meet only through the FIFO: no flag in memory is polled.
 //!
 //! This file and the stack's paint are the firmware's only raw-pointer
-//! code: the job's address crosses the FIFO as a word.
+//! code: the job's address crosses the FIFO as a word, and core 1's stack
+//! is painted and measured here.
 
-use core::sync::atomic::{Ordering, compiler_fence};
+use core::cell::UnsafeCell;
+use core::sync::atomic::{AtomicBool, AtomicU32, Ordering, compiler_fence};
 
 use crate::Fault;
-use crate::hal::multicore::{Multicore, Stack};
+use crate::hal::multicore::{Multicore, StackAllocation};
 use crate::hal::pac;
 use crate::hal::sio::{Sio, SioFifo};
 
@@ -18,8 +20,68 @@ use crate::hal::sio::{Sio, SioFifo};
 /// rows, as core 0 does in about 5 KiB.
 const CORE1_STACK_WORDS: usize = 2048;
 
-/// Core 1's stack, in `.bss`.
-static CORE1_STACK: Stack<CORE1_STACK_WORDS> = Stack::new();
+/// What core 1's stack is painted with before it starts, so that
+/// [`measure_core1_stack`] sees how deep it went.
+const PAINT: usize = 0x5A17_C0DE;
+
+/// Most bytes of its stack core 1 used, measured after the first frame
+/// (0 before; `#[used]`, for a debugger and `tools/dual-core-check`).
+#[used]
+pub static CORE1_HIGH_WATER_BYTES: AtomicU32 = AtomicU32::new(0);
+
+/// Core 1's stack, in `.bss`, aligned as rp2040-hal asks (8 bytes at
+/// least, 32 for its MPU guard).
+#[repr(C, align(32))]
+struct Core1Stack(UnsafeCell<[usize; CORE1_STACK_WORDS]>);
+
+// SAFETY: the memory is handed out once (`TAKEN`), to core 1 as its
+// stack; core 0 only reads it while core 1 waits for a job
+// (`measure_core1_stack`).
+unsafe impl Sync for Core1Stack {}
+
+/// Core 1's stack.
+static CORE1_STACK: Core1Stack = Core1Stack(UnsafeCell::new([0; CORE1_STACK_WORDS]));
+/// Whether core 1's stack has been handed out.
+static TAKEN: AtomicBool = AtomicBool::new(false);
+
+/// Core 1's stack, painted, the first time only.
+fn take_core1_stack() -> Option<StackAllocation> {
+    // (The Cortex-M0+ has no atomic swap: the flag is tested and set
+    // under the critical section.)
+    let taken = critical_section::with(|_| {
+        let taken = TAKEN.load(Ordering::Relaxed);
+        TAKEN.store(true, Ordering::Relaxed);
+        taken
+    });
+    if taken {
+        return None;
+    }
+    let start = CORE1_STACK.0.get().cast::<usize>();
+    for k in 0..CORE1_STACK_WORDS {
+        // SAFETY: `k` is inside the array, which nothing else uses yet
+        // (it is taken once, here, before core 1 starts).
+        unsafe { start.add(k).write_volatile(PAINT) };
+    }
+    // SAFETY: the range is the whole static array: 'static, aligned to 32
+    // bytes, 8 KiB, and handed out once, to core 1 alone.
+    Some(unsafe { StackAllocation::from_raw_parts(start, start.add(CORE1_STACK_WORDS)) })
+}
+
+/// Bytes of its stack core 1 has used, from the lowest word that no
+/// longer holds the paint. Call while core 1 waits for a job (between
+/// [`Core1::join`]s): it then writes no word of the stack this reads.
+pub fn measure_core1_stack() -> u32 {
+    let start = CORE1_STACK.0.get().cast::<usize>();
+    let mut untouched = 0;
+    // SAFETY: every word read is inside the array; core 1 is waiting on
+    // the FIFO in `core1_main`, whose frame is at the stack's top, above
+    // the painted words this stops at.
+    while untouched < CORE1_STACK_WORDS && unsafe { start.add(untouched).read_volatile() } == PAINT
+    {
+        untouched += 1;
+    }
+    ((CORE1_STACK_WORDS - untouched) * core::mem::size_of::<usize>()) as u32
+}
 
 /// What core 1 answers when a job is done.
 const DONE: u32 = 0x0D0E;
@@ -37,7 +99,7 @@ impl Core1 {
     /// Starts core 1 (through the boot ROM's launch protocol on the FIFO)
     /// waiting for jobs.
     pub fn start(psm: &mut pac::PSM, ppb: &mut pac::PPB, mut fifo: SioFifo) -> Result<Self, Fault> {
-        let stack = CORE1_STACK.take().ok_or(Fault::Core1)?;
+        let stack = take_core1_stack().ok_or(Fault::Core1)?;
         let mut multicore = Multicore::new(psm, ppb, &mut fifo);
         let core1 = multicore.cores().get_mut(1).ok_or(Fault::Core1)?;
         core1.spawn(stack, core1_main).map_err(|_| Fault::Core1)?;

@@ -15,7 +15,8 @@
 //! For a debugger, these statics describe the running firmware:
 //! [`FRAMES`], [`SKIPPED`], [`LAST_ERROR`], [`FRAME_US`], [`POLYGONS`],
 //! [`FAULT`], and in `stack`: `HIGH_WATER_BYTES` (render loop),
-//! `STARTUP_HIGH_WATER_BYTES` and `STACK_BYTES`.
+//! `STARTUP_HIGH_WATER_BYTES` and `STACK_BYTES`; with `dual-core`, in
+//! `dual`: `CORE1_HIGH_WATER_BYTES` (core 1's stack).
 
 #![no_std]
 #![no_main]
@@ -486,6 +487,7 @@ fn run() -> Result<core::convert::Infallible, Fault> {
         core::mem::swap(&mut current, &mut next);
         if stack::HIGH_WATER_BYTES.load(Ordering::Relaxed) == 0 {
             stack::HIGH_WATER_BYTES.store(stack::measure(), Ordering::Relaxed);
+            dual::CORE1_HIGH_WATER_BYTES.store(dual::measure_core1_stack(), Ordering::Relaxed);
         }
     }
 }

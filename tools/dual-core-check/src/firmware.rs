@@ -61,6 +61,9 @@ pub struct Firmware {
     pub frames: Option<u32>,
     /// Address of `FRAME_US` (the firmware's own frame period), if kept.
     pub frame_us: Option<u32>,
+    /// Address of `CORE1_HIGH_WATER_BYTES` (core 1's stack use; the
+    /// dual-core build's), if kept.
+    pub core1_stack: Option<u32>,
     /// Address ranges of the panic functions (`panic-halt` spins in them).
     pub panic_code: Vec<std::ops::Range<u32>>,
 }
@@ -118,6 +121,7 @@ impl Firmware {
             fault: address("FAULT"),
             frames: address("FRAMES"),
             frame_us: address("FRAME_US"),
+            core1_stack: address("CORE1_HIGH_WATER_BYTES"),
             panic_code,
         })
     }

@@ -70,6 +70,8 @@ pub struct Outcome {
     pub frames_static: Option<u32>,
     /// `FRAME_US` at the end, if kept.
     pub frame_us: Option<u32>,
+    /// `CORE1_HIGH_WATER_BYTES` at the end, if kept.
+    pub core1_stack: Option<u32>,
     /// Master-clock cycles emulated.
     pub cycles: u64,
     /// The system clock at the end, in Hz.
@@ -127,6 +129,7 @@ pub fn run(firmware: &Firmware, rom: &[u8], options: RunOptions) -> Outcome {
         fault: read(firmware.fault),
         frames_static: read(firmware.frames),
         frame_us: read(firmware.frame_us),
+        core1_stack: read(firmware.core1_stack),
         cycles: machine.stamp().cycle,
         sys_clk_hz: machine.sys_clk_hz(),
         wall: started.elapsed(),

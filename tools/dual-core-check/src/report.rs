@@ -138,7 +138,7 @@ fn details(label: &str, o: &Outcome) -> String {
     let c = &o.counters;
     format!(
         "{label} run: FAULT={} FRAMES={} FRAME_US={} (last period {} us at {} MHz) \
-         startup={} cycles={} wall={seconds:.1}s ({:.1} emulated MHz) \
+         core1_stack_bytes={} startup={} cycles={} wall={seconds:.1}s ({:.1} emulated MHz) \
          spi_bytes_cpu={} spi_bytes_dma={} dma_al2_triggers={} dma_alias_redirects={} spi_loopback_sets={} idle_quanta={} \
          lockstep_wait_core0={} lockstep_wait_core1={}",
         show(o.fault),
@@ -146,6 +146,7 @@ fn details(label: &str, o: &Outcome) -> String {
         show(o.frame_us),
         last_us.map_or("-".to_string(), |us| format!("{us:.0}")),
         o.sys_clk_hz / 1_000_000,
+        show(o.core1_stack),
         hex_list(&o.startup_commands),
         o.cycles,
         o.cycles as f64 / seconds.max(1e-9) / 1e6,
