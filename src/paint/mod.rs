@@ -8,7 +8,8 @@
 //!   its corners, and how a run of pixels is painted from them;
 //!   [`Gouraud`] (a colour per vertex, interpolated) and [`Textured`]
 //!   (texture coordinates per vertex, perspective-correct, sampling a
-//!   [`Texture`]);
+//!   [`Texture`]); [`LitTextured`] (a texture scaled by a light per
+//!   vertex, interpolated as Gouraud's colours);
 //! * [`PaintColor`]: the colours a painted row can hold, quantised from
 //!   8.8 fixed-point channels, with an ordered dither ([`bayer_threshold`]);
 //! * [`PaintStorage`] and [`PaintArrays`]: the values of the vertex table,
@@ -17,6 +18,7 @@
 
 mod color;
 mod gouraud;
+mod lit;
 mod renderer;
 mod storage;
 mod texture;
@@ -24,6 +26,7 @@ mod textured;
 
 pub use color::{CHANNEL_MAX, PaintColor, bayer_threshold};
 pub use gouraud::{Gouraud, GouraudPlanes, Rgb8p8};
+pub use lit::{LitTexCoord, LitTextured, LitTexturedPlanes};
 pub use renderer::PaintedRenderer;
 pub use storage::{PaintArrays, PaintParts, PaintStorage, SlotPlanes};
 pub use texture::{Filter, TEXEL_FRAC_BITS, TEXTURE_SIZE_MAX, Texture, Wrap};

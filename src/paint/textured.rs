@@ -134,8 +134,30 @@ impl<'a, C: PaintColor> Textured<'a, C> {
     /// polygon's offset).
     #[inline(always)]
     fn color(&self, planes: &TexturedPlanes, t: [i64; 2], threshold: Option<u32>) -> C {
+        let [u, v] = self.texel_position(planes, t);
+        if threshold.is_none() && C::MAX == TEXEL_MAX && self.texture.filter() == Filter::Nearest {
+            // A texel of the colour's own levels, undithered: the levels it
+            // has (the channels' round trip gives them back, as the
+            // texture's tests check for every texel).
+            return C::from_levels(texel_levels(self.texture.nearest(u, v)));
+        }
+        C::from_channels(self.texture.sample(u, v), threshold)
+    }
+
+    /// The texture's 8.8 channels at texel coordinates `t` (`2^-8` texel,
+    /// from the polygon's offset), by its filter.
+    #[inline(always)]
+    pub(super) fn channels(&self, planes: &TexturedPlanes, t: [i64; 2]) -> [u32; 3] {
+        let [u, v] = self.texel_position(planes, t);
+        self.texture.sample(u, v)
+    }
+
+    /// Texel coordinates `t` (`2^-8` texel, from the polygon's offset) as
+    /// the texture takes them: absolute, in `i32`.
+    #[inline(always)]
+    fn texel_position(&self, planes: &TexturedPlanes, t: [i64; 2]) -> [i32; 2] {
         let sizes = [self.texture.width(), self.texture.height()];
-        let [u, v]: [i32; 2] = core::array::from_fn(|a| {
+        core::array::from_fn(|a| {
             let c = t[a] + planes.offset[a];
             if let Ok(c) = i32::try_from(c) {
                 return c;
@@ -147,14 +169,7 @@ impl<'a, C: PaintColor> Textured<'a, C> {
                 Wrap::Repeat => c.rem_euclid(period) as i32,
                 Wrap::Clamp => c.clamp(-period, 2 * period) as i32,
             }
-        });
-        if threshold.is_none() && C::MAX == TEXEL_MAX && self.texture.filter() == Filter::Nearest {
-            // A texel of the colour's own levels, undithered: the levels it
-            // has (the channels' round trip gives them back, as the
-            // texture's tests check for every texel).
-            return C::from_levels(texel_levels(self.texture.nearest(u, v)));
-        }
-        C::from_channels(self.texture.sample(u, v), threshold)
+        })
     }
 
     /// The plane values at pixel `(x, y)`, each steep plane's computed
@@ -315,7 +330,7 @@ impl<C: PaintColor> Textured<'_, C> {
     /// each pixel's index in the run, in order: divided at the ends of
     /// spans and stepped between (the module's notes).
     #[inline(always)]
-    fn coordinates(
+    pub(super) fn coordinates(
         &self,
         planes: &TexturedPlanes,
         corners: impl Iterator<Item = (ScreenVertex, TexCoord)> + Clone,
