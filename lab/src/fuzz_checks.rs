@@ -1417,4 +1417,76 @@ fn textured(
             }
         }
     }
+    lit_textured(
+        polygons,
+        &coords,
+        (width, height),
+        caps,
+        texture,
+        &rows,
+        &mut next,
+    );
+}
+
+/// The same polygons lit (`LitTextured`, undithered): under full light (or
+/// brighter, clamped) every pixel is the unlit frame's; under random
+/// corner lights no channel of any pixel is brighter than the unlit one.
+fn lit_textured(
+    polygons: &[(Vec<ScreenVertex>, Vec<zline::paint::Rgb8p8>)],
+    coords: &[Vec<zline::paint::TexCoord>],
+    (width, height): (u16, u16),
+    caps: &Capacities,
+    texture: zline::paint::Texture<'_>,
+    unlit: &[Vec<embedded_graphics_core::pixelcolor::Rgb888>],
+    next: &mut dyn FnMut() -> u64,
+) {
+    use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
+    use zline::host::HostPaintedRenderer;
+    use zline::paint::{CHANNEL_MAX, LitTexCoord, LitTextured, Rgb8p8};
+    let background = Rgb888::new(1, 2, 3);
+    for full in [true, false] {
+        let mut lit =
+            HostPaintedRenderer::<LitTextured<'_, Rgb888>, zline::Depth24>::with_capacities(
+                caps,
+                (width, height),
+                LitTextured::with_dither(texture, false),
+                background,
+            )
+            .expect("size");
+        for ((poly, _), corners) in polygons.iter().zip(coords) {
+            let values: Vec<LitTexCoord> = corners
+                .iter()
+                .map(|&c| {
+                    let mut level = || {
+                        let l = next() as u16;
+                        if full { l.max(CHANNEL_MAX as u16) } else { l }
+                    };
+                    LitTexCoord::new(
+                        c,
+                        Rgb8p8 {
+                            r: level(),
+                            g: level(),
+                            b: level(),
+                        },
+                    )
+                })
+                .collect();
+            lit.push_polygon_vertices(poly, &values)
+                .expect("admitted as the flat one");
+        }
+        let mut rows = Vec::new();
+        lit.render(&mut KeepRows(&mut rows)).expect("lit frame");
+        for (lit_row, row) in rows.iter().zip(unlit) {
+            for (&l, &u) in lit_row.iter().zip(row) {
+                if full {
+                    assert_eq!(l, u, "full light");
+                } else {
+                    assert!(
+                        l.r() <= u.r() && l.g() <= u.g() && l.b() <= u.b(),
+                        "lit {l:?} brighter than unlit {u:?}"
+                    );
+                }
+            }
+        }
+    }
 }

@@ -41,13 +41,15 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use embedded_graphics_core::pixelcolor::RgbColor;
+use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 use zline::Mat4;
 use zline::Mesh;
 use zline::Shading;
 use zline::host::HostPaintedRenderer;
 use zline::host::{HostMesh, QuantizedHostMesh};
-use zline::paint::{CHANNEL_MAX, Filter, Gouraud, PaintColor, PaintMode, Textured};
+use zline::paint::{
+    CHANNEL_MAX, Filter, Gouraud, LitTexCoord, LitTextured, PaintColor, PaintMode, Textured,
+};
 use zline::{Camera, Cull, VertexInfo, reference_model};
 use zline::{Depth16, Depth24, DepthFormat};
 use zline::{FnSink, Lambert};
@@ -429,6 +431,13 @@ struct TextureErrors {
     /// steps) against the exact coordinates' bilinear blend in `f64`.
     max_bilinear: f64,
     sum_bilinear: f64,
+    /// Lit (`LitTextured`, nearest): largest and summed 8-bit error
+    /// against the exact light (the Gouraud reference's, on a white
+    /// surface) times the nearest texel closest in result among those
+    /// within [`TEXEL_TOLERANCE`], and pixels more than 1 step off.
+    max_lit: f64,
+    sum_lit: f64,
+    lit_over_one: u64,
 }
 
 impl TextureErrors {
@@ -440,6 +449,13 @@ impl TextureErrors {
         self.over_one += other.over_one;
         self.max_bilinear = self.max_bilinear.max(other.max_bilinear);
         self.sum_bilinear += other.sum_bilinear;
+        self.max_lit = self.max_lit.max(other.max_lit);
+        self.sum_lit += other.sum_lit;
+        self.lit_over_one += other.lit_over_one;
+    }
+
+    fn lit_within_one(&self) -> f64 {
+        1.0 - self.lit_over_one as f64 / self.matched.max(1) as f64
     }
 
     fn within_one(&self) -> f64 {
@@ -449,7 +465,10 @@ impl TextureErrors {
     /// The bar for nearest sampling: at most 1 step on 99.9 % of
     /// matched pixels and at most 2 on all.
     fn meets_the_bar(&self) -> bool {
-        self.max_nearest <= 2.0 && self.within_one() >= 0.999
+        self.max_nearest <= 2.0
+            && self.within_one() >= 0.999
+            && self.max_lit <= 2.0
+            && self.lit_within_one() >= 0.999
     }
 }
 
@@ -529,6 +548,21 @@ fn textured_frame(
         |texture| painted_values(mesh, Textured::new(texture), &model, o, |v| v.tex_coord());
     let nearest = textured(texture)?;
     let bilinear = textured(texture.with_filter(Filter::Bilinear))?;
+    // Lit: Lambert of a white surface per vertex, as the render tool's
+    // `--shade lit-texture` lights.
+    let Shading::Lambert(lambert) = Shading::lambert() else {
+        return Err("Shading::lambert() is not Lambert".into());
+    };
+    let white = Lambert::new(Rgb888::WHITE, lambert.light(), lambert.ambient());
+    let lights = ReferenceFrame::render_with_values(
+        mesh,
+        reference_view,
+        &ReferenceCamera::STANDARD,
+        &reference_vertex_colors(mesh, reference_view, &white),
+    );
+    let lit = painted_values(mesh, LitTextured::new(texture), &model, o, |v| {
+        LitTexCoord::new(v.tex_coord(), white.vertex_color(v))
+    })?;
     let (tw, th) = (f64::from(png.width), f64::from(png.height));
     let mut errors = TextureErrors::default();
     let width = usize::from(o.width);
@@ -568,6 +602,25 @@ fn textured_frame(
                 + (t(i0, j0 + 1) * (1.0 - fx) + t(i0 + 1, j0 + 1) * fx) * fy
         });
         let bilinear_error = distance(bilinear[k].0, blend);
+        // Lit: the exact light (affine in screen space, as Gouraud's)
+        // times the candidate texels, the closest taken.
+        let light = lights
+            .interpolated(id, k % width, k / width)
+            .unwrap_or([255.0; 3])
+            .map(|c| c.clamp(0.0, 255.0) / 255.0);
+        let mut lit_best = f64::INFINITY;
+        for i in [(x - TEXEL_TOLERANCE).floor(), (x + TEXEL_TOLERANCE).floor()] {
+            for j in [(y - TEXEL_TOLERANCE).floor(), (y + TEXEL_TOLERANCE).floor()] {
+                let t = texel_rgb(png, i as i64, j as i64);
+                let want: [f64; 3] = std::array::from_fn(|c| t[c] * light[c]);
+                // The 8-bit value the core rounds to without dither.
+                let got = lit[k].0.map(|c| ((c + 128) >> 8) << 8);
+                lit_best = lit_best.min(distance(got, want));
+            }
+        }
+        errors.max_lit = errors.max_lit.max(lit_best);
+        errors.sum_lit += lit_best;
+        errors.lit_over_one += u64::from(lit_best > 1.0);
         errors.matched += 1;
         errors.other_texel += u64::from(!same);
         errors.max_nearest = errors.max_nearest.max(best);
@@ -582,7 +635,7 @@ fn textured_frame(
 fn textured_row(name: &str, view: (f32, f32), c: &Comparison, e: &TextureErrors) {
     let mean = |sum: f64| sum / e.matched.max(1) as f64;
     println!(
-        "| {name} | {:.0}/{:.0} | {} | {} | {} ({:.4} %) | {:.3} | {:.4} | {:.4} % | {:.3} | {:.4} |",
+        "| {name} | {:.0}/{:.0} | {} | {} | {} ({:.4} %) | {:.3} | {:.4} | {:.4} % | {:.3} | {:.4} | {:.3} | {:.4} | {:.4} % |",
         view.0,
         view.1,
         c.hard,
@@ -594,6 +647,9 @@ fn textured_row(name: &str, view: (f32, f32), c: &Comparison, e: &TextureErrors)
         100.0 * e.within_one(),
         e.max_bilinear,
         mean(e.sum_bilinear),
+        e.max_lit,
+        mean(e.sum_lit),
+        100.0 * e.lit_within_one(),
     );
 }
 
@@ -608,9 +664,9 @@ fn textured(o: &Options) -> Result<bool, String> {
     );
     println!();
     println!(
-        "| mesh | yaw/pitch | hard mismatches | matched pixels | other texel than the exact one | max (nearest) | mean (nearest) | within 1 step (nearest) | max (bilinear) | mean (bilinear) |"
+        "| mesh | yaw/pitch | hard mismatches | matched pixels | other texel than the exact one | max (nearest) | mean (nearest) | within 1 step (nearest) | max (bilinear) | mean (bilinear) | max (lit) | mean (lit) | within 1 step (lit) |"
     );
-    println!("|---|---|---|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     let (mut ok, mut hard, mut meshes) = (true, 0, 0);
     let mut all = TextureErrors::default();
     for path in obj_files(&o.dir)? {
@@ -648,11 +704,13 @@ fn textured(o: &Options) -> Result<bool, String> {
     };
     textured_row("**all**", (0.0, 0.0), &total, &all);
     println!(
-        "textured: meshes {meshes}, hard mismatches {hard}, other texel {:.4} %, largest 8-bit error (nearest) {:.3}, within 1 step {:.4} %, largest bilinear error {:.3} ({})",
+        "textured: meshes {meshes}, hard mismatches {hard}, other texel {:.4} %, largest 8-bit error (nearest) {:.3}, within 1 step {:.4} %, largest bilinear error {:.3}, lit: largest {:.3}, within 1 step {:.4} % ({})",
         100.0 * all.other_texel as f64 / all.matched.max(1) as f64,
         all.max_nearest,
         100.0 * all.within_one(),
         all.max_bilinear,
+        all.max_lit,
+        100.0 * all.lit_within_one(),
         if ok { "ok" } else { "FAILED" }
     );
     Ok(ok)
