@@ -12,11 +12,13 @@
 //! Options (defaults in brackets):
 //! * `--size WxH` [320x240]
 //! * `--yaw DEG` [30] and `--pitch DEG` [20]
-//! * `--shade flat|lambert|depth|id|gouraud|texture` [lambert]: `gouraud`
-//!   is Lambert per vertex, interpolated; `texture` maps `--texture`
-//!   perspective-correctly by the mesh's `vt` coordinates (both a painted
-//!   renderer's colours, the scanline method's face ids)
-//! * `--texture FILE.png`: the texture for `--shade texture`, read as
+//! * `--shade flat|lambert|depth|id|gouraud|texture|lit-texture`
+//!   [lambert]: `gouraud` is Lambert per vertex, interpolated; `texture`
+//!   maps `--texture` perspective-correctly by the mesh's `vt`
+//!   coordinates; `lit-texture` scales it by Lambert light per vertex (a
+//!   white surface), interpolated (each a painted renderer's colours, the
+//!   scanline method's face ids)
+//! * `--texture FILE.png`: the texture for `--shade texture|lit-texture`, read as
 //!   Rgb565 texels; `--filter nearest|bilinear` [nearest], `--wrap
 //!   repeat|clamp` [repeat]
 //! * `--cull none|back` [none]
@@ -48,10 +50,10 @@ use embedded_graphics_simulator::{OutputSettings, SimulatorDisplay};
 use zline::FnSink;
 use zline::Shading;
 use zline::host::{HostMesh, HostPaintedRenderer};
-use zline::paint::{Filter, Gouraud, PaintMode, Textured, Wrap};
+use zline::paint::{Filter, Gouraud, LitTexCoord, LitTextured, PaintMode, Textured, Wrap};
 use zline::{Camera, Cull, reference_model};
 use zline::{Depth16, Depth24, DepthFormat};
-use zline::{DrawStats, VertexInfo};
+use zline::{DrawStats, Lambert, VertexInfo};
 use zline_lab::cli::parse_size;
 use zline_lab::cli::{help_requested, run_tool};
 use zline_lab::cli::{load_model, load_model_smooth};
@@ -125,9 +127,13 @@ fn parse_args(args: &[String]) -> Result<Options, String> {
                         o.painted = Painted::Texture;
                         Shading::lambert()
                     }
+                    "lit-texture" => {
+                        o.painted = Painted::LitTexture;
+                        Shading::Lambert(white_lambert())
+                    }
                     s => {
                         return Err(format!(
-                            "--shade: unknown '{s}' (flat, lambert, depth, id, gouraud, texture)"
+                            "--shade: unknown '{s}' (flat, lambert, depth, id, gouraud, texture, lit-texture)"
                         ));
                     }
                 }
@@ -181,8 +187,9 @@ fn parse_args(args: &[String]) -> Result<Options, String> {
         }
     }
     o.model = model.ok_or("missing MODEL.obj")?;
-    if (o.painted == Painted::Texture) != o.texture.is_some() {
-        return Err("--shade texture and --texture FILE.png go together".into());
+    let textured = matches!(o.painted, Painted::Texture | Painted::LitTexture);
+    if textured != o.texture.is_some() {
+        return Err("--shade texture|lit-texture and --texture FILE.png go together".into());
     }
     Ok(o)
 }
@@ -193,6 +200,16 @@ enum Painted {
     No,
     Gouraud,
     Texture,
+    LitTexture,
+}
+
+/// The light of `--shade lit-texture`: `Shading::lambert()`'s light and
+/// ambient on a white surface, so each vertex's colour is its light alone.
+fn white_lambert() -> Lambert {
+    match Shading::lambert() {
+        Shading::Lambert(l) => Lambert::new(Rgb888::WHITE, l.light(), l.ambient()),
+        _ => Lambert::new(Rgb888::WHITE, zline::Vec3::new(0.0, 0.0, 1.0), 0.2),
+    }
 }
 
 fn parse_angle(name: &str, s: &str) -> Result<f32, String> {
@@ -294,26 +311,38 @@ where
     if o.painted != Painted::No {
         if o.method != Method::Scanline {
             return Err(format!(
-                "--shade gouraud|texture: drawn by the scanline method only, not {}",
+                "--shade gouraud|texture|lit-texture: drawn by the scanline method only, not {}",
                 o.method.name()
             ));
         }
         // The painted renderer's colours and times; the face ids above.
         let draw = (model, camera, o.cull, mesh);
-        let (colors, painted_times) = match o.painted {
-            Painted::Texture => {
-                let path = o
-                    .texture
-                    .as_ref()
-                    .ok_or("--shade texture needs --texture")?;
-                let png = Rgb565Texture::read(path, 1)?;
-                let texture = png.texture()?.with_filter(o.filter).with_wrap(o.wrap);
+        let texture = match &o.texture {
+            Some(path) => Some(Rgb565Texture::read(path, 1)?),
+            None => None,
+        };
+        let texture = match &texture {
+            Some(png) => Some(png.texture()?.with_filter(o.filter).with_wrap(o.wrap)),
+            None => None,
+        };
+        let (colors, painted_times) = match (o.painted, texture) {
+            (Painted::Texture, Some(texture)) => painted_frames::<_, D>(
+                Textured::<Rgb888>::new(texture),
+                draw,
+                (warm_up, frames),
+                |v| v.tex_coord(),
+            )?,
+            (Painted::LitTexture, Some(texture)) => {
+                let light = white_lambert();
                 painted_frames::<_, D>(
-                    Textured::<Rgb888>::new(texture),
+                    LitTextured::<Rgb888>::new(texture),
                     draw,
                     (warm_up, frames),
-                    |v| v.tex_coord(),
+                    |v| LitTexCoord::new(v.tex_coord(), light.vertex_color(v)),
                 )?
+            }
+            (Painted::Texture | Painted::LitTexture, None) => {
+                return Err("--shade texture|lit-texture needs --texture".into());
             }
             _ => painted_frames::<_, D>(Gouraud::<Rgb888>::new(), draw, (warm_up, frames), |v| {
                 o.shade.vertex_color(v)
@@ -451,4 +480,4 @@ fn main() -> ExitCode {
     run_tool("render", USAGE, move || run(&args))
 }
 
-const USAGE: &str = "usage: render MODEL.obj|shape:NAME [--size WxH] [--yaw DEG] [--pitch DEG] [--shade flat|lambert|depth|id|gouraud|texture] [--texture FILE.png] [--filter nearest|bilinear] [--wrap repeat|clamp] [--cull none|back] [--depth z16|z24] [--method scanline|zbuffer|bands:K|interval|painter|reference] [--out FILE.png] [--ids FILE.bin] [--stats] [--frames N]";
+const USAGE: &str = "usage: render MODEL.obj|shape:NAME [--size WxH] [--yaw DEG] [--pitch DEG] [--shade flat|lambert|depth|id|gouraud|texture|lit-texture] [--texture FILE.png] [--filter nearest|bilinear] [--wrap repeat|clamp] [--cull none|back] [--depth z16|z24] [--method scanline|zbuffer|bands:K|interval|painter|reference] [--out FILE.png] [--ids FILE.bin] [--stats] [--frames N]";
