@@ -22,11 +22,12 @@ use crate::front::clip::ClipValue;
 use crate::front::rgb8p8::Rgb8p8;
 use crate::front::tex_coord::TexCoord;
 use crate::paint::PaintMode;
-use crate::paint::color::{CHANNEL_MAX, PaintColor, bayer_threshold};
+use crate::paint::color::{CHANNEL_MAX, PaintColor, bayer_threshold, div255};
 use crate::paint::texture::Texture;
 use crate::paint::textured::{Textured, TexturedPlanes};
 use crate::raster::attribute::{
-    ATTRIBUTE_FRAC_BITS, AttributePlane, attribute_planes, exact_value_at,
+    ATTRIBUTE_FRAC_BITS, AttributePlane, attribute_planes, exact_value_at, pixel_box,
+    triangle_planes,
 };
 use crate::raster::vertex::ScreenVertex;
 
@@ -65,7 +66,22 @@ impl ClipValue for LitTexCoord {
 pub struct LitTexturedPlanes {
     texture: TexturedPlanes,
     light: [AttributePlane; 3],
+    /// Whether every pixel the polygon paints has each light plane's value
+    /// within [`LIGHT_WRAP`] (see there), so that a run is stepped in
+    /// wrapping 32-bit arithmetic: a triangle whose planes the flat
+    /// scan's set-up makes, or a polygon whose bounding box allows it.
+    wraps: bool,
 }
+
+/// Half an 8.8 step in plane units: added before a light is taken.
+const HALF: i64 = 1 << (ATTRIBUTE_FRAC_BITS - 1);
+
+/// The plane values a light may take at a pixel for a run to be stepped
+/// in wrapping `u32`: with [`HALF`] added they lie in `0..2^32`, so `(v +
+/// HALF) >> ATTRIBUTE_FRAC_BITS`, at most [`CHANNEL_MAX`] once limited,
+/// is the light the `i64` clamp and rounding give, however the sum
+/// wrapped on the way.
+const LIGHT_WRAP: core::ops::Range<i64> = -HALF..(1 << 32) - HALF;
 
 /// Texture mapping lit per vertex, into colours `C` (see the module's
 /// notes).
@@ -107,10 +123,14 @@ fn light_values(light: Rgb8p8) -> [u32; 3] {
 }
 
 /// `s·l / CHANNEL_MAX`, rounded, for 8.8 channels `s`, `l` (each at most
-/// [`CHANNEL_MAX`]): at most `CHANNEL_MAX`; the product is below `2^32`.
+/// [`CHANNEL_MAX`]): at most `CHANNEL_MAX`. With no division (a
+/// Cortex-M0+ has no divider): `CHANNEL_MAX = 256 · 255`, so the quotient
+/// is `floor(floor(x / 256) / 255)` for `x = s·l + CHANNEL_MAX / 2`, at
+/// most `65,280² + 32,640 < 2^32`; `x / 256` is at most 16,646,527, the
+/// largest [`div255`] takes.
 #[inline(always)]
 fn scaled(s: u32, l: u32) -> u32 {
-    (s * l + CHANNEL_MAX / 2) / CHANNEL_MAX
+    div255((s.min(CHANNEL_MAX) * l.min(CHANNEL_MAX) + CHANNEL_MAX / 2) >> 8)
 }
 
 impl<'a, C: PaintColor> PaintMode for LitTextured<'a, C> {
@@ -126,6 +146,7 @@ impl<'a, C: PaintColor> PaintMode for LitTextured<'a, C> {
     const PLANES_FILLER: LitTexturedPlanes = LitTexturedPlanes {
         texture: <Textured<'a, C> as PaintMode>::PLANES_FILLER,
         light: [AttributePlane::ZERO; 3],
+        wraps: false,
     };
 
     fn vertex(&self, source: LitTexCoord) -> LitTexCoord {
@@ -141,10 +162,35 @@ impl<'a, C: PaintColor> PaintMode for LitTextured<'a, C> {
         let texture = self
             .textured
             .planes(corners.clone().map(|(v, c)| (v, c.tex)), width, height);
-        let lights = corners.map(|(v, c)| (v, light_values(c.light)));
+        let lights = corners.clone().map(|(v, c)| (v, light_values(c.light)));
+        let mut three = lights.clone();
+        if let (Some(o), Some(p), Some(q), None) =
+            (three.next(), three.next(), three.next(), three.next())
+            && let Some(light) = triangle_planes(o, p, q)
+        {
+            // Within 2^-8 of a value step (2^8 plane units, far inside
+            // LIGHT_WRAP's margin) of the corners' range, 0..=CHANNEL_MAX,
+            // at every pixel the triangle paints (see triangle_planes).
+            return LitTexturedPlanes {
+                texture,
+                light,
+                wraps: true,
+            };
+        }
+        let light = attribute_planes(lights, width, height).unwrap_or_default();
+        // Anything else, where its bounding box allows: a plane's extremes
+        // over a box are at its corners.
+        let (x0, x1, y0, y1) = pixel_box(corners.map(|(v, _)| v), width, height);
+        let wraps = light.iter().all(|p| {
+            !p.is_steep()
+                && [(x0, y0), (x1, y0), (x0, y1), (x1, y1)]
+                    .iter()
+                    .all(|&(x, y)| LIGHT_WRAP.contains(&p.value_at(x, y)))
+        });
         LitTexturedPlanes {
             texture,
-            light: attribute_planes(lights, width, height).unwrap_or_default(),
+            light,
+            wraps,
         }
     }
 
@@ -160,10 +206,40 @@ impl<'a, C: PaintColor> PaintMode for LitTextured<'a, C> {
         out: &mut [C],
     ) {
         let dither = self.textured.dithers();
+        let threshold = |x: u16| dither.then(|| bayer_threshold(x, y));
+        let tex_corners = || corners().map(|(v, c)| (v, c.tex));
+        if planes.wraps {
+            // Each light stepped in wrapping u32 with HALF added (see
+            // LIGHT_WRAP): the light the i64 path below gives.
+            let [r, g, b] = planes
+                .light
+                .map(|p| p.value_at(x0, y).wrapping_add(HALF) as u32);
+            let mut light = [r, g, b];
+            let step = planes.light.map(|p| p.dx as u32);
+            self.textured.coordinates(
+                &planes.texture,
+                tex_corners(),
+                (x0, y),
+                out.len(),
+                |k, t| {
+                    let l = light.map(|v| (v >> ATTRIBUTE_FRAC_BITS).min(CHANNEL_MAX));
+                    let s = self.textured.channels(&planes.texture, t);
+                    let rgb = [scaled(s[0], l[0]), scaled(s[1], l[1]), scaled(s[2], l[2])];
+                    if let Some(pixel) = out.get_mut(k) {
+                        *pixel = C::from_channels(rgb, threshold(x0 + k as u16));
+                    }
+                    light = [
+                        light[0].wrapping_add(step[0]),
+                        light[1].wrapping_add(step[1]),
+                        light[2].wrapping_add(step[2]),
+                    ];
+                },
+            );
+            return;
+        }
         let top = i64::from(CHANNEL_MAX) << ATTRIBUTE_FRAC_BITS;
-        let half = 1i64 << (ATTRIBUTE_FRAC_BITS - 1);
         // A plane value as an 8.8 light channel: rounded, in range.
-        let light_of = |value: i64| ((value.clamp(0, top) + half) >> ATTRIBUTE_FRAC_BITS) as u32;
+        let light_of = |value: i64| ((value.clamp(0, top) + HALF) >> ATTRIBUTE_FRAC_BITS) as u32;
         let steep = planes.light.iter().any(AttributePlane::is_steep);
         // Stepped along the run (values at the run's pixels lie within a
         // plane's error of the corners' range, far inside i64).
@@ -172,9 +248,12 @@ impl<'a, C: PaintColor> PaintMode for LitTextured<'a, C> {
             .map(|p| if steep { 0 } else { p.value_at(x0, y) });
         let step = planes.light.map(|p| if steep { 0 } else { p.dx });
         let lights = || corners().map(|(v, c)| (v, light_values(c.light)));
-        let tex_corners = corners().map(|(v, c)| (v, c.tex));
-        self.textured
-            .coordinates(&planes.texture, tex_corners, (x0, y), out.len(), |k, t| {
+        self.textured.coordinates(
+            &planes.texture,
+            tex_corners(),
+            (x0, y),
+            out.len(),
+            |k, t| {
                 let x = x0 + k as u16;
                 let l: [u32; 3] = if steep {
                     core::array::from_fn(|c| {
@@ -191,16 +270,81 @@ impl<'a, C: PaintColor> PaintMode for LitTextured<'a, C> {
                 let s = self.textured.channels(&planes.texture, t);
                 let rgb = [scaled(s[0], l[0]), scaled(s[1], l[1]), scaled(s[2], l[2])];
                 if let Some(pixel) = out.get_mut(k) {
-                    *pixel = C::from_channels(rgb, dither.then(|| bayer_threshold(x, y)));
+                    *pixel = C::from_channels(rgb, threshold(x));
                 }
                 light = [light[0] + step[0], light[1] + step[1], light[2] + step[2]];
-            });
+            },
+        );
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::front::clip_w::ClipW;
+    use crate::limits::SUBPIXEL_STEPS;
+    use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
+    use proptest::prelude::*;
+    use std::vec;
+    use std::vec::Vec;
+
+    /// Whether pixel `(x, y)`'s sample is strictly inside the triangle.
+    fn inside(corners: &[(ScreenVertex, LitTexCoord); 3], x: u16, y: u16) -> bool {
+        let half = SUBPIXEL_STEPS / 2;
+        let (px, py) = (
+            i64::from(i32::from(x) * SUBPIXEL_STEPS + half),
+            i64::from(i32::from(y) * SUBPIXEL_STEPS + half),
+        );
+        let edge = |a: ScreenVertex, b: ScreenVertex| {
+            (i64::from(b.x) - i64::from(a.x)) * (py - i64::from(a.y))
+                - (i64::from(b.y) - i64::from(a.y)) * (px - i64::from(a.x))
+        };
+        let (a, b, c) = (corners[0].0, corners[1].0, corners[2].0);
+        let e = [edge(a, b), edge(b, c), edge(c, a)];
+        e.iter().all(|&e| e > 0) || e.iter().all(|&e| e < 0)
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(300))]
+        /// Where a triangle's lights take the wrapping 32-bit steps, every
+        /// pixel whose sample is inside it gets the light the `i64` clamp
+        /// and rounding give (the same run painted both ways).
+        #[test]
+        fn wrapping_steps_give_the_clamped_light(
+            xy in prop::array::uniform3((0..64 * SUBPIXEL_STEPS, 0..64 * SUBPIXEL_STEPS)),
+            lights in prop::array::uniform3(prop::array::uniform3(any::<u16>())),
+            dither in any::<bool>(),
+        ) {
+            let white = [0xFFFFu16; 4];
+            let texture = Texture::new(&white, 2, 2).unwrap();
+            let mode = LitTextured::<Rgb888>::with_dither(texture, dither);
+            let corners: [(ScreenVertex, LitTexCoord); 3] = core::array::from_fn(|k| {
+                let tex = TexCoord { uv: [0, 0], w: ClipW::ONE };
+                let [r, g, b] = lights[k];
+                (
+                    ScreenVertex::new(xy[k].0, xy[k].1, 0).unwrap(),
+                    LitTexCoord::new(tex, Rgb8p8 { r, g, b }),
+                )
+            });
+            let planes = mode.planes(corners.iter().copied(), 64, 64);
+            prop_assume!(planes.wraps);
+            let clamped = LitTexturedPlanes { wraps: false, ..planes };
+            let (x0, x1, y0, y1) = pixel_box(corners.iter().map(|c| c.0), 64, 64);
+            for y in y0..=y1 {
+                // The row's samples inside the triangle: one run.
+                let inside: Vec<u16> = (x0..=x1).filter(|&x| inside(&corners, x, y)).collect();
+                let (Some(&first), Some(&last)) = (inside.first(), inside.last()) else {
+                    continue;
+                };
+                let n = usize::from(last - first) + 1;
+                let (mut a, mut b): (Vec<Rgb888>, Vec<Rgb888>) =
+                    (vec![Rgb888::BLACK; n], vec![Rgb888::BLACK; n]);
+                mode.paint_run(&(), &planes, || corners.iter().copied(), first, y, &mut a);
+                mode.paint_run(&(), &clamped, || corners.iter().copied(), first, y, &mut b);
+                prop_assert_eq!(a, b);
+            }
+        }
+    }
 
     /// The product's rounding at the extremes and its range.
     #[test]
@@ -211,6 +355,22 @@ mod tests {
         assert_eq!(scaled(1234, CHANNEL_MAX), 1234);
         // Half a light: half the channel, rounded.
         assert_eq!(scaled(CHANNEL_MAX, CHANNEL_MAX / 2), CHANNEL_MAX / 2);
+        // The division it replaces, on a grid and at the top.
+        for s in (0..=CHANNEL_MAX)
+            .step_by(61)
+            .chain([CHANNEL_MAX - 1, CHANNEL_MAX])
+        {
+            for l in (0..=CHANNEL_MAX)
+                .step_by(59)
+                .chain([CHANNEL_MAX - 1, CHANNEL_MAX])
+            {
+                assert_eq!(
+                    scaled(s, l),
+                    (s * l + CHANNEL_MAX / 2) / CHANNEL_MAX,
+                    "{s} {l}"
+                );
+            }
+        }
         for s in (0..=CHANNEL_MAX).step_by(97) {
             for l in (0..=CHANNEL_MAX).step_by(89) {
                 let exact = f64::from(s) * f64::from(l) / f64::from(CHANNEL_MAX);

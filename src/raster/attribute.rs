@@ -254,6 +254,28 @@ pub fn polygon_planes<const N: usize>(
     Some(planes)
 }
 
+/// The pixels of the bounding box of `corners` (sub-pixel positions),
+/// clamped to a frame `width` x `height`: `(x0, x1, y0, y1)`, inclusive.
+pub fn pixel_box(
+    corners: impl Iterator<Item = ScreenVertex>,
+    width: u16,
+    height: u16,
+) -> (u16, u16, u16, u16) {
+    let (mut x0, mut y0, mut x1, mut y1) = (i32::MAX, i32::MAX, i32::MIN, i32::MIN);
+    for v in corners {
+        (x0, y0, x1, y1) = (x0.min(v.x), y0.min(v.y), x1.max(v.x), y1.max(v.y));
+    }
+    let pixel = |s: i32, size: u16| {
+        (s >> crate::limits::SUBPIXEL_BITS).clamp(0, i32::from(size.max(1)) - 1) as u16
+    };
+    (
+        pixel(x0, width),
+        pixel(x1, width),
+        pixel(y0, height),
+        pixel(y1, height),
+    )
+}
+
 /// The exactly rounded value of attribute `k` at pixel `(x, y)` of the
 /// polygon with these corners, in plane units, for a steep plane; 0 when
 /// the polygon has no area.
