@@ -29,7 +29,7 @@ use zline::VertexCache;
 use zline::host::host_renderer;
 use zline::host::{DEFAULT_CREASE_DEGREES, HostPaintedRenderer};
 use zline::host::{HostMesh, QuantizedHostMesh};
-use zline::paint::{Gouraud, PaintMode, Textured};
+use zline::paint::{Gouraud, LitTextured, PaintMode, Textured};
 use zline::{Capacities, Crc32Sink, Depth16, Depth24, DepthFormat, FrameStats};
 use zline_lab::rust_source::quantized_mesh_source;
 use zline_lab::shapes;
@@ -42,6 +42,10 @@ const GOURAUD_SCENES: [(&str, f32, f32); 1] = [("torus-knot", 30.0, 20.0)];
 /// (shape, yaw, pitch) texture-mapped (z16, perspective-correct, nearest
 /// texels of `TILES`, repeating).
 const TEXTURED_SCENES: [(&str, f32, f32); 1] = [("textured-torus-knot", 30.0, 20.0)];
+
+/// (shape, yaw, pitch) texture-mapped as above and lit per vertex
+/// (`LitTextured`, by `Shading::lambert()`'s light; dithered to Rgb565).
+const LIT_TEXTURED_SCENES: [(&str, f32, f32); 1] = [("textured-torus-knot", 30.0, 20.0)];
 
 /// `TILES` is this many texels a side.
 const TEXTURE_SIZE: u16 = 64;
@@ -207,7 +211,13 @@ fn generate() -> String {
 /// `GOURAUD_CAPS`, the painted renderer's capacities measured on the host.
 fn gouraud_scenes(out: &mut String, all: bool) {
     let list: &[(&str, f32, f32)] = if all { &GOURAUD_SCENES } else { &[] };
-    painted_scenes(out, ("GOURAUD", "SMOOTH", "smooth"), list, Gouraud::new());
+    painted_scenes(
+        out,
+        ("GOURAUD", "SMOOTH", "smooth"),
+        list,
+        Gouraud::new(),
+        &mut Vec::new(),
+    );
 }
 
 /// The textured scenes (all of them, or none when one flat scene is
@@ -220,11 +230,21 @@ fn textured_scenes(out: &mut String, all: bool) {
     out.push_str(&tiles.rust_source("TILES", "zline-lab's Rgb565Texture::tiles"));
     out.push('\n');
     let texture = tiles.texture().expect("texture");
+    let mut emitted = Vec::new();
     painted_scenes(
         out,
         ("TEXTURED", "UV", "with texture coordinates"),
         list,
         Textured::new(texture),
+        &mut emitted,
+    );
+    let list: &[(&str, f32, f32)] = if all { &LIT_TEXTURED_SCENES } else { &[] };
+    painted_scenes(
+        out,
+        ("LIT_TEXTURED", "UV", "with texture coordinates"),
+        list,
+        LitTextured::new(texture),
+        &mut emitted,
     );
 }
 
@@ -234,16 +254,16 @@ fn textured_scenes(out: &mut String, all: bool) {
 /// coordinates kept) as the static `SHAPE_SUFFIX`, the scenes as
 /// `KIND_SCENES` with the host's CRCs, and `KIND_CAPS`, the painted
 /// renderer's capacities: the scenes' largest needs, measured on the
-/// host.
+/// host. A mesh whose static is in `emitted` is not written again.
 fn painted_scenes<M: PaintMode<Color = Rgb565, Source: frame::VertexSource>>(
     out: &mut String,
     (kind, suffix, what): (&str, &str, &str),
     list: &[(&str, f32, f32)],
     mode: M,
+    emitted: &mut Vec<String>,
 ) {
     let mut needs = Needs::default();
     let mut scenes = String::new();
-    let mut meshes: Vec<&str> = Vec::new();
     // The painted renderer holds its vertex cache.
     let caps = Capacities {
         mesh_vertices: 65_536,
@@ -262,7 +282,7 @@ fn painted_scenes<M: PaintMode<Color = Rgb565, Source: frame::VertexSource>>(
             .expect("known shape")
             .with_vertex_normals(DEFAULT_CREASE_DEGREES)
             .expect("smooth mesh");
-        if !meshes.contains(&shape) {
+        if !emitted.contains(&name) {
             let source = quantized_mesh_source(
                 &host,
                 &name,
@@ -271,7 +291,7 @@ fn painted_scenes<M: PaintMode<Color = Rgb565, Source: frame::VertexSource>>(
             .expect("mesh source");
             out.push_str(&source);
             out.push('\n');
-            meshes.push(shape);
+            emitted.push(name.clone());
         }
         needs.mesh_vertices = needs.mesh_vertices.max(host.vertex_count());
         let quantized = QuantizedHostMesh::new(&host).expect("quantizable mesh");

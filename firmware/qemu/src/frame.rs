@@ -107,6 +107,14 @@ impl VertexSource for zline::paint::TexCoord {
     }
 }
 
+/// Lit texture mapping's: the coordinates, and the light of `shading`
+/// (its warm white surface colour, the light's colour here) at the vertex.
+impl VertexSource for zline::paint::LitTexCoord {
+    fn of(shading: &Shading, vertex: &VertexInfo<'_>) -> Self {
+        Self::new(vertex.tex_coord(), shading.vertex_color(vertex))
+    }
+}
+
 /// [`render_frame`] painted by the renderer's mode (`zline::paint`), each
 /// vertex's [`VertexSource`] interpolated over each polygon: Gouraud
 /// (the same view and light, colours dithered to `Rgb565`) or texture

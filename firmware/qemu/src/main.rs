@@ -31,7 +31,7 @@ use harness::{finish, instructions_per_tick, ticks};
 use static_cell::ConstStaticCell;
 use zline::QuantizedMesh;
 use zline::VertexCache;
-use zline::paint::{Gouraud, Texture, Textured};
+use zline::paint::{Gouraud, LitTextured, Texture, Textured};
 use zline::zbuffer::BandBuffers;
 use zline::{ActiveEdge, ActivePolygon, ScanArrays, ScanStorage, TableArrays};
 use zline::{Crc32Sink, Depth16, Depth24, DepthFormat, FnSink, FrameStats, Renderer};
@@ -102,6 +102,17 @@ static TEXTURED16: ConstStaticCell<Textured16> = ConstStaticCell::new(Textured16
     Textured::new(TEXTURE),
     Rgb565::BLACK,
 ));
+
+/// The lit texture-mapping renderer (z16).
+type LitTextured16 =
+    zline::painted_renderer_type!(LitTextured<'static, Rgb565>, Depth16, LIT_TEXTURED_CAPS);
+static LIT_TEXTURED16: ConstStaticCell<LitTextured16> =
+    ConstStaticCell::new(LitTextured16::new_in_static(
+        frame::SIZE,
+        frame::SIZE,
+        LitTextured::new(TEXTURE),
+        Rgb565::BLACK,
+    ));
 
 /// Pixels of a frame.
 const FRAME_PIXELS: usize = frame::SIZE as usize * frame::SIZE as usize;
@@ -383,6 +394,13 @@ fn main() -> ! {
         "texture",
         &TEXTURED_SCENES,
         TEXTURED16.take(),
+        syst,
+        per_tick,
+    );
+    all_ok &= painted_scenes(
+        "lit-texture",
+        &LIT_TEXTURED_SCENES,
+        LIT_TEXTURED16.take(),
         syst,
         per_tick,
     );
