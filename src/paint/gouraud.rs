@@ -7,11 +7,11 @@
 use core::marker::PhantomData;
 
 pub use crate::front::rgb8p8::Rgb8p8;
-use crate::limits::SUBPIXEL_BITS;
 use crate::paint::PaintMode;
 use crate::paint::color::{PaintColor, bayer_index, level_units};
 use crate::raster::attribute::{
     ATTRIBUTE_FRAC_BITS, AttributePlane, attribute_planes, exact_value_at, modular_triangle_planes,
+    pixel_box,
 };
 use crate::raster::vertex::ScreenVertex;
 
@@ -196,18 +196,7 @@ fn within_margin<C: PaintColor>(
     width: u16,
     height: u16,
 ) -> bool {
-    let (mut x0, mut y0, mut x1, mut y1) = (i32::MAX, i32::MAX, i32::MIN, i32::MIN);
-    for (v, _) in corners {
-        (x0, y0, x1, y1) = (x0.min(v.x), y0.min(v.y), x1.max(v.x), y1.max(v.y));
-    }
-    let pixel =
-        |s: i32, size: u16| (s >> SUBPIXEL_BITS).clamp(0, i32::from(size.max(1)) - 1) as u16;
-    let (x0, x1, y0, y1) = (
-        pixel(x0, width),
-        pixel(x1, width),
-        pixel(y0, height),
-        pixel(y1, height),
-    );
+    let (x0, x1, y0, y1) = pixel_box(corners.map(|(v, _)| v), width, height);
     channels.iter().zip(C::MAX).all(|(plane, max)| {
         let top = i64::from(max) << LEVEL_SHIFT;
         [(x0, y0), (x1, y0), (x0, y1), (x1, y1)]
