@@ -4,8 +4,8 @@
 //! `mps2-an505` with `thumbv8m.main-none-eabihf` (Cortex-M33).
 //!
 //! For every scene (built-in meshes in flash, two views, both depth formats,
-//! 240x240; then Gouraud-shaded and texture-mapped frames) it renders one
-//! frame into a CRC sink and compares the CRC with
+//! 240x240; then Gouraud-shaded, texture-mapped and lit texture-mapped
+//! frames) it renders one frame into a CRC sink and compares the CRC with
 //! the host's (computed by `build.rs` with the same code). It then renders
 //! the frame again into a sink that discards rows, counting instructions
 //! with SysTick under `-icount shift=0`. It prints one line per scene and
