@@ -3,6 +3,8 @@
 //! frame under full light, random triangles against the texel times the
 //! interpolated light, and a lit mesh drawn end to end.
 
+mod common;
+
 use embedded_graphics_core::pixelcolor::raw::RawU16;
 use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
 use proptest::prelude::*;
@@ -18,29 +20,12 @@ use zline::{
 
 const S: i32 = SUBPIXEL_STEPS;
 
-const CAPS: Capacities = Capacities {
-    width: 16,
-    vertices: 16,
-    polygons: 4,
-    corners: 16,
-    active_polygons: 4,
-    pooled_edges: 16,
-    mesh_vertices: 0,
-};
+const CAPS: Capacities = common::TEXTURED_CAPS;
 
 type Lit<'a> = zline::painted_renderer_type!(LitTextured<'a, Rgb888>, Depth24, CAPS);
 type Unlit<'a> = zline::painted_renderer_type!(Textured<'a, Rgb888>, Depth24, CAPS);
 
-/// A 4x4 texture of distinct texels: texel `k` is `0x0841 · (k + 1)`.
-const TEXELS: [u16; 16] = {
-    let mut t = [0; 16];
-    let mut k = 0;
-    while k < 16 {
-        t[k] = 0x0841 * (k as u16 + 1);
-        k += 1;
-    }
-    t
-};
+const TEXELS: [u16; 16] = common::TILE_TEXELS;
 
 /// Texel `(i, j)` widened to 8-bit channels, as embedded-graphics widens.
 fn texel(i: usize, j: usize) -> [u32; 3] {

@@ -3,6 +3,8 @@
 //! triangles; repeat and clamp; perspective), and a mesh drawn end to end
 //! against the float64 reference's perspective-correct coordinates.
 
+mod common;
+
 use embedded_graphics_core::pixelcolor::raw::RawU16;
 use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888};
 use zline::host::{HostMesh, HostPaintedRenderer};
@@ -16,30 +18,13 @@ use zline_lab::methods::{BACKGROUND, ReferenceCamera, ReferenceFrame, ReferenceV
 
 const S: i32 = SUBPIXEL_STEPS;
 
-const CAPS: Capacities = Capacities {
-    width: 16,
-    vertices: 16,
-    polygons: 4,
-    corners: 16,
-    active_polygons: 4,
-    pooled_edges: 16,
-    mesh_vertices: 0,
-};
+const CAPS: Capacities = common::TEXTURED_CAPS;
 
 type Painted<'a> = zline::painted_renderer_type!(Textured<'a, Rgb565>, Depth24, CAPS);
 
 const BACKGROUND_COLOR: Rgb565 = Rgb565::new(0, 0, 0);
 
-/// A 4x4 texture of distinct texels: texel `k` is `0x0841 · (k + 1)`.
-const TEXELS: [u16; 16] = {
-    let mut t = [0; 16];
-    let mut k = 0;
-    while k < 16 {
-        t[k] = 0x0841 * (k as u16 + 1);
-        k += 1;
-    }
-    t
-};
+const TEXELS: [u16; 16] = common::TILE_TEXELS;
 
 fn texel(i: usize, j: usize) -> Rgb565 {
     Rgb565::from(RawU16::new(TEXELS[(j % 4) * 4 + i % 4]))

@@ -206,8 +206,17 @@ impl<'a, C: PaintColor> PaintMode for LitTextured<'a, C> {
         out: &mut [C],
     ) {
         let dither = self.textured.dithers();
-        let threshold = |x: u16| dither.then(|| bayer_threshold(x, y));
+        let n = out.len();
         let tex_corners = || corners().map(|(v, c)| (v, c.tex));
+        // Pixel `k` of the run: its texel at `t` times the light `l`.
+        let mut put = |k: usize, t: [i64; 2], l: [u32; 3]| {
+            let s = self.textured.channels(&planes.texture, t);
+            let rgb = [scaled(s[0], l[0]), scaled(s[1], l[1]), scaled(s[2], l[2])];
+            let threshold = dither.then(|| bayer_threshold(x0 + k as u16, y));
+            if let Some(pixel) = out.get_mut(k) {
+                *pixel = C::from_channels(rgb, threshold);
+            }
+        };
         if planes.wraps {
             // Each light stepped in wrapping u32 with HALF added (see
             // LIGHT_WRAP): the light the i64 path below gives.
@@ -216,25 +225,19 @@ impl<'a, C: PaintColor> PaintMode for LitTextured<'a, C> {
                 .map(|p| p.value_at(x0, y).wrapping_add(HALF) as u32);
             let mut light = [r, g, b];
             let step = planes.light.map(|p| p.dx as u32);
-            self.textured.coordinates(
-                &planes.texture,
-                tex_corners(),
-                (x0, y),
-                out.len(),
-                |k, t| {
-                    let l = light.map(|v| (v >> ATTRIBUTE_FRAC_BITS).min(CHANNEL_MAX));
-                    let s = self.textured.channels(&planes.texture, t);
-                    let rgb = [scaled(s[0], l[0]), scaled(s[1], l[1]), scaled(s[2], l[2])];
-                    if let Some(pixel) = out.get_mut(k) {
-                        *pixel = C::from_channels(rgb, threshold(x0 + k as u16));
-                    }
+            self.textured
+                .coordinates(&planes.texture, tex_corners(), (x0, y), n, |k, t| {
+                    put(
+                        k,
+                        t,
+                        light.map(|v| (v >> ATTRIBUTE_FRAC_BITS).min(CHANNEL_MAX)),
+                    );
                     light = [
                         light[0].wrapping_add(step[0]),
                         light[1].wrapping_add(step[1]),
                         light[2].wrapping_add(step[2]),
                     ];
-                },
-            );
+                });
             return;
         }
         let top = i64::from(CHANNEL_MAX) << ATTRIBUTE_FRAC_BITS;
@@ -248,12 +251,8 @@ impl<'a, C: PaintColor> PaintMode for LitTextured<'a, C> {
             .map(|p| if steep { 0 } else { p.value_at(x0, y) });
         let step = planes.light.map(|p| if steep { 0 } else { p.dx });
         let lights = || corners().map(|(v, c)| (v, light_values(c.light)));
-        self.textured.coordinates(
-            &planes.texture,
-            tex_corners(),
-            (x0, y),
-            out.len(),
-            |k, t| {
+        self.textured
+            .coordinates(&planes.texture, tex_corners(), (x0, y), n, |k, t| {
                 let x = x0 + k as u16;
                 let l: [u32; 3] = if steep {
                     core::array::from_fn(|c| {
@@ -267,14 +266,9 @@ impl<'a, C: PaintColor> PaintMode for LitTextured<'a, C> {
                 } else {
                     light.map(light_of)
                 };
-                let s = self.textured.channels(&planes.texture, t);
-                let rgb = [scaled(s[0], l[0]), scaled(s[1], l[1]), scaled(s[2], l[2])];
-                if let Some(pixel) = out.get_mut(k) {
-                    *pixel = C::from_channels(rgb, threshold(x));
-                }
+                put(k, t, l);
                 light = [light[0] + step[0], light[1] + step[1], light[2] + step[2]];
-            },
-        );
+            });
     }
 }
 
@@ -283,26 +277,11 @@ mod tests {
     use super::*;
     use crate::front::clip_w::ClipW;
     use crate::limits::SUBPIXEL_STEPS;
+    use crate::paint::sample_inside;
     use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
     use proptest::prelude::*;
     use std::vec;
     use std::vec::Vec;
-
-    /// Whether pixel `(x, y)`'s sample is strictly inside the triangle.
-    fn inside(corners: &[(ScreenVertex, LitTexCoord); 3], x: u16, y: u16) -> bool {
-        let half = SUBPIXEL_STEPS / 2;
-        let (px, py) = (
-            i64::from(i32::from(x) * SUBPIXEL_STEPS + half),
-            i64::from(i32::from(y) * SUBPIXEL_STEPS + half),
-        );
-        let edge = |a: ScreenVertex, b: ScreenVertex| {
-            (i64::from(b.x) - i64::from(a.x)) * (py - i64::from(a.y))
-                - (i64::from(b.y) - i64::from(a.y)) * (px - i64::from(a.x))
-        };
-        let (a, b, c) = (corners[0].0, corners[1].0, corners[2].0);
-        let e = [edge(a, b), edge(b, c), edge(c, a)];
-        e.iter().all(|&e| e > 0) || e.iter().all(|&e| e < 0)
-    }
 
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(300))]
@@ -332,7 +311,7 @@ mod tests {
             let (x0, x1, y0, y1) = pixel_box(corners.iter().map(|c| c.0), 64, 64);
             for y in y0..=y1 {
                 // The row's samples inside the triangle: one run.
-                let inside: Vec<u16> = (x0..=x1).filter(|&x| inside(&corners, x, y)).collect();
+                let inside: Vec<u16> = (x0..=x1).filter(|&x| sample_inside(corners.map(|c| c.0), x, y)).collect();
                 let (Some(&first), Some(&last)) = (inside.first(), inside.last()) else {
                     continue;
                 };

@@ -287,3 +287,21 @@ fn run_end(slots: &[u16], start: usize, slot: u16) -> usize {
     }
     end
 }
+
+/// Whether pixel `(x, y)`'s sample is strictly inside the triangle with
+/// these corners (tests of the paint modes).
+#[cfg(test)]
+pub(crate) fn sample_inside(corners: [ScreenVertex; 3], x: u16, y: u16) -> bool {
+    use crate::limits::{HALF_PIXEL, SUBPIXEL_STEPS};
+    let (px, py) = (
+        i64::from(i32::from(x) * SUBPIXEL_STEPS + HALF_PIXEL),
+        i64::from(i32::from(y) * SUBPIXEL_STEPS + HALF_PIXEL),
+    );
+    let edge = |a: ScreenVertex, b: ScreenVertex| {
+        (i64::from(b.x) - i64::from(a.x)) * (py - i64::from(a.y))
+            - (i64::from(b.y) - i64::from(a.y)) * (px - i64::from(a.x))
+    };
+    let [a, b, c] = corners;
+    let e = [edge(a, b), edge(b, c), edge(c, a)];
+    e.iter().all(|&e| e > 0) || e.iter().all(|&e| e < 0)
+}

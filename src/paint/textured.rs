@@ -414,6 +414,7 @@ mod tests {
     use super::*;
     use crate::front::tex_coord::UV_ONE;
     use crate::limits::{HALF_PIXEL, SUBPIXEL_STEPS};
+    use crate::paint::sample_inside;
     use embedded_graphics_core::pixelcolor::Rgb565;
     use proptest::prelude::*;
     use std::vec;
@@ -474,7 +475,7 @@ mod tests {
         for y in 0..64u16 {
             // The row's samples inside the triangle.
             let inside: Vec<u16> = (0..64u16)
-                .filter(|&x| exact_inside(&corners, x, y))
+                .filter(|&x| sample_inside([corners[0].0, corners[1].0, corners[2].0], x, y))
                 .collect();
             let (Some(&first), Some(&last)) = (inside.first(), inside.last()) else {
                 continue;
@@ -494,21 +495,6 @@ mod tests {
             });
         }
         (worst, bound)
-    }
-
-    /// Whether pixel `(x, y)`'s sample is strictly inside the triangle.
-    fn exact_inside(corners: &[(ScreenVertex, TexCoord, f64); 3], x: u16, y: u16) -> bool {
-        let (px, py) = (
-            i64::from(i32::from(x) * SUBPIXEL_STEPS + HALF_PIXEL),
-            i64::from(i32::from(y) * SUBPIXEL_STEPS + HALF_PIXEL),
-        );
-        let edge = |a: ScreenVertex, b: ScreenVertex| {
-            (i64::from(b.x) - i64::from(a.x)) * (py - i64::from(a.y))
-                - (i64::from(b.y) - i64::from(a.y)) * (px - i64::from(a.x))
-        };
-        let (a, b, c) = (corners[0].0, corners[1].0, corners[2].0);
-        let e = [edge(a, b), edge(b, c), edge(c, a)];
-        e.iter().all(|&e| e > 0) || e.iter().all(|&e| e < 0)
     }
 
     fn corner(x: i32, y: i32, uv: [i32; 2], w: f32) -> (ScreenVertex, TexCoord, f64) {

@@ -322,3 +322,26 @@ pub fn small_caps(width: u16) -> zline::Capacities {
         mesh_vertices: 0,
     }
 }
+
+/// Capacities of the small textured scenes (`tests/textured.rs`,
+/// `tests/lit_textured.rs`): an 8x8 frame of a few polygons.
+pub const TEXTURED_CAPS: zline::Capacities = zline::Capacities {
+    width: 16,
+    vertices: 16,
+    polygons: 4,
+    corners: 16,
+    active_polygons: 4,
+    pooled_edges: 16,
+    mesh_vertices: 0,
+};
+
+/// A 4x4 texture of distinct Rgb565 texels: texel `k` is `0x0841 · (k + 1)`.
+pub const TILE_TEXELS: [u16; 16] = {
+    let mut t = [0; 16];
+    let mut k = 0;
+    while k < 16 {
+        t[k] = 0x0841 * (k as u16 + 1);
+        k += 1;
+    }
+    t
+};
