@@ -53,12 +53,12 @@ use zline::host::{HostMesh, HostPaintedRenderer};
 use zline::paint::{Filter, Gouraud, LitTexCoord, LitTextured, PaintMode, Textured, Wrap};
 use zline::{Camera, Cull, reference_model};
 use zline::{Depth16, Depth24, DepthFormat};
-use zline::{DrawStats, Lambert, VertexInfo};
+use zline::{DrawStats, VertexInfo};
 use zline_lab::cli::parse_size;
 use zline_lab::cli::{help_requested, run_tool};
 use zline_lab::cli::{load_model, load_model_smooth};
 use zline_lab::methods::{BACKGROUND, Method, MethodRenderer, ReferenceView};
-use zline_lab::textures::Rgb565Texture;
+use zline_lab::textures::{Rgb565Texture, white_light};
 
 /// Parsed command line.
 #[derive(Debug)]
@@ -129,7 +129,7 @@ fn parse_args(args: &[String]) -> Result<Options, String> {
                     }
                     "lit-texture" => {
                         o.painted = Painted::LitTexture;
-                        Shading::Lambert(white_lambert())
+                        Shading::Lambert(white_light())
                     }
                     s => {
                         return Err(format!(
@@ -201,15 +201,6 @@ enum Painted {
     Gouraud,
     Texture,
     LitTexture,
-}
-
-/// The light of `--shade lit-texture`: `Shading::lambert()`'s light and
-/// ambient on a white surface, so each vertex's colour is its light alone.
-fn white_lambert() -> Lambert {
-    match Shading::lambert() {
-        Shading::Lambert(l) => Lambert::new(Rgb888::WHITE, l.light(), l.ambient()),
-        _ => Lambert::new(Rgb888::WHITE, zline::Vec3::new(0.0, 0.0, 1.0), 0.2),
-    }
 }
 
 fn parse_angle(name: &str, s: &str) -> Result<f32, String> {
@@ -317,14 +308,18 @@ where
         }
         // The painted renderer's colours and times; the face ids above.
         let draw = (model, camera, o.cull, mesh);
-        let texture = match &o.texture {
-            Some(path) => Some(Rgb565Texture::read(path, 1)?),
-            None => None,
-        };
-        let texture = match &texture {
-            Some(png) => Some(png.texture()?.with_filter(o.filter).with_wrap(o.wrap)),
-            None => None,
-        };
+        let png = o
+            .texture
+            .as_ref()
+            .map(|path| Rgb565Texture::read(path, 1))
+            .transpose()?;
+        let texture = png
+            .as_ref()
+            .map(|png| {
+                png.texture()
+                    .map(|t| t.with_filter(o.filter).with_wrap(o.wrap))
+            })
+            .transpose()?;
         let (colors, painted_times) = match (o.painted, texture) {
             (Painted::Texture, Some(texture)) => painted_frames::<_, D>(
                 Textured::<Rgb888>::new(texture),
@@ -333,7 +328,7 @@ where
                 |v| v.tex_coord(),
             )?,
             (Painted::LitTexture, Some(texture)) => {
-                let light = white_lambert();
+                let light = white_light();
                 painted_frames::<_, D>(
                     LitTextured::<Rgb888>::new(texture),
                     draw,

@@ -1,7 +1,8 @@
 //! Rgb565 textures (what [`zline::paint::Texture`] samples): read from
 //! PNG files, optionally scaled down by whole box filters for a
 //! microcontroller's flash, or made procedurally ([`Rgb565Texture::tiles`]),
-//! and written as Rust statics.
+//! and written as Rust statics; and the light the lab's tools light
+//! textures with ([`white_light`]).
 
 use std::fmt::Write;
 use std::path::Path;
@@ -163,5 +164,17 @@ mod tests {
                 assert_eq!(rgb565(r, g, b), theirs, "{r} {g} {b}");
             }
         }
+    }
+}
+
+/// The light textures are lit with in the render tool (`--shade
+/// lit-texture`) and the accuracy run: `Shading::lambert()`'s direction
+/// and ambient on a white surface, so each vertex's colour is its light
+/// alone.
+pub fn white_light() -> zline::Lambert {
+    use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
+    match zline::Shading::lambert() {
+        zline::Shading::Lambert(l) => zline::Lambert::new(Rgb888::WHITE, l.light(), l.ambient()),
+        other => unreachable!("Shading::lambert() is {other:?}, not Lambert"),
     }
 }

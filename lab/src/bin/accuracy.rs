@@ -41,7 +41,7 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
+use embedded_graphics_core::pixelcolor::RgbColor;
 use zline::Mat4;
 use zline::Mesh;
 use zline::Shading;
@@ -61,7 +61,7 @@ use zline_lab::methods::{
     BACKGROUND, Comparison, Method, MethodRenderer, ReferenceCamera, ReferenceFrame, ReferenceView,
     compare, rotate,
 };
-use zline_lab::textures::Rgb565Texture;
+use zline_lab::textures::{Rgb565Texture, white_light};
 
 /// (yaw, pitch) of the three views, degrees.
 const VIEWS: [(f32, f32); 3] = [(30.0, 20.0), (135.0, -30.0), (250.0, 65.0)];
@@ -550,10 +550,7 @@ fn textured_frame(
     let bilinear = textured(texture.with_filter(Filter::Bilinear))?;
     // Lit: Lambert of a white surface per vertex, as the render tool's
     // `--shade lit-texture` lights.
-    let Shading::Lambert(lambert) = Shading::lambert() else {
-        return Err("Shading::lambert() is not Lambert".into());
-    };
-    let white = Lambert::new(Rgb888::WHITE, lambert.light(), lambert.ambient());
+    let white = white_light();
     let lights = ReferenceFrame::render_with_values(
         mesh,
         reference_view,
