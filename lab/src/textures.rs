@@ -147,6 +147,18 @@ impl Rgb565Texture {
     }
 }
 
+/// The light textures are lit with in the render tool (`--shade
+/// lit-texture`) and the accuracy run: `Shading::lambert()`'s direction
+/// and ambient on a white surface, so each vertex's colour is its light
+/// alone.
+pub fn white_light() -> zline::Lambert {
+    use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
+    match zline::Shading::lambert() {
+        zline::Shading::Lambert(l) => zline::Lambert::new(Rgb888::WHITE, l.light(), l.ambient()),
+        other => unreachable!("Shading::lambert() is {other:?}, not Lambert"),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -164,17 +176,5 @@ mod tests {
                 assert_eq!(rgb565(r, g, b), theirs, "{r} {g} {b}");
             }
         }
-    }
-}
-
-/// The light textures are lit with in the render tool (`--shade
-/// lit-texture`) and the accuracy run: `Shading::lambert()`'s direction
-/// and ambient on a white surface, so each vertex's colour is its light
-/// alone.
-pub fn white_light() -> zline::Lambert {
-    use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
-    match zline::Shading::lambert() {
-        zline::Shading::Lambert(l) => zline::Lambert::new(Rgb888::WHITE, l.light(), l.ambient()),
-        other => unreachable!("Shading::lambert() is {other:?}, not Lambert"),
     }
 }
