@@ -27,8 +27,11 @@ last line compares the median frame periods of the two builds.
                       moves one word a quantum, so keep it at most 4)
   --interleave MODE   how the two cores share the clock: lockstep (default,
                       rp2040-emu's model: one instruction of each core a round,
-                      the clock advancing by the longer) or independent (each
-                      core on its own clock, synchronised every quantum)
+                      the clock advancing by the longer), independent (each
+                      core on its own clock, synchronised every quantum) or
+                      contended (independent, and a core waits a cycle for a
+                      bus slave, an SRAM bank or the XIP cache, the other
+                      core holds in that cycle)
   --max-cycles N      give up after N emulated cycles per firmware
                       (default 100,000,000 + 20,000,000 × (N + 2))
   -h, --help          this message
@@ -160,13 +163,14 @@ fn number<T: std::str::FromStr>(flag: &str, text: &str) -> Result<T, String> {
         .map_err(|_| format!("{flag} takes a whole number, not {text:?}"))
 }
 
-/// `lockstep` or `independent`.
+/// `lockstep`, `independent` or `contended`.
 fn interleave_mode(text: &str) -> Result<Interleave, String> {
     match text {
         "lockstep" => Ok(Interleave::Lockstep),
         "independent" => Ok(Interleave::Independent),
+        "contended" => Ok(Interleave::Contended),
         _ => Err(format!(
-            "--interleave takes lockstep or independent, not {text:?}"
+            "--interleave takes lockstep, independent or contended, not {text:?}"
         )),
     }
 }
@@ -242,6 +246,11 @@ mod tests {
         assert!(parse_args(&["--single", "a", "--single", "b"]).is_err());
         assert!(parse_args(&["--single", "a", "--wat"]).is_err());
         assert!(parse_args(&["--single", "a", "--interleave", "both"]).is_err());
+        let Ok(Command::Run(o)) = parse_args(&["--single", "a", "--interleave", "contended"])
+        else {
+            panic!("parses");
+        };
+        assert_eq!(o.interleave, Interleave::Contended);
         assert_eq!(parse_args(&["--single", "a", "-h"]), Ok(Command::Help));
     }
 }

@@ -6,12 +6,13 @@
 //! crate's public parts, with each core stepping through [`Tap`] instead:
 //!
 //! 1. The cores run until the quantum's cycles are used, interleaved in
-//!    one of two ways ([`Interleave`]): the crate's *lockstep*, where
+//!    one of three ways ([`Interleave`]): the crate's *lockstep*, where
 //!    cores 0 and 1 each execute one instruction (or take an exception)
 //!    per round, core 0 first, and the master clock advances by the
-//!    longer of the two; or *independent*, where each core keeps its own
+//!    longer of the two; *independent*, where each core keeps its own
 //!    time and the one behind runs next, so neither waits for the other's
-//!    instructions. After a core-0 step the SIO's multicore-launch
+//!    instructions; or *contended*, independent with each core waiting
+//!    for a bus slave the other holds (`contention.rs`). After a core-0 step the SIO's multicore-launch
 //!    handshake is checked and core 1 started when it completes. A halted
 //!    core or one parked in WFE does not run.
 //! 2. At the end of the quantum the peripherals advance by its cycles
@@ -36,6 +37,7 @@ use rp2040_emu::dma::NUM_CHANNELS;
 use rp2040_emu::irq::{IRQ_DMA_IRQ_0, IRQ_DMA_IRQ_1, IRQ_SPI0_IRQ, IRQ_SPI1_IRQ};
 use rp2040_emu::{Bus, Config, CortexM0Plus, Emulator, EmulatorBuilder};
 
+use crate::contention::{BusModel, Stalls, StepAccesses};
 use crate::tap::{SPI0_DR, SpiByte, Tap, TapLog};
 
 /// The vector table's offset in flash, after the 256 bytes of boot2.
@@ -79,6 +81,9 @@ pub struct Counters {
     /// in rounds where both ran (the interleave's lockstep: the master
     /// clock takes the longer of the two).
     pub lockstep_wait: [u64; 2],
+    /// Cycles the cores waited for a bus slave the other held (the
+    /// contended interleave).
+    pub contention: Stalls,
 }
 
 /// How the two cores' instructions share the master clock.
@@ -91,6 +96,10 @@ pub enum Interleave {
     /// Each core keeps its own time and only the quantum boundaries
     /// synchronise them, as two cores sharing a bus without contention.
     Independent,
+    /// As `Independent`, with each core waiting a cycle whenever it
+    /// addresses a bus slave (an SRAM bank, the XIP cache, a peripheral
+    /// bridge) the other holds in that cycle (`contention.rs`).
+    Contended,
 }
 
 /// The emulator and the bytes it has sent the LCD since last drained.
@@ -102,6 +111,10 @@ pub struct Machine {
     /// end (independent interleave).
     ahead: [u64; 2],
     log: TapLog,
+    /// The RP2040's bus slaves under two cores (contended interleave).
+    bus_model: BusModel,
+    /// The buffer a step's accesses are recorded in, kept between steps.
+    accesses: StepAccesses,
     sent: Vec<(Stamp, SpiByte)>,
     counters: Counters,
 }
@@ -137,6 +150,8 @@ impl Machine {
             interleave,
             ahead: [0; 2],
             log: TapLog::default(),
+            bus_model: BusModel::default(),
+            accesses: StepAccesses::default(),
             sent: Vec::new(),
             counters: Counters::default(),
         }
@@ -153,6 +168,7 @@ impl Machine {
             dma_triggers: self.log.dma_triggers,
             dma_redirects: self.log.dma_redirects,
             loopback_sets: self.log.loopback_sets,
+            contention: self.bus_model.stalls(),
             ..self.counters
         }
     }
@@ -192,7 +208,7 @@ impl Machine {
         let start = self.emu.clock.cycles;
         match self.interleave {
             Interleave::Lockstep => self.run_cores_lockstep(),
-            Interleave::Independent => self.run_cores_independent(),
+            Interleave::Independent | Interleave::Contended => self.run_cores_independent(),
         }
         let emu = &mut self.emu;
         let mut consumed = emu.clock.cycles - start;
@@ -278,7 +294,7 @@ impl Machine {
 
     /// Steps core `id` once if it can run (through [`Tap`]); bytes it
     /// sends are stamped `at`. Returns the cycles it took (0: it could not
-    /// run).
+    /// run), with the contended interleave's wait for the bus.
     fn step_core(&mut self, id: usize, at: Stamp) -> u64 {
         let emu = &mut self.emu;
         if !runnable(emu, id) {
@@ -291,7 +307,19 @@ impl Machine {
         if id == 1 {
             emu.bus.begin_core1_step();
         }
-        let cycles = emu.cores[id].step(&mut Tap::new(&mut emu.bus, &mut self.log));
+        if self.interleave == Interleave::Contended {
+            let mut accesses = std::mem::take(&mut self.accesses);
+            accesses.pc = None;
+            accesses.data.clear();
+            self.log.accesses = Some(accesses);
+        }
+        let mut cycles = u64::from(emu.cores[id].step(&mut Tap::new(&mut emu.bus, &mut self.log)));
+        if let Some(accesses) = self.log.accesses.take() {
+            if cycles != 0 {
+                cycles += self.bus_model.charge(id, at.cycle, cycles, &accesses);
+            }
+            self.accesses = accesses;
+        }
         drain_decode_invalidations(&mut emu.bus, &mut emu.cores);
         if id == 0 {
             launch_core1(emu);
@@ -303,7 +331,7 @@ impl Machine {
             self.sent
                 .extend(self.log.spi.drain(..).map(|byte| (at, byte)));
         }
-        u64::from(cycles)
+        cycles
     }
 }
 

@@ -7,6 +7,7 @@
 
 mod bootrom;
 mod cli;
+mod contention;
 mod crc32;
 mod elf;
 mod firmware;

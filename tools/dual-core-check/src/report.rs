@@ -1,5 +1,6 @@
 //! Judging a run and the lines printed for it.
 
+use crate::contention::{Slave, Stalls};
 use crate::crc32::crc32;
 use crate::firmware::Firmware;
 use crate::harness::{Outcome, Stop, core_cycles, period};
@@ -140,7 +141,8 @@ fn details(label: &str, o: &Outcome) -> String {
         "{label} run: FAULT={} FRAMES={} FRAME_US={} (last period {} us at {} MHz) \
          core1_stack_bytes={} startup={} cycles={} wall={seconds:.1}s ({:.1} emulated MHz) \
          spi_bytes_cpu={} spi_bytes_dma={} dma_al2_triggers={} dma_alias_redirects={} spi_loopback_sets={} idle_quanta={} \
-         lockstep_wait_core0={} lockstep_wait_core1={}",
+         lockstep_wait_core0={} lockstep_wait_core1={} \
+         bus_wait_core0={} bus_wait_core1={} bus_wait_by_slave={}",
         show(o.fault),
         show(o.frames_static),
         show(o.frame_us),
@@ -158,7 +160,20 @@ fn details(label: &str, o: &Outcome) -> String {
         c.idle_quanta,
         c.lockstep_wait[0],
         c.lockstep_wait[1],
+        c.contention.per_core[0],
+        c.contention.per_core[1],
+        slave_list(&c.contention),
     )
+}
+
+/// The bus stalls by slave as `rom:0,xip:12,...`.
+fn slave_list(stalls: &Stalls) -> String {
+    let items: Vec<String> = Slave::KINDS
+        .iter()
+        .zip(stalls.per_slave)
+        .map(|(name, n)| format!("{name}:{n}"))
+        .collect();
+    items.join(",")
 }
 
 /// Bytes as `11,36,21`.

@@ -31,6 +31,8 @@ use rp2040_emu::bus::ppb::Ppb;
 use rp2040_emu::bus::{DMA_BASE, SPI0_BASE};
 use rp2040_emu::core::{CoreBus, Nvic};
 
+use crate::contention::StepAccesses;
+
 /// SPI0's data register (transmit FIFO on write).
 pub const SPI0_DR: u32 = SPI0_BASE + 0x008;
 /// SPI0's control register 1 (enable, loopback).
@@ -107,6 +109,10 @@ pub struct TapLog {
     pub loopback_sets: u64,
     /// A core enabled SysTick, which the harness cannot run.
     pub systick_enabled: bool,
+    /// With the `contended` interleave, what the step touched (its
+    /// instruction's address and its loads and stores); `None`: not
+    /// recorded.
+    pub accesses: Option<StepAccesses>,
 }
 
 /// Which watched register a store goes to.
@@ -149,12 +155,39 @@ fn watched(addr: u32) -> Option<Watched> {
 pub struct Tap<'a> {
     bus: &'a mut Bus,
     log: &'a mut TapLog,
+    /// The instruction's own halfwords may still be read (its fetch, on
+    /// the emulator's first decode of it): no load or store came yet.
+    fetching: bool,
 }
 
 impl<'a> Tap<'a> {
     /// Wraps `bus` for one core step, logging into `log`.
     pub fn new(bus: &'a mut Bus, log: &'a mut TapLog) -> Self {
-        Self { bus, log }
+        Self {
+            bus,
+            log,
+            fetching: false,
+        }
+    }
+
+    /// Records a load or store of `addr` when accesses are recorded; a
+    /// 16-bit read of the instruction's own halfwords before any load or
+    /// store (`fetch`) is its fetch, which the bus model charges by
+    /// address, and is not recorded.
+    #[inline(always)]
+    fn note(&mut self, addr: u32, fetch: bool) {
+        if let Some(accesses) = &mut self.log.accesses {
+            if fetch
+                && self.fetching
+                && accesses
+                    .pc
+                    .is_some_and(|pc| addr == pc || addr == pc.wrapping_add(2))
+            {
+                return;
+            }
+            self.fetching = false;
+            accesses.data.push(addr);
+        }
     }
 
     /// Runs `store` (the CPU's store, given the bus and the address to
@@ -209,19 +242,23 @@ impl<'a> Tap<'a> {
 impl CoreBus for Tap<'_> {
     #[inline(always)]
     fn read8(&mut self, addr: u32) -> u8 {
+        self.note(addr, false);
         self.bus.read8(addr)
     }
     #[inline(always)]
     fn read16(&mut self, addr: u32) -> u16 {
+        self.note(addr, true);
         self.bus.read16(addr)
     }
     #[inline(always)]
     fn read32(&mut self, addr: u32) -> u32 {
+        self.note(addr, false);
         self.bus.read32(addr)
     }
 
     #[inline(always)]
     fn write8(&mut self, addr: u32, val: u8) {
+        self.note(addr, false);
         match watched(addr) {
             None => self.bus.write8(addr, val),
             Some(target) => self.watched_store(target, addr, val, |bus, a| bus.write8(a, val)),
@@ -229,6 +266,7 @@ impl CoreBus for Tap<'_> {
     }
     #[inline(always)]
     fn write16(&mut self, addr: u32, val: u16) {
+        self.note(addr, false);
         match watched(addr) {
             None => self.bus.write16(addr, val),
             Some(target) => {
@@ -238,6 +276,7 @@ impl CoreBus for Tap<'_> {
     }
     #[inline(always)]
     fn write32(&mut self, addr: u32, val: u32) {
+        self.note(addr, false);
         match watched(addr) {
             None => self.bus.write32(addr, val),
             Some(target) => {
@@ -248,6 +287,10 @@ impl CoreBus for Tap<'_> {
 
     #[inline(always)]
     fn set_active_pc(&mut self, pc: u32) {
+        if let Some(accesses) = &mut self.log.accesses {
+            accesses.pc = Some(pc);
+            self.fetching = true;
+        }
         self.bus.set_active_pc(pc)
     }
     #[inline(always)]
