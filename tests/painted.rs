@@ -424,7 +424,7 @@ fn bands_equal_one_scan<D: DepthFormat>(
     scene: &[Vec<ScreenVertex>],
     cut: u16,
 ) -> Result<(), TestCaseError> {
-    use zline::paint::{PaintStorage, Painter};
+    use zline_lab::two_bands::paint_in_two_bands;
     let mut painted = Painted::<D>::new(W, H, Gouraud::new(), BACKGROUND).unwrap();
     let mut other = Painted::<D>::new(W, H, Gouraud::new(), BACKGROUND).unwrap();
     for (k, polygon) in scene.iter().enumerate() {
@@ -437,30 +437,7 @@ fn bands_equal_one_scan<D: DepthFormat>(
         painted.render(sink).unwrap();
     });
     let got = frame::<Rgb888, D::Value>(|sink| {
-        let background = painted.background();
-        let zline::paint::PaintedRenderer {
-            renderer,
-            paint,
-            mode,
-            ..
-        } = &mut painted;
-        let prepared = renderer.tables.prepare();
-        let parts = paint.parts_mut();
-        let vertices = &*parts.vertices;
-        let mut top = Painter::new(&*mode, vertices, parts.slots, background);
-        zline::scan_painted(
-            &prepared,
-            &mut renderer.scanner,
-            &mut top,
-            parts.row,
-            0..cut,
-            sink,
-        )
-        .unwrap();
-        let theirs = other.paint.parts_mut();
-        let mut bottom = Painter::new(&*mode, vertices, theirs.slots, background);
-        let scanner = &mut other.renderer.scanner;
-        zline::scan_painted(&prepared, scanner, &mut bottom, theirs.row, cut..H, sink).unwrap();
+        paint_in_two_bands(&mut painted, &mut other, cut, H, sink).unwrap();
     });
     prop_assert_eq!(got, want);
     Ok(())

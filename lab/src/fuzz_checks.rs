@@ -1213,36 +1213,14 @@ pub fn painted(data: &[u8]) {
                 .expect("size");
                 let cut = (corners as u16).wrapping_mul(7) % (height + 1);
                 let mut band_rows = Vec::new();
-                {
-                    use zline::paint::{PaintStorage, Painter};
-                    let zline::paint::PaintedRenderer {
-                        renderer,
-                        paint,
-                        mode,
-                        ..
-                    } = &mut painted;
-                    let prepared = renderer.tables.prepare();
-                    let parts = paint.parts_mut();
-                    let vertices = &*parts.vertices;
-                    let mut sink = KeepRows(&mut band_rows);
-                    let mut top = Painter::new(&*mode, vertices, parts.slots, background);
-                    let scanner = &mut renderer.scanner;
-                    zline::scan_painted(&prepared, scanner, &mut top, parts.row, 0..cut, &mut sink)
-                        .expect("top band");
-                    let theirs = other.paint.parts_mut();
-                    let mut bottom = Painter::new(&*mode, vertices, theirs.slots, background);
-                    let scanner = &mut other.renderer.scanner;
-                    let rows = cut..height;
-                    zline::scan_painted(
-                        &prepared,
-                        scanner,
-                        &mut bottom,
-                        theirs.row,
-                        rows,
-                        &mut sink,
-                    )
-                    .expect("bottom band");
-                }
+                crate::two_bands::paint_in_two_bands(
+                    &mut painted,
+                    &mut other,
+                    cut,
+                    height,
+                    &mut KeepRows(&mut band_rows),
+                )
+                .expect("two bands");
                 assert_eq!(
                     &band_rows, painted_rows,
                     "two bands paint the one-scan frame"

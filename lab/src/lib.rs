@@ -11,6 +11,7 @@
 //! | [`rust_source`] | a mesh as Rust statics for flash |
 //! | [`needs`] | the capacities a firmware needs for a mesh over the views it shows |
 //! | [`textures`] | Rgb565 textures: read from PNG files (scaled for flash) or made procedurally, written as Rust statics |
+//! | [`two_bands`] | one prepared painted scene drawn by two scanners in two bands, as a second core draws it |
 //! | [`cli`] | the command-line helpers the tools share |
 //! | [`machine`] | the machine a measurement ran on |
 
@@ -22,6 +23,7 @@ pub mod needs;
 pub mod rust_source;
 pub mod shapes;
 pub mod textures;
+pub mod two_bands;
 
 /// The book's code (`docs/`), compiled as doctests: every `rust` block of
 /// these pages builds and runs with `cargo test -p zline-lab --doc`.
