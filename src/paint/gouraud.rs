@@ -10,8 +10,8 @@ pub use crate::front::rgb8p8::Rgb8p8;
 use crate::paint::PaintMode;
 use crate::paint::color::{PaintColor, bayer_index, level_units};
 use crate::raster::attribute::{
-    ATTRIBUTE_FRAC_BITS, AttributePlane, attribute_planes, exact_value_at, modular_triangle_planes,
-    pixel_box,
+    ATTRIBUTE_FRAC_BITS, AttributePlane, attribute_planes, box_corners_within, exact_value_at,
+    modular_triangle_planes,
 };
 use crate::raster::vertex::ScreenVertex;
 
@@ -196,13 +196,11 @@ fn within_margin<C: PaintColor>(
     width: u16,
     height: u16,
 ) -> bool {
-    let (x0, x1, y0, y1) = pixel_box(corners.map(|(v, _)| v), width, height);
-    channels.iter().zip(C::MAX).all(|(plane, max)| {
-        let top = i64::from(max) << LEVEL_SHIFT;
-        [(x0, y0), (x1, y0), (x0, y1), (x1, y1)]
-            .iter()
-            .all(|&(x, y)| (-WRAP_MARGIN..=top + WRAP_MARGIN).contains(&plane.value_at(x, y)))
-    })
+    let range = |_: &AttributePlane, k: usize| {
+        let top = i64::from(C::MAX[k]) << LEVEL_SHIFT;
+        -WRAP_MARGIN..=top + WRAP_MARGIN
+    };
+    box_corners_within(channels, range, corners.map(|(v, _)| v), (width, height))
 }
 
 impl<C: PaintColor> Gouraud<C> {

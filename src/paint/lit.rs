@@ -26,7 +26,7 @@ use crate::paint::color::{CHANNEL_MAX, PaintColor, bayer_threshold, div255};
 use crate::paint::texture::Texture;
 use crate::paint::textured::{Textured, TexturedPlanes};
 use crate::raster::attribute::{
-    ATTRIBUTE_FRAC_BITS, AttributePlane, attribute_planes, exact_value_at, pixel_box,
+    ATTRIBUTE_FRAC_BITS, AttributePlane, attribute_planes, box_corners_within, exact_value_at,
     triangle_planes,
 };
 use crate::raster::vertex::ScreenVertex;
@@ -81,7 +81,7 @@ const HALF: i64 = 1 << (ATTRIBUTE_FRAC_BITS - 1);
 /// HALF) >> ATTRIBUTE_FRAC_BITS`, at most [`CHANNEL_MAX`] once limited,
 /// is the light the `i64` clamp and rounding give, however the sum
 /// wrapped on the way.
-const LIGHT_WRAP: core::ops::Range<i64> = -HALF..(1 << 32) - HALF;
+const LIGHT_WRAP: core::ops::RangeInclusive<i64> = -HALF..=(1 << 32) - HALF - 1;
 
 /// Texture mapping lit per vertex, into colours `C` (see the module's
 /// notes).
@@ -178,15 +178,14 @@ impl<'a, C: PaintColor> PaintMode for LitTextured<'a, C> {
             };
         }
         let light = attribute_planes(lights, width, height).unwrap_or_default();
-        // Anything else, where its bounding box allows: a plane's extremes
-        // over a box are at its corners.
-        let (x0, x1, y0, y1) = pixel_box(corners.map(|(v, _)| v), width, height);
-        let wraps = light.iter().all(|p| {
-            !p.is_steep()
-                && [(x0, y0), (x1, y0), (x0, y1), (x1, y1)]
-                    .iter()
-                    .all(|&(x, y)| LIGHT_WRAP.contains(&p.value_at(x, y)))
-        });
+        // Anything else, where its bounding box allows.
+        let wraps = light.iter().all(|p| !p.is_steep())
+            && box_corners_within(
+                &light,
+                |_, _| LIGHT_WRAP,
+                corners.map(|(v, _)| v),
+                (width, height),
+            );
         LitTexturedPlanes {
             texture,
             light,
@@ -278,6 +277,7 @@ mod tests {
     use crate::front::clip_w::ClipW;
     use crate::limits::SUBPIXEL_STEPS;
     use crate::paint::sample_inside;
+    use crate::raster::attribute::pixel_box;
     use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
     use proptest::prelude::*;
     use std::vec;

@@ -276,6 +276,25 @@ pub fn pixel_box(
     )
 }
 
+/// Whether each plane's values at the four corners of the pixel box of
+/// `corners` (see [`pixel_box`]) lie in the range `within` gives it: then
+/// they do over the whole box, since a plane's extremes over a box are at
+/// its corners.
+pub fn box_corners_within<'p>(
+    planes: impl IntoIterator<Item = &'p AttributePlane>,
+    within: impl Fn(&AttributePlane, usize) -> core::ops::RangeInclusive<i64>,
+    corners: impl Iterator<Item = ScreenVertex>,
+    (width, height): (u16, u16),
+) -> bool {
+    let (x0, x1, y0, y1) = pixel_box(corners, width, height);
+    planes.into_iter().enumerate().all(|(k, plane)| {
+        let range = within(plane, k);
+        [(x0, y0), (x1, y0), (x0, y1), (x1, y1)]
+            .iter()
+            .all(|&(x, y)| range.contains(&plane.value_at(x, y)))
+    })
+}
+
 /// The exactly rounded value of attribute `k` at pixel `(x, y)` of the
 /// polygon with these corners, in plane units, for a steep plane; 0 when
 /// the polygon has no area.
@@ -310,6 +329,40 @@ mod tests {
 
     /// Largest coordinate magnitude the guard band admits.
     const G: i32 = GUARD_BAND - 1;
+
+    /// The box check looks at each of the box's four corner pixels, with
+    /// each plane's own range, and at the box clamped to the frame.
+    #[test]
+    fn box_corners_within_checks_each_corner_of_the_clamped_box() {
+        // Corners spanning pixels 2..=5 by 1..=3 (and beyond the frame's
+        // right edge at width 5, where the box stops at column 4).
+        let v =
+            |x: i32, y: i32| ScreenVertex::new(x * SUBPIXEL_STEPS, y * SUBPIXEL_STEPS, 0).unwrap();
+        let corners = [v(2, 1), v(5, 1), v(5, 3), v(2, 3)];
+        let plane = |at_origin, dx, dy| AttributePlane { at_origin, dx, dy };
+        // Value x + 10·y: 12 at (2, 1), 35 at (5, 3), 34 at (4, 3).
+        let p = plane(0, 1, 10);
+        let check = |planes: &[AttributePlane], hi: i64, width: u16| {
+            box_corners_within(planes, |_, _| 12..=hi, corners.iter().copied(), (width, 8))
+        };
+        assert!(check(&[p], 35, 8));
+        assert!(!check(&[p], 34, 8), "the bottom-right corner is 35");
+        assert!(
+            check(&[p], 34, 5),
+            "clamped to the frame: column 4 is the last"
+        );
+        // Value -x - 10·y + 47: 12 at (5, 3), 35 at (2, 1); a low corner
+        // out of range fails too.
+        let q = plane(47, -1, -10);
+        assert!(check(&[p, q], 35, 8));
+        let per_plane = |_: &AttributePlane, k: usize| if k == 0 { 12..=35 } else { 13..=35 };
+        assert!(!box_corners_within(
+            &[p, q],
+            per_plane,
+            corners.iter().copied(),
+            (8, 8)
+        ));
+    }
 
     /// The exact value of the plane through three corners at `(x, y)`
     /// (sub-pixel), in plane units, as a rational `num / den`.
