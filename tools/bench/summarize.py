@@ -23,6 +23,7 @@ SHORT = {
     "zline z16": "z16",
     "zline z24 drawtarget": "z24 DT",
     "zline z16 drawtarget": "z16 DT",
+    "zline z24 target alone": "target alone",
     "embedded-3dgfx lit": "e3d lit",
     "embedded-3dgfx unlit": "e3d unlit",
     "embedded-3dgfx raster shared": "e3d raster shared",

@@ -16,7 +16,9 @@
 //!
 //! Rows (one renderer name per row kind): `zline z24`, `zline z16` (drawn
 //! in place), `zline z24 drawtarget`, `zline z16 drawtarget` (through a
-//! plain `DrawTarget`), `embedded-3dgfx lit`, `embedded-3dgfx unlit`,
+//! plain `DrawTarget`), `zline z24 target alone` (no rendering: that
+//! `DrawTarget` taking the pixels the drawtarget rows send it, its own
+//! share of their time), `embedded-3dgfx lit`, `embedded-3dgfx unlit`,
 //! `embedded-3dgfx raster shared`, `euc`, and with `--threads N > 1`
 //! `zline z24 N threads` (wall clock). Each row's timed region is printed
 //! with the table.
@@ -330,6 +332,7 @@ fn same_frame_as(renderer: &str) -> Option<&'static str> {
     match renderer {
         "zline z16 drawtarget" => Some("zline z16"),
         "zline z24 drawtarget" => Some("zline z24"),
+        "zline z24 target alone" => Some("zline z24"),
         r if r.starts_with("zline z24 ") && r.ends_with(" threads") => Some("zline z24"),
         _ => None,
     }
@@ -500,8 +503,9 @@ fn bench_view<'a>(
 }
 
 /// Today's flat rows, in their order: zline in place and through a
-/// `DrawTarget` at both depths, embedded-3dgfx lit, unlit and its
-/// rasteriser fed shared vertices, euc.
+/// `DrawTarget` at both depths, that `DrawTarget` alone taking what it is
+/// sent, embedded-3dgfx lit, unlit and its rasteriser fed shared vertices,
+/// euc.
 fn flat_renderers<'a>(
     scene: &'a Scene,
     e3d: &'a MeshData<'a>,
@@ -519,6 +523,11 @@ fn flat_renderers<'a>(
             scene,
             view,
             Output::DrawTarget,
+        )?),
+        Box::new(ZlineRenderer::<Depth24>::new(
+            scene,
+            view,
+            Output::TargetAlone,
         )?),
         Box::new(Embedded3dgfxRenderer::new(e3d, view, Mode::Lit)?),
         Box::new(Embedded3dgfxRenderer::new(e3d, view, Mode::Unlit)?),

@@ -11,6 +11,7 @@ use core::convert::Infallible;
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::pixelcolor::raw::RawU16;
 use embedded_graphics::prelude::*;
+use embedded_graphics::primitives::Rectangle;
 use zline::host::{BandedRenderer, HostRenderer};
 use zline::{
     Camera, Cull as ZCull, Depth24, DepthFormat, DrawTargetSink, FaceInfo, FrameBufferSink, Mat4,
@@ -32,6 +33,13 @@ pub enum Output {
     /// frame after frame into one display does it: `changed_only`, so each
     /// row sends only the columns that differ from the frame before.
     DrawTarget,
+    /// No rendering: each row's columns that a `DrawTarget` row sends once
+    /// the picture stands still (the span of pixels that are not
+    /// background), taken from a frame drawn once before timing, handed to
+    /// the same [`PlainTarget`] by `fill_contiguous`. What that target
+    /// alone charges for the pixels [`Output::DrawTarget`] gives it: the
+    /// floor under a `drawtarget` row's time above zline in place.
+    TargetAlone,
 }
 
 /// A W×H Rgb565 frame that is the plainest `DrawTarget` a user writes:
@@ -123,6 +131,9 @@ pub struct ZlineRenderer<'a, D: DepthFormat> {
     output: Output,
     /// What the [`PlainTarget`] shows of each row (`changed_only`).
     shown: Vec<RowSpan>,
+    /// For [`Output::TargetAlone`]: the frame drawn once, and each row's
+    /// span of pixels that are not background in it.
+    stored: Option<(Vec<Rgb565>, Vec<RowSpan>)>,
     name: String,
     view: View,
 }
@@ -140,6 +151,7 @@ impl<'a, D: DepthFormat> ZlineRenderer<'a, D> {
         let name = match output {
             Output::InPlace => format!("zline {}", D::NAME),
             Output::DrawTarget => format!("zline {} drawtarget", D::NAME),
+            Output::TargetAlone => format!("zline {} target alone", D::NAME),
         };
         let mut r = Self {
             scene,
@@ -148,8 +160,13 @@ impl<'a, D: DepthFormat> ZlineRenderer<'a, D> {
             model,
             camera: Camera::reference(view.width, view.height),
             cull: zline_cull(view.cull),
-            output,
+            output: if output == Output::TargetAlone {
+                Output::InPlace
+            } else {
+                output
+            },
             shown: vec![RowSpan::UNKNOWN; usize::from(view.height)],
+            stored: None,
             name,
             view: *view,
         };
@@ -157,6 +174,25 @@ impl<'a, D: DepthFormat> ZlineRenderer<'a, D> {
         r.render()?;
         if r.frame.pixels.contains(&POISON) {
             return Err(format!("{}: a frame left pixels unwritten", r.name));
+        }
+        if output == Output::TargetAlone {
+            // The frame as drawn in place, and the columns each row of a
+            // still picture sends (`DrawTargetSink::changed_only`'s span).
+            let width = r.frame.width;
+            let spans = r
+                .frame
+                .pixels
+                .chunks(width)
+                .map(|row| {
+                    let lit = |c: &Rgb565| *c != Rgb565::BLACK;
+                    match (row.iter().position(lit), row.iter().rposition(lit)) {
+                        (Some(first), Some(last)) => RowSpan::new(first as u16, last as u16 + 1),
+                        _ => RowSpan::EMPTY,
+                    }
+                })
+                .collect();
+            r.stored = Some((r.frame.pixels.clone(), spans));
+            r.output = Output::TargetAlone;
         }
         Ok(r)
     }
@@ -185,6 +221,14 @@ impl<D: DepthFormat> Renderer for ZlineRenderer<'_, D> {
                  with `draw_iter` only (`fill_contiguous` falls back to pixel by pixel), each \
                  row sending the columns that changed since the frame before"
             }
+            Output::TargetAlone => {
+                return "no rendering: each row's span of pixels that are not background \
+                        (what `changed_only` sends of a still picture), from a frame drawn \
+                        before timing, handed by `fill_contiguous` to the `Vec<Rgb565>` \
+                        `DrawTarget` of the drawtarget rows (`draw_iter` only): that target's \
+                        own cost for the pixels the drawtarget rows send"
+                    .to_string();
+            }
         };
         format!(
             "`renderer.clear()` (its tables), `Shading::lambert()`, `renderer.draw_mesh(.., \
@@ -195,6 +239,20 @@ impl<D: DepthFormat> Renderer for ZlineRenderer<'_, D> {
     }
 
     fn render(&mut self) -> Result<(), String> {
+        if let (Output::TargetAlone, Some((pixels, spans))) = (self.output, &self.stored) {
+            let width = self.frame.width;
+            for (y, (span, row)) in spans.iter().zip(pixels.chunks(width)).enumerate() {
+                let (start, end) = (usize::from(span.start()), usize::from(span.end()));
+                let area = Rectangle::new(
+                    Point::new(start as i32, y as i32),
+                    Size::new((end - start) as u32, 1),
+                );
+                let _ = self
+                    .frame
+                    .fill_contiguous(&area, row[start..end].iter().copied());
+            }
+            return Ok(());
+        }
         self.renderer.clear();
         let light = Shading::lambert();
         self.renderer
@@ -221,6 +279,7 @@ impl<D: DepthFormat> Renderer for ZlineRenderer<'_, D> {
                 )
                 .map(|_| ())
                 .map_err(|e| format!("zline: {e:?}")),
+            Output::TargetAlone => Err("zline: no stored frame".to_string()),
         }
     }
 
