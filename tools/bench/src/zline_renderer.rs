@@ -176,22 +176,12 @@ impl<'a, D: DepthFormat> ZlineRenderer<'a, D> {
             return Err(format!("{}: a frame left pixels unwritten", r.name));
         }
         if output == Output::TargetAlone {
-            // The frame as drawn in place, and the columns each row of a
-            // still picture sends (`DrawTargetSink::changed_only`'s span).
-            let width = r.frame.width;
-            let spans = r
-                .frame
-                .pixels
-                .chunks(width)
-                .map(|row| {
-                    let lit = |c: &Rgb565| *c != Rgb565::BLACK;
-                    match (row.iter().position(lit), row.iter().rposition(lit)) {
-                        (Some(first), Some(last)) => RowSpan::new(first as u16, last as u16 + 1),
-                        _ => RowSpan::EMPTY,
-                    }
-                })
-                .collect();
-            r.stored = Some((r.frame.pixels.clone(), spans));
+            // The frame, and the columns of each row a still picture sends:
+            // what `DrawTargetSink::changed_only` notes in `shown` as the
+            // frame goes out once through it.
+            r.output = Output::DrawTarget;
+            r.render()?;
+            r.stored = Some((r.frame.pixels.clone(), r.shown.clone()));
             r.output = Output::TargetAlone;
         }
         Ok(r)
