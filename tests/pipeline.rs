@@ -379,3 +379,132 @@ fn issue_7_item_6_faces_of_many_corners_draw() {
         load(most.as_bytes()).unwrap();
     }
 }
+
+/// `HostMesh::from_obj` numbers vertices in the order faces first use
+/// them: each face keeps its corners' positions, a vertex no face uses
+/// comes last, shared planes keep their vertices, and every pixel (face
+/// ids and Lambert colours) is the frame of the file's own numbering.
+#[test]
+fn first_use_order_changes_no_pixel() {
+    // A torus knot written with its vertices in a scattered order, two
+    // overlapping coplanar quads (a shared plane) and a vertex no face uses.
+    let knot = shapes::torus_knot(2, 3, 48, 8, 0.3);
+    let n = knot.positions.len();
+    // The quads' vertices first in the file, the knot's after them.
+    let file_index = |v: usize| 8 + (v * 37) % n; // 37 and n coprime
+    assert_ne!(n % 37, 0);
+    let mut file_positions = vec![
+        [-1.0, -1.0, 1.2],
+        [0.2, -1.0, 1.2],
+        [0.2, 0.2, 1.2],
+        [-1.0, 0.2, 1.2],
+        [-0.6, -0.6, 1.2],
+        [0.6, -0.6, 1.2],
+        [0.6, 0.6, 1.2],
+        [-0.6, 0.6, 1.2],
+    ];
+    file_positions.resize(8 + n, [0.0; 3]);
+    for (v, p) in knot.positions.iter().enumerate() {
+        file_positions[file_index(v)] = *p;
+    }
+    file_positions.push([0.05, 0.05, 0.05]);
+    let mut file_corners: Vec<u16> = knot
+        .corners
+        .iter()
+        .map(|&c| file_index(usize::from(c)) as u16)
+        .collect();
+    let mut face_starts = knot.face_starts.clone();
+    for quad in [[0, 1, 2, 3], [4, 5, 6, 7]] {
+        face_starts.push(file_corners.len() as u32);
+        file_corners.extend(quad);
+    }
+    let mut obj = String::new();
+    for p in &file_positions {
+        obj += &format!("v {} {} {}\n", p[0], p[1], p[2]);
+    }
+    for (f, &start) in face_starts.iter().enumerate() {
+        let end = face_starts
+            .get(f + 1)
+            .map_or(file_corners.len(), |&e| e as usize);
+        obj += "f";
+        for &c in &file_corners[start as usize..end] {
+            obj += &format!(" {}", c + 1);
+        }
+        obj += "\n";
+    }
+    let loaded = HostMesh::from_obj(obj.as_bytes()).unwrap();
+    let file_order = HostMesh {
+        positions: loaded_positions_in_file_order(&obj),
+        corners: file_corners,
+        face_starts,
+        ..HostMesh::default()
+    }
+    .with_face_analysis();
+    assert!(!file_order.shared_planes.is_empty());
+    assert_eq!(loaded.shared_planes.len(), file_order.shared_planes.len());
+    // First use order: each corner names a vertex seen before or the next.
+    let mut next = 0;
+    for &c in &loaded.corners {
+        assert!(usize::from(c) <= next, "{c} after {next} vertices");
+        next = next.max(usize::from(c) + 1);
+    }
+    assert_eq!(next, loaded.positions.len() - 1);
+    assert_eq!(loaded.positions.last(), Some(&[0.05, 0.05, 0.05]));
+    for f in 0..loaded.face_count() {
+        let at = |m: &HostMesh| -> Vec<[f32; 3]> {
+            m.face(f)
+                .iter()
+                .map(|&c| m.positions[usize::from(c)])
+                .collect()
+        };
+        assert_eq!(at(&loaded), at(&file_order), "face {f}");
+    }
+    for (a, b) in loaded.shared_planes.iter().zip(&file_order.shared_planes) {
+        assert_eq!(a.face, b.face);
+        let at = |m: &HostMesh, v: [u16; 3]| v.map(|v| m.positions[usize::from(v)]);
+        assert_eq!(at(&loaded, a.vertices), at(&file_order, b.vertices));
+    }
+    let model = reference_model(&loaded, 30.0, 20.0).unwrap();
+    let frame = ids(&loaded, &model);
+    let covered = frame.iter().filter(|&&c| c != 0).count();
+    assert!(covered > 1000, "{covered}");
+    assert_eq!(frame, ids(&file_order, &model));
+    assert_eq!(
+        lambert_colors(&loaded, &model),
+        lambert_colors(&file_order, &model)
+    );
+    // Renumbering an analysed mesh keeps its shared planes' vertices.
+    let renumbered = file_order.clone().with_vertices_in_first_use_order();
+    assert_eq!(
+        (&renumbered.positions, &renumbered.corners),
+        (&loaded.positions, &loaded.corners)
+    );
+    for (a, b) in renumbered
+        .shared_planes
+        .iter()
+        .zip(&file_order.shared_planes)
+    {
+        let at = |m: &HostMesh, v: [u16; 3]| v.map(|v| m.positions[usize::from(v)]);
+        assert_eq!(at(&renumbered, a.vertices), at(&file_order, b.vertices));
+    }
+    assert_eq!(ids(&renumbered, &model), frame);
+    // A mesh whose corners name a vertex it lacks is left as it is.
+    let broken = HostMesh {
+        corners: vec![2, 1, 7],
+        face_starts: vec![0],
+        positions: vec![[0.0; 3], [1.0; 3], [2.0; 3]],
+        ..HostMesh::default()
+    };
+    assert_eq!(broken.clone().with_vertices_in_first_use_order(), broken);
+}
+
+/// The `v` lines of an OBJ file, in its order.
+fn loaded_positions_in_file_order(obj: &str) -> Vec<[f32; 3]> {
+    obj.lines()
+        .filter_map(|l| l.strip_prefix("v "))
+        .map(|l| {
+            let c: Vec<f32> = l.split(' ').map(|x| x.parse().unwrap()).collect();
+            [c[0], c[1], c[2]]
+        })
+        .collect()
+}

@@ -133,6 +133,27 @@ pub fn obj_reader(data: &[u8]) {
         }
         (Err(p), Err(c)) => assert!(p.line <= c.line),
     }
+    // The host mesh numbers vertices in first-use order: each face keeps
+    // its corners' positions (those of the file's numbering, as the
+    // fixed-capacity mesh keeps it), and each corner names a vertex used
+    // before or the next one.
+    if let (Ok(mesh), Ok(h)) = (&parsed, &host) {
+        let mut next = 0usize;
+        for f in 0..mesh.face_count() {
+            let (file, host) = (mesh.face(f), h.face(f));
+            assert_eq!(file.len(), host.len(), "face {f}");
+            for (&a, &b) in file.iter().zip(host) {
+                let (a, b) = (usize::from(a), usize::from(b));
+                assert_eq!(
+                    mesh.position(a).map(f32::to_bits),
+                    h.positions[b].map(f32::to_bits),
+                    "face {f}"
+                );
+                assert!(b <= next, "corner {b} after {next} vertices");
+                next = next.max(b + 1);
+            }
+        }
+    }
     // The streaming reader stops at the first error, and every face it
     // yields names vertices that exist.
     let mut vertices = 0usize;

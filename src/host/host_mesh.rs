@@ -119,9 +119,11 @@ impl HostMesh {
     }
 
     /// Reads an OBJ file with the no_std reader (faces of up to
-    /// [`MAX_FACE_CORNERS`] corners, all the pipeline draws), and finds
-    /// its planar faces and its overlapping coplanar faces
-    /// ([`Self::with_face_analysis`]).
+    /// [`MAX_FACE_CORNERS`] corners, all the pipeline draws), numbers its
+    /// vertices in the order its faces first use them
+    /// ([`Self::with_vertices_in_first_use_order`]: the file's numbering
+    /// is not kept), and finds its planar faces and its overlapping
+    /// coplanar faces ([`Self::with_face_analysis`]).
     pub fn from_obj(bytes: &[u8]) -> Result<Self, ObjError> {
         let mut mesh = Self::default();
         let mut reader = ObjReader::<MAX_FACE_CORNERS>::new(bytes);
@@ -139,7 +141,7 @@ impl HostMesh {
                 Statement::TexCoord(_) | Statement::Normal(_) | Statement::Other(_) => {}
             }
         }
-        Ok(mesh.with_face_analysis())
+        Ok(mesh.with_vertices_in_first_use_order().with_face_analysis())
     }
 
     /// Reads an OBJ file for smooth shading and textures: a vertex for each
@@ -202,6 +204,67 @@ impl HostMesh {
             positions: self.positions,
         };
         file.build(crease_degrees)
+    }
+
+    /// The same mesh with its vertices numbered in the order its faces
+    /// first use them, face after face (vertices no face uses follow, in
+    /// their order): what each vertex is and what each face draws are
+    /// unchanged, and so is every frame. A frame transforms each vertex
+    /// when a face first uses it, so in this order it reads the positions
+    /// (and the per-vertex normals and texture coordinates) from front to
+    /// back, where a file's own order may scatter them: the Stanford
+    /// bunny's file order made a frame of it at 800x600 about a fifth
+    /// slower (`docs/speed.md`). [`Self::from_obj_smooth`] numbers its
+    /// vertices this way as it makes them. A mesh whose corners name a
+    /// vertex it does not have, or whose per-vertex arrays are neither
+    /// empty nor as long as its positions, is returned as it is.
+    pub fn with_vertices_in_first_use_order(mut self) -> Self {
+        let count = self.positions.len();
+        let per_vertex_ok = |len: usize| len == 0 || len == count;
+        if !per_vertex_ok(self.vertex_normals.len())
+            || !per_vertex_ok(self.uvs.len())
+            || self.corners.iter().any(|&c| usize::from(c) >= count)
+            || self
+                .shared_planes
+                .iter()
+                .any(|p| p.vertices.iter().any(|&v| usize::from(v) >= count))
+        {
+            return self;
+        }
+        // New number of each old vertex; then the old vertex of each new
+        // number. (`count` is at most 65,536: corners are `u16`.)
+        const UNSEEN: u32 = u32::MAX;
+        let mut new_of_old = std::vec![UNSEEN; count];
+        let mut old_of_new = Vec::with_capacity(count);
+        for &c in &self.corners {
+            let slot = &mut new_of_old[usize::from(c)];
+            if *slot == UNSEEN {
+                *slot = old_of_new.len() as u32;
+                old_of_new.push(c as usize);
+            }
+        }
+        for (old, slot) in new_of_old.iter_mut().enumerate() {
+            if *slot == UNSEEN {
+                *slot = old_of_new.len() as u32;
+                old_of_new.push(old);
+            }
+        }
+        let renumber = |v: u16| new_of_old[usize::from(v)] as u16;
+        for c in &mut self.corners {
+            *c = renumber(*c);
+        }
+        for plane in &mut self.shared_planes {
+            plane.vertices = plane.vertices.map(renumber);
+        }
+        fn permute<T: Copy>(values: &mut Vec<T>, old_of_new: &[usize]) {
+            if !values.is_empty() {
+                *values = old_of_new.iter().map(|&old| values[old]).collect();
+            }
+        }
+        permute(&mut self.positions, &old_of_new);
+        permute(&mut self.vertex_normals, &old_of_new);
+        permute(&mut self.uvs, &old_of_new);
+        self
     }
 
     /// The mesh with what its faces' geometry tells the pipeline found
