@@ -4,7 +4,9 @@ use std::collections::HashMap;
 use std::vec::Vec;
 
 use crate::front::geometry::{Vec3, newell_normal, unit};
-use crate::front::mesh::{Mesh, MeshArrays, SharedPlane, face_normals, planar_face_bits};
+use crate::front::mesh::{
+    Mesh, MeshArrays, SharedPlane, StaticMesh, check_shared_planes, face_normals, planar_face_bits,
+};
 use crate::front::obj::{ObjCorner, ObjError, ObjErrorKind, ObjReader, Statement};
 use crate::limits::MAX_FACE_CORNERS;
 use crate::limits::{MAX_POLYGON_CORNERS, MAX_POLYGONS};
@@ -213,21 +215,20 @@ impl HostMesh {
     /// when a face first uses it, so in this order it reads the positions
     /// (and the per-vertex normals and texture coordinates) from front to
     /// back, where a file's own order may scatter them: the Stanford
-    /// bunny's file order made a frame of it at 800x600 about a fifth
-    /// slower (`docs/speed.md`). [`Self::from_obj_smooth`] numbers its
-    /// vertices this way as it makes them. A mesh whose corners name a
-    /// vertex it does not have, or whose per-vertex arrays are neither
-    /// empty nor as long as its positions, is returned as it is.
+    /// bunny's file order made a frame of it at 800x600 about 9 % slower
+    /// (`docs/results/speed.md`). [`Self::from_obj_smooth`] numbers its
+    /// vertices this way as it makes them. A mesh that is not valid
+    /// ([`StaticMesh::new`], its shared planes as a mesh checks them), or
+    /// whose per-vertex arrays are neither empty nor as long as its
+    /// positions, is returned as it is.
     pub fn with_vertices_in_first_use_order(mut self) -> Self {
         let count = self.positions.len();
         let per_vertex_ok = |len: usize| len == 0 || len == count;
+        let faces = self.face_starts.len();
         if !per_vertex_ok(self.vertex_normals.len())
             || !per_vertex_ok(self.uvs.len())
-            || self.corners.iter().any(|&c| usize::from(c) >= count)
-            || self
-                .shared_planes
-                .iter()
-                .any(|p| p.vertices.iter().any(|&v| usize::from(v) >= count))
+            || StaticMesh::new(&self.positions, &self.corners, &self.face_starts).is_err()
+            || check_shared_planes(&self.shared_planes, faces, count).is_err()
         {
             return self;
         }
