@@ -103,7 +103,7 @@ impl Lambert {
             let ch = |v: u8| ((i32::from(v) * k + (1 << 14)) >> 15).clamp(0, 255) as u8;
             return Rgb888::new(ch(self.base.r()), ch(self.base.g()), ch(self.base.b()));
         }
-        let d = face.normal().dot(self.light);
+        let d = face.normal_dot(self.light);
         let d = if face.front { d } else { -d };
         let k = self.ambient + (1.0 - self.ambient) * d.max(0.0);
         scale(self.base, k)

@@ -96,6 +96,29 @@ impl FaceInfo<'_> {
         }
     }
 
+    /// [`Self::normal`]`.dot(v)`, the same value. For a whole face whose
+    /// mesh stores its normal ([`Mesh::face_normal`]) the product is taken
+    /// where the normal is turned, and only the product leaves: no vector
+    /// passes through memory between the two (Lambert's colour of each
+    /// face takes it).
+    #[inline(always)]
+    pub fn normal_dot(&self, v: Vec3) -> f32 {
+        match self.geometry {
+            FaceGeometry::Mesh {
+                frame,
+                stored: Some(n),
+                ..
+            } => frame.view_normal_dot(Vec3::from_array(n), v),
+            _ => self.other_normal_dot(v),
+        }
+    }
+
+    /// [`Self::normal_dot`] for faces with no stored normal, out of line.
+    #[inline(never)]
+    fn other_normal_dot(&self, v: Vec3) -> f32 {
+        self.normal().dot(v)
+    }
+
     /// The unit normal in view space in integers, units of `1/32767`, when
     /// the face comes from a [quantized mesh](crate::QuantizedMesh):
     /// its stored normal rotated by the model-view rotation, the same on

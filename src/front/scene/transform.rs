@@ -271,6 +271,26 @@ impl Frame {
         }
     }
 
+    /// [`Self::view_normal`]`(n).dot(v)`, the same value, with the turn
+    /// by the rotation alone in line and any other out of line: only a
+    /// number leaves either ([`FaceInfo::normal_dot`]).
+    ///
+    /// [`FaceInfo::normal_dot`]: crate::front::scene::FaceInfo::normal_dot
+    #[inline(always)]
+    pub(super) fn view_normal_dot(&self, n: Vec3, v: Vec3) -> f32 {
+        if self.inverse_scale != 0.0 && (n.dot(n) - 1.0).abs() <= UNIT_TOLERANCE {
+            (self.model_view.transform_vector(n) * self.inverse_scale).dot(v)
+        } else {
+            self.normalised_view_normal_dot(n, v)
+        }
+    }
+
+    /// [`normalised_view_normal`]`(n, ..).dot(v)`, out of line.
+    #[inline(never)]
+    fn normalised_view_normal_dot(&self, n: Vec3, v: Vec3) -> f32 {
+        normalised_view_normal(n, &self.model_view).dot(v)
+    }
+
     /// Whether the clip-space point `p` of a position whose largest
     /// coordinate is `extent` lies inside the guard-band planes, and
     /// inside the near and far planes by more than the `f32` transform's
@@ -638,5 +658,59 @@ mod tests {
         assert_eq!(frame.inverse_scale, 0.0);
         let n = unit(Vec3::new(0.3, 0.4, -0.5));
         assert_eq!(frame.view_normal(n), full(&frame, n));
+    }
+
+    /// `view_normal_dot(n, v)` is `view_normal(n).dot(v)` to the bit on
+    /// both of its paths (the rotation alone, and the normalised turn for
+    /// a normal not of unit length or a model-view that is not a
+    /// similarity), and so is `FaceInfo::normal_dot`, for a face with a
+    /// stored normal, one without (Newell's of its corners) and a known
+    /// one.
+    #[test]
+    fn normal_dot_is_the_normals_dot_product() {
+        use crate::front::mesh::StaticMesh;
+        use crate::front::scene::FaceInfo;
+        let camera = Camera::reference(64, 64);
+        let lights = [
+            Vec3::new(-0.4, 0.5, 0.77),
+            unit(Vec3::new(0.9, -0.1, 0.3)),
+            Vec3::new(0.0, 0.0, 1.0),
+        ];
+        let squash = Mat4::scale(Vec3::new(1.0, 2.0, 1.0));
+        for model in [
+            similarity(0.01, 0.8, -0.4),
+            similarity(40.0, 2.1, 0.3),
+            squash,
+        ] {
+            let frame = Frame::new(&model, &camera, Cull::None, None);
+            for k in 0..200 {
+                let t = k as f32 * 0.37;
+                let n = unit(Vec3::new(t.sin(), (1.7 * t).cos(), (0.3 * t).sin() - 0.2));
+                for v in lights {
+                    for n in [n, n * 3.0] {
+                        let (got, want) =
+                            (frame.view_normal_dot(n, v), frame.view_normal(n).dot(v));
+                        assert_eq!(got.to_bits(), want.to_bits(), "{n:?} {v:?}");
+                    }
+                }
+            }
+            let positions = [[0.0, 0.0, 0.0], [1.0, 0.2, 0.1], [0.3, 1.0, -0.2]];
+            let normal = unit(Vec3::new(-0.12, 0.13, 1.0));
+            let normals = [[normal.x, normal.y, normal.z]];
+            let plain = StaticMesh::new(&positions, &[0, 1, 2], &[0]).unwrap();
+            let stored = plain.with_face_normals(&normals).unwrap();
+            for (front, whole) in [(true, true), (false, true), (true, false)] {
+                for face in [
+                    frame.face_info(&plain, (0, whole), &[0, 1, 2], front),
+                    frame.face_info(&stored, (0, whole), &[0, 1, 2], front),
+                    FaceInfo::new(0, front, normal, 2.0),
+                ] {
+                    for v in lights {
+                        let (got, want) = (face.normal_dot(v), face.normal().dot(v));
+                        assert_eq!(got.to_bits(), want.to_bits(), "{face:?} {v:?}");
+                    }
+                }
+            }
+        }
     }
 }
