@@ -8,7 +8,8 @@
 
 use core::mem::size_of;
 use embedded_graphics::pixelcolor::Rgb565;
-use zline::{ActiveEdge, ActivePolygon, EdgeEntry, PolygonEntry, ScanArrays, TableArrays};
+use zline::TableArrays;
+use zline::{ActiveEdge, ActivePolygon, EdgeEntry, PolygonEntry, ScanArrays, SmallActive};
 use zline::{Depth16, Depth24, Renderer, ScreenVertex};
 
 /// 240x240, a 1,000-triangle mesh (about 500 vertices), generous active
@@ -84,6 +85,10 @@ fn main() {
     println!(
         "| active polygon (`ActivePolygon`, its edge pair inline) | {} |",
         size_of::<ActivePolygon<Rgb565>>()
+    );
+    println!(
+        "| small triangle waiting for its next rows (`SmallActive`; `AP` of them, on every target but 32-bit Arm) | {} |",
+        size_of::<SmallActive<Rgb565>>()
     );
     println!(
         "| pooled active edge (`ActiveEdge`) | {} |",

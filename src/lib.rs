@@ -106,8 +106,8 @@ pub use raster::paint::{NO_SLOT, RowPainter, scan_painted};
 pub use raster::{
     ActiveEdge, ActivePolygon, Admission, Capacities, Depth16, Depth24, DepthFormat, EdgeEntry,
     FrameStats, MeshCounts, Outline, OutlineBuilder, PolygonEntry, PolygonTables, Prepared,
-    ScanArrays, ScanParts, ScanStorage, Scanner, ScreenRect, ScreenVertex, TableArrays, TableParts,
-    TablePartsRef, TableStorage, Tables, scan,
+    ScanArrays, ScanParts, ScanStorage, Scanner, ScreenRect, ScreenVertex, SmallActive,
+    TableArrays, TableParts, TablePartsRef, TableStorage, Tables, scan,
 };
 pub use renderer::Renderer;
 pub use sink::{Crc32Sink, DrawTargetSink, FnSink, FrameBufferSink, LentRow, RowSink, RowSpan};

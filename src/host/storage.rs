@@ -13,7 +13,7 @@ use crate::raster::paint::NO_SLOT;
 use crate::raster::scan::{ScanParts, ScanStorage};
 use crate::raster::tables::{PolygonEntry, TableParts, TablePartsRef, TableStorage};
 use crate::raster::vertex::ScreenVertex;
-use crate::raster::{ActiveEdge, ActivePolygon, Capacities, EdgeEntry};
+use crate::raster::{ActiveEdge, ActivePolygon, Capacities, EdgeEntry, SmallActive};
 use crate::renderer::Renderer;
 
 /// Table storage in `Vec`s.
@@ -66,6 +66,7 @@ pub struct ScanVecs<C, D: DepthFormat> {
     active: Vec<ActivePolygon<C>>,
     order: Vec<u16>,
     pool: Vec<ActiveEdge>,
+    small: Vec<SmallActive<C>>,
     depth_row: Vec<D::Value>,
     color_row: Vec<C>,
     key_row: Vec<u32>,
@@ -79,6 +80,7 @@ impl<C: Copy, D: DepthFormat> ScanVecs<C, D> {
             active: vec![ActivePolygon::filler(filler); caps.active_polygons],
             order: vec![0; caps.active_polygons],
             pool: vec![ActiveEdge::EMPTY; caps.pooled_edges],
+            small: vec![SmallActive::filler(filler); caps.active_polygons],
             depth_row: vec![D::CLEAR; caps.width],
             color_row: vec![filler; caps.width],
             key_row: vec![0; caps.width],
@@ -95,6 +97,7 @@ impl<C: Copy, D: DepthFormat> ScanStorage for ScanVecs<C, D> {
             active: &mut self.active,
             order: &mut self.order,
             pool: &mut self.pool,
+            small: &mut self.small,
             depth_row: &mut self.depth_row,
             color_row: &mut self.color_row,
             key_row: &mut self.key_row,

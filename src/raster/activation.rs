@@ -14,6 +14,7 @@ use crate::raster::entry_geometry::{entry_corners, for_each_edge, shared_depth, 
 use crate::raster::fixed::first_sample_at_or_after;
 use crate::raster::plane::{Plane, TrianglePlane};
 use crate::raster::small::{SMALL_TRIANGLES, SmallCoverage};
+use crate::raster::small_table::SmallActive;
 use crate::raster::span::{RowBuffers, SpanSource};
 use crate::raster::stepping::ScanState;
 use crate::raster::tables::entry::{PolygonEntry, entry_corner_ids};
@@ -335,6 +336,14 @@ impl<C: Copy> ScanState<'_, '_, C> {
                 )
         ) {
             return None;
+        }
+        // One that covers a later row waits in the small triangles' own
+        // table while it has room, else in the APT as any triangle does.
+        if !(AT_ONCE && coverage.is_last_row())
+            && let Some(entry) = SmallActive::new(polygon.id() + 1, polygon.color, depth, coverage)
+            && self.small.push(entry)
+        {
+            return Some(Ok(()));
         }
         let set = |entry: &mut ActivePolygon<C>| {
             let at = (position as u32, polygon.id() + 1, polygon.end_row);

@@ -43,6 +43,7 @@ pub(crate) mod plane;
 pub(crate) mod scan;
 pub(crate) mod slots;
 pub(crate) mod small;
+pub(crate) mod small_table;
 pub(crate) mod span;
 pub(crate) mod stats;
 pub(crate) mod stepping;
@@ -56,6 +57,7 @@ pub use capacities::{Capacities, MeshCounts};
 pub use depth::{Depth16, Depth24, DepthFormat};
 pub use edge::{ActiveEdge, EdgeEntry};
 pub use scan::{ScanArrays, ScanParts, ScanStorage, Scanner, scan};
+pub use small_table::SmallActive;
 pub use stats::FrameStats;
 pub use tables::{
     Admission, PolygonEntry, Prepared, TableArrays, TableParts, TablePartsRef, TableStorage, Tables,

@@ -21,6 +21,7 @@ use crate::raster::depth::DepthFormat;
 use crate::raster::scan::{ScanParts, ScanStorage, Scanner};
 use crate::raster::slots::{OrderedSlots, Slots};
 use crate::raster::small::SMALL_TRIANGLES;
+use crate::raster::small_table::SmallTable;
 use crate::raster::span::{PixelWrite, RowBuffers};
 use crate::raster::stats::FrameStats;
 use crate::raster::stepping::ScanState;
@@ -145,6 +146,7 @@ fn painted_rows<D: DepthFormat, P: RowPainter, K: RowSink<P::Color, D::Value>>(
         pool: EdgePool::new(Slots::new(parts.pool, &mut pool_len)),
         stats: tables.frame_stats(),
         small_triangles: SMALL_TRIANGLES,
+        small: SmallTable::new(&mut []),
     };
     let (depth_row, slot_row, key_row, own_row) = (
         &mut parts.depth_row[..width],

@@ -34,6 +34,7 @@ use crate::raster::edge::ActiveEdge;
 use crate::raster::fixed::first_sample_at_or_after;
 use crate::raster::slots::{OrderedSlots, Slots};
 use crate::raster::small::SMALL_TRIANGLES;
+use crate::raster::small_table::{SmallActive, SmallTable};
 use crate::raster::span::{PixelWrite, RowBuffers};
 use crate::raster::stats::FrameStats;
 use crate::raster::stepping::ScanState;
@@ -63,6 +64,11 @@ pub struct ScanParts<'a, C, D: DepthFormat> {
     pub order: &'a mut [u16],
     /// Active edges beyond each polygon's first two.
     pub pool: &'a mut [ActiveEdge],
+    /// Small triangles waiting for their next rows, on targets that draw
+    /// small triangles from coverage masks (not 32-bit Arm). It may be
+    /// empty, or shorter than the active polygon table: a small triangle
+    /// that finds no room here waits in the active polygon table.
+    pub small: &'a mut [SmallActive<C>],
     /// The depth row (its length is the widest frame it can scan).
     pub depth_row: &'a mut [D::Value],
     /// The colour row (as long as the depth row).
@@ -74,12 +80,17 @@ pub struct ScanParts<'a, C, D: DepthFormat> {
 /// Fixed-capacity storage for a scanner: rows of `W` pixels, up to `AP`
 /// polygons active on one row and `AE` active edges beyond each polygon's
 /// first two (none for triangles and convex polygons). Build it in a
-/// `static` on a microcontroller (its constructor is `const`).
+/// `static` on a microcontroller (its constructor is `const`). Where small
+/// triangles are drawn from coverage masks (every target but 32-bit Arm)
+/// it also holds `AP` entries of the small triangles' own table
+/// ([`ScanParts::small`]); a Cortex-M build has none.
 #[derive(Debug, Clone)]
 pub struct ScanArrays<C, D: DepthFormat, const W: usize, const AP: usize, const AE: usize> {
     active: [ActivePolygon<C>; AP],
     order: [u16; AP],
     pool: [ActiveEdge; AE],
+    #[cfg(not(target_arch = "arm"))]
+    small: [SmallActive<C>; AP],
     depth_row: [D::Value; W],
     color_row: [C; W],
     key_row: [u32; W],
@@ -94,6 +105,8 @@ impl<C: Copy, D: DepthFormat, const W: usize, const AP: usize, const AE: usize>
             active: [ActivePolygon::filler(filler); AP],
             order: [0; AP],
             pool: [ActiveEdge::EMPTY; AE],
+            #[cfg(not(target_arch = "arm"))]
+            small: [SmallActive::filler(filler); AP],
             depth_row: [D::CLEAR; W],
             color_row: [filler; W],
             key_row: [0; W],
@@ -112,6 +125,10 @@ impl<C: Copy, D: DepthFormat, const W: usize, const AP: usize, const AE: usize> 
             active: &mut self.active,
             order: &mut self.order,
             pool: &mut self.pool,
+            #[cfg(not(target_arch = "arm"))]
+            small: &mut self.small,
+            #[cfg(target_arch = "arm")]
+            small: &mut [],
             depth_row: &mut self.depth_row,
             color_row: &mut self.color_row,
             key_row: &mut self.key_row,
@@ -228,6 +245,7 @@ fn scan_rows<C: Copy, D: DepthFormat, K: RowSink<C, D::Value>>(
         pool: EdgePool::new(Slots::new(parts.pool, &mut pool_len)),
         stats: tables.frame_stats(),
         small_triangles,
+        small: SmallTable::new(parts.small),
     };
     let (depth_row, own_colors, key_row) = (
         &mut parts.depth_row[..width],

@@ -299,20 +299,37 @@ mod tests {
     }
 
     use crate::raster::depth::{Depth16, Depth24, DepthFormat};
-    use crate::raster::scan::{ScanArrays, Scanner, scan_small_as};
+    use crate::raster::scan::{ScanArrays, ScanParts, ScanStorage, Scanner, scan_small_as};
     use crate::raster::tables::{TableArrays, Tables};
     use crate::sink::FnSink;
     use proptest::prelude::*;
     use std::vec::Vec;
 
+    /// A scanner's storage whose small triangles' table holds at most
+    /// `.1` entries: the others wait in the active polygon table.
+    struct SmallRoom<S>(S, usize);
+
+    impl<S: ScanStorage> ScanStorage for SmallRoom<S> {
+        type Color = S::Color;
+        type Depth = S::Depth;
+
+        fn parts_mut(&mut self) -> ScanParts<'_, S::Color, S::Depth> {
+            let mut parts = self.0.parts_mut();
+            let room = self.1.min(parts.small.len());
+            parts.small = &mut core::mem::take(&mut parts.small)[..room];
+            parts
+        }
+    }
+
     /// The rows (colours as face keys, depths) of `scene` on a `width` x
     /// `height` frame, rows `band` only, small triangles drawn from masks
-    /// or from stepped edges.
+    /// (waiting in a table of their own of `small_room` entries, then in
+    /// the active polygon table) or from stepped edges.
     fn rows<D: DepthFormat>(
         scene: &[[ScreenVertex; 3]],
         (width, height): (u16, u16),
         band: core::ops::Range<u16>,
-        small: bool,
+        (small, small_room): (bool, usize),
     ) -> Vec<(u16, Vec<u32>, Vec<D::Value>)> {
         let mut tables =
             Tables::new(TableArrays::<u32, 192, 64, 192>::new(0), width, height).expect("size");
@@ -321,7 +338,8 @@ mod tests {
             tables.push_polygon(&ids, k as u32 + 1).expect("polygon");
         }
         let prepared = tables.prepare();
-        let mut scanner = Scanner::new(ScanArrays::<u32, D, 48, 64, 8>::new(0), 0);
+        let storage = SmallRoom(ScanArrays::<u32, D, 48, 64, 8>::new(0), small_room);
+        let mut scanner = Scanner::new(storage, 0);
         let mut out = Vec::new();
         let mut sink = FnSink(|y: u16, colors: &[u32], depths: &[D::Value]| {
             out.push((y, colors.to_vec(), depths.to_vec()));
@@ -387,22 +405,27 @@ mod tests {
 
         /// Small triangles drawn from their masks give the rows the
         /// stepped edges give, to the bit (colour and depth), in both
-        /// formats, whole frames and bands that start inside triangles.
+        /// formats, whole frames and bands that start inside triangles,
+        /// whether they wait in their own table, in the active polygon
+        /// table, or some in each (a table of `room` entries).
         #[test]
         fn masks_draw_the_rows_edges_draw(
             scene in prop::collection::vec(triangle(), 1..40),
             cut in 0u16..40,
+            room in 0usize..4,
         ) {
             let size = (48, 40);
             for band in [0..40, cut..40, 0..cut] {
-                same(
-                    rows::<Depth16>(&scene, size, band.clone(), true),
-                    rows::<Depth16>(&scene, size, band.clone(), false),
-                )?;
-                same(
-                    rows::<Depth24>(&scene, size, band.clone(), true),
-                    rows::<Depth24>(&scene, size, band, false),
-                )?;
+                for room in [64, 0, room] {
+                    same(
+                        rows::<Depth16>(&scene, size, band.clone(), (true, room)),
+                        rows::<Depth16>(&scene, size, band.clone(), (false, room)),
+                    )?;
+                    same(
+                        rows::<Depth24>(&scene, size, band.clone(), (true, room)),
+                        rows::<Depth24>(&scene, size, band.clone(), (false, room)),
+                    )?;
+                }
             }
         }
     }

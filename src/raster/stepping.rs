@@ -12,6 +12,7 @@ use crate::raster::entry_geometry::polygon_plane;
 use crate::raster::fixed::first_sample_at_or_after;
 use crate::raster::slots::OrderedSlots;
 use crate::raster::small::{SMALL_TRIANGLES, SmallCoverage};
+use crate::raster::small_table::SmallTable;
 use crate::raster::span::{PixelWrite, RowBuffers, SpanSource};
 use crate::raster::stats::FrameStats;
 use crate::raster::tables::Prepared;
@@ -26,6 +27,9 @@ pub(crate) struct ScanState<'t, 'a, C> {
     /// ([`SMALL_TRIANGLES`](crate::raster::small::SMALL_TRIANGLES); the
     /// tests take both ways and compare the rows).
     pub small_triangles: bool,
+    /// Small triangles waiting for their next rows (see
+    /// [`SmallTable`]); one that does not fit waits in the APT.
+    pub small: SmallTable<'a, C>,
 }
 
 impl<C: Copy> ScanState<'_, '_, C> {
@@ -65,7 +69,8 @@ impl<C: Copy> ScanState<'_, '_, C> {
 
     pub(super) fn note_peaks(&mut self) {
         let s = &mut self.stats;
-        s.peak_active_polygons = s.peak_active_polygons.max(self.active.len() as u32);
+        let active = self.active.len() + self.small.len();
+        s.peak_active_polygons = s.peak_active_polygons.max(active as u32);
         s.peak_active_edges = s.peak_active_edges.max(self.pool.live);
         s.peak_pooled_edges = s.peak_pooled_edges.max(self.pool.pooled);
     }
@@ -120,6 +125,7 @@ impl<C: Copy> ScanState<'_, '_, C> {
             }
         }
         *len = live;
+        self.small.scan_row(rows, stats);
         Ok(())
     }
 }

@@ -25,6 +25,7 @@ use crate::raster::depth::DepthFormat;
 use crate::raster::edge::ActiveEdge;
 use crate::raster::slots::{OrderedSlots, Slots};
 use crate::raster::small::SMALL_TRIANGLES;
+use crate::raster::small_table::SmallTable;
 use crate::raster::span::{PixelWrite, RowBuffers};
 use crate::raster::stats::FrameStats;
 use crate::raster::stepping::{ScanState, fill_and_step};
@@ -106,6 +107,7 @@ pub fn render_bands<C: Copy, D: DepthFormat, K: RowSink<C, D::Value>>(
         pool: EdgePool::new(Slots::new(buffers.pool, &mut pool_len)),
         stats: FrameStats::default(),
         small_triangles: SMALL_TRIANGLES,
+        small: SmallTable::new(&mut []),
     };
     let mut stats = BandStats::default();
     let count = order.map_or(tables.polygons.len(), <[u32]>::len);
