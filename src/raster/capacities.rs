@@ -29,7 +29,7 @@ use crate::limits::MAX_POLYGONS;
 use crate::raster::active::ActivePolygon;
 use crate::raster::depth::DepthFormat;
 use crate::raster::edge::{ActiveEdge, EdgeEntry};
-use crate::raster::small::SMALL_TRIANGLES;
+#[cfg(doc)]
 use crate::raster::small_table::SmallActive;
 use crate::raster::stats::FrameStats;
 use crate::raster::tables::PolygonEntry;
@@ -134,20 +134,18 @@ impl Capacities {
     /// Bytes of the arrays of a renderer with these capacities, colour
     /// `C` and depth `D`: the three rows (colour, depth, tie-break key),
     /// the vertex, polygon, corner and edge tables, the active tables and
-    /// the vertex cache. On targets that draw small triangles from
-    /// coverage masks (every target but 32-bit Arm) the active tables
-    /// include the small triangles' own ([`SmallActive`]).
+    /// the vertex cache: what a Cortex-M build holds. A build for a
+    /// target that draws small triangles from coverage masks (every
+    /// target but 32-bit Arm) also holds the small triangles' table,
+    /// `active_polygons` entries of [`SmallActive`] (48 bytes each on a
+    /// 64-bit host), not counted here, so that a firmware sized on a
+    /// desktop gets its own figure.
     pub fn ram_bytes<C, D: DepthFormat>(&self) -> usize {
-        let small = if SMALL_TRIANGLES {
-            size_of::<SmallActive<C>>()
-        } else {
-            0
-        };
         self.width * (size_of::<C>() + size_of::<D::Value>() + size_of::<u32>())
             + self.vertices * size_of::<ScreenVertex>()
             + self.polygons * size_of::<PolygonEntry<C>>()
             + self.corners * (size_of::<u16>() + size_of::<EdgeEntry>())
-            + self.active_polygons * (size_of::<ActivePolygon<C>>() + size_of::<u16>() + small)
+            + self.active_polygons * (size_of::<ActivePolygon<C>>() + size_of::<u16>())
             + self.pooled_edges * size_of::<ActiveEdge>()
             + self.mesh_vertices * size_of::<u16>()
     }
