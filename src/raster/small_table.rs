@@ -167,20 +167,21 @@ impl<'a, C: Copy> SmallTable<'a, C> {
         while index < len {
             let entry = &mut items[index];
             let mut coverage = SmallCoverage::from_words(entry.coverage);
-            let [a, b, c, d] = entry.depth;
+            let depth = entry.depth;
             let narrow = D::NARROW && entry.narrow;
             let filled = if narrow {
-                let narrow = NarrowRow {
-                    acc: a as i32,
-                    row_step: b as i32,
-                    step: c as i32,
+                let row = NarrowRow {
+                    acc: depth[0] as i32,
+                    row_step: depth[1] as i32,
+                    step: depth[2] as i32,
                 };
                 rows.fill_lanes(&coverage, entry.key, entry.color, |column| {
-                    D::narrow_at(&narrow, column)
+                    D::narrow_at(&row, column)
                 })
             } else {
+                let [row_value, dz_dx, _, step] = depth;
                 rows.fill_lanes(&coverage, entry.key, entry.color, |column| {
-                    D::accumulator_at(a, b, d, column)
+                    D::accumulator_at(row_value, dz_dx, step, column)
                 })
             };
             if filled {
@@ -193,10 +194,12 @@ impl<'a, C: Copy> SmallTable<'a, C> {
             }
             coverage.next_row();
             entry.coverage = coverage.to_words();
+            // The next row's: a narrow row's accumulator plus its row step
+            // (modulo 2^32), or the plane's value plus `dz_dy`.
             entry.depth[0] = if narrow {
-                i64::from((a as i32).wrapping_add(b as i32))
+                i64::from((depth[0] as i32).wrapping_add(depth[1] as i32))
             } else {
-                a + c
+                depth[0] + depth[2]
             };
             index += 1;
         }
