@@ -103,7 +103,14 @@ impl Lambert {
             let ch = |v: u8| ((i32::from(v) * k + (1 << 14)) >> 15).clamp(0, 255) as u8;
             return Rgb888::new(ch(self.base.r()), ch(self.base.g()), ch(self.base.b()));
         }
-        let d = face.normal_dot(self.light);
+        // The same value either way: `normal_dot` keeps a desktop's vector
+        // in registers, and on 32-bit Arm (whose integer front end rarely
+        // comes here) the plain product keeps the firmware's code as small.
+        let d = if cfg!(target_arch = "arm") {
+            face.normal().dot(self.light)
+        } else {
+            face.normal_dot(self.light)
+        };
         let d = if face.front { d } else { -d };
         let k = self.ambient + (1.0 - self.ambient) * d.max(0.0);
         scale(self.base, k)
