@@ -80,6 +80,50 @@ impl<C: Copy> SmallActive<C> {
     }
 }
 
+/// A small triangle's depth on its current row, as a narrow row or as the
+/// plane's value stepped by an accumulator: what each of its samples'
+/// depths comes from.
+#[derive(Clone, Copy)]
+pub(crate) enum SmallRowDepth {
+    /// A narrow row ([`DepthFormat::narrow_at`]).
+    Narrow(NarrowRow),
+    /// The plane's value at column 0 of the row, its gradient in x and the
+    /// accumulator's step ([`DepthFormat::accumulator_at`]).
+    Stepped {
+        row_value: i64,
+        dz_dx: i64,
+        step: i64,
+    },
+}
+
+/// Depth-tests and writes the samples `coverage` gives a small triangle on
+/// this row, each with its depth from `depth`, and counts a span when it
+/// covers any: the one fill of a small triangle's row, whichever table it
+/// waits in.
+#[inline(always)]
+pub(crate) fn fill_small_row<C: Copy, D: DepthFormat>(
+    rows: &mut RowBuffers<'_, C, D>,
+    (coverage, key, color): (&SmallCoverage, u32, C),
+    depth: SmallRowDepth,
+    stats: &mut FrameStats,
+) {
+    let filled = match depth {
+        SmallRowDepth::Narrow(row) => {
+            rows.fill_lanes(coverage, key, color, |column| D::narrow_at(&row, column))
+        }
+        SmallRowDepth::Stepped {
+            row_value,
+            dz_dx,
+            step,
+        } => rows.fill_lanes(coverage, key, color, |column| {
+            D::accumulator_at(row_value, dz_dx, step, column)
+        }),
+    };
+    if filled {
+        stats.spans += 1;
+    }
+}
+
 /// The small table of one scan: its entries in use are `items[..len]`.
 /// On 32-bit Arm, which draws no small triangles from masks
 /// ([`SMALL_TRIANGLES`]), it holds nothing: the scan's state keeps the
@@ -169,24 +213,20 @@ impl<'a, C: Copy> SmallTable<'a, C> {
             let mut coverage = SmallCoverage::from_words(entry.coverage);
             let depth = entry.depth;
             let narrow = D::NARROW && entry.narrow;
-            let filled = if narrow {
-                let row = NarrowRow {
+            let row_depth = if narrow {
+                SmallRowDepth::Narrow(NarrowRow {
                     acc: depth[0] as i32,
                     row_step: depth[1] as i32,
                     step: depth[2] as i32,
-                };
-                rows.fill_lanes(&coverage, entry.key, entry.color, |column| {
-                    D::narrow_at(&row, column)
                 })
             } else {
-                let [row_value, dz_dx, _, step] = depth;
-                rows.fill_lanes(&coverage, entry.key, entry.color, |column| {
-                    D::accumulator_at(row_value, dz_dx, step, column)
-                })
+                SmallRowDepth::Stepped {
+                    row_value: depth[0],
+                    dz_dx: depth[1],
+                    step: depth[3],
+                }
             };
-            if filled {
-                stats.spans += 1;
-            }
+            fill_small_row(rows, (&coverage, entry.key, entry.color), row_depth, stats);
             if coverage.is_last_row() {
                 len -= 1;
                 items[index] = items[len];

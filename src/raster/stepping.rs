@@ -12,7 +12,7 @@ use crate::raster::entry_geometry::polygon_plane;
 use crate::raster::fixed::first_sample_at_or_after;
 use crate::raster::slots::OrderedSlots;
 use crate::raster::small::{SMALL_TRIANGLES, SmallCoverage};
-use crate::raster::small_table::SmallTable;
+use crate::raster::small_table::{SmallRowDepth, SmallTable, fill_small_row};
 use crate::raster::span::{PixelWrite, RowBuffers, SpanSource};
 use crate::raster::stats::FrameStats;
 use crate::raster::tables::Prepared;
@@ -302,9 +302,8 @@ fn fill_and_step_general<C: Copy, D: DepthFormat>(
     row: u16,
     rows: &mut RowBuffers<'_, C, D>,
 ) -> bool {
-    if polygon.is_small() {
-        return fill_and_step_small(polygon, stats, rows);
-    }
+    // (A small triangle never comes here: `fill_and_step` takes it first,
+    // and where small triangles are not drawn from masks there are none.)
     let source = match polygon.depth {
         SpanDepth::Stepped {
             dz_dx,
@@ -354,23 +353,20 @@ fn fill_and_step_small<C: Copy, D: DepthFormat>(
     rows: &mut RowBuffers<'_, C, D>,
 ) -> bool {
     let mut coverage = SmallCoverage::from_words(polygon.lower);
-    let (key, color, narrow) = (polygon.key, polygon.color, polygon.narrow);
-    let filled = match polygon.depth {
+    let depth = match polygon.depth {
         SpanDepth::Stepped {
             dz_dx,
             row_value,
             accumulator: Some(step),
             ..
-        } => rows.fill_lanes(&coverage, key, color, |column| {
-            D::accumulator_at(row_value, dz_dx, step, column)
-        }),
-        _ => rows.fill_lanes(&coverage, key, color, |column| {
-            D::narrow_at(&narrow, column)
-        }),
+        } => SmallRowDepth::Stepped {
+            row_value,
+            dz_dx,
+            step,
+        },
+        _ => SmallRowDepth::Narrow(polygon.narrow),
     };
-    if filled {
-        stats.spans += 1;
-    }
+    fill_small_row(rows, (&coverage, polygon.key, polygon.color), depth, stats);
     let alive = !coverage.is_last_row();
     coverage.next_row();
     polygon.lower = coverage.to_words();
