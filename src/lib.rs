@@ -92,7 +92,7 @@ pub use front::clip::ClipValue;
 pub use front::geometry::{Mat4, Vec3, Vec4, newell_normal, radians};
 pub use front::mesh::{
     Mesh, MeshArrays, MeshError, PLANARITY_TOLERANCE, QuantizedView, SharedPlane, StaticMesh,
-    face_normals, is_planar, planar_face_bits,
+    face_normals, fan_normals, is_planar, planar_face_bits,
 };
 pub use front::quantized::QuantizedMesh;
 pub use front::scene::{

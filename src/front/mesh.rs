@@ -60,6 +60,17 @@ pub trait Mesh {
         None
     }
 
+    /// The unit normal of triangle `k` (corners `0, k, k + 1`, `k` from 1)
+    /// of face `face`'s fan, when the face is not planar (the pipeline
+    /// draws such a face as its fan) and the mesh stores it: in model
+    /// space, as [`Self::face_normal`], so that shading reads it instead
+    /// of the triangle's corners. `None` (the default) when it is not
+    /// stored; it is then computed each frame.
+    fn fan_normal(&self, face: usize, k: usize) -> Option<[f32; 3]> {
+        let _ = (face, k);
+        None
+    }
+
     /// Vertex `index`'s normal in model space, for smooth shading
     /// ([`VertexInfo::normal`](crate::VertexInfo::normal)), when the mesh
     /// has one: at unit length it is turned into view space with no square
@@ -362,6 +373,12 @@ pub trait MeshArrays {
     fn face_normals(&self) -> &[[f32; 3]] {
         &[]
     }
+    /// The normals of the fans of faces that are not planar
+    /// ([`Mesh::fan_normal`]), one slot per corner as [`fan_normals`]
+    /// lays them out; empty when not known in advance.
+    fn fan_normals(&self) -> &[[f32; 3]] {
+        &[]
+    }
     /// Each vertex's normal ([`Mesh::vertex_normal`]); empty when none.
     fn vertex_normals(&self) -> &[[f32; 3]] {
         &[]
@@ -403,6 +420,17 @@ impl<T: MeshArrays + ?Sized> Mesh for T {
 
     fn face_normal(&self, index: usize) -> Option<[f32; 3]> {
         self.face_normals().get(index).copied()
+    }
+
+    fn fan_normal(&self, face: usize, k: usize) -> Option<[f32; 3]> {
+        let normals = self.fan_normals();
+        if normals.is_empty() {
+            return None;
+        }
+        let start = *self.face_starts().get(face)? as usize;
+        // (A zero slot is no normal: a planar face's, or no area's.)
+        let n = *normals.get(start + k.checked_sub(1)?)?;
+        (n != [0.0; 3]).then_some(n)
     }
 
     fn vertex_normal(&self, index: usize) -> Option<[f32; 3]> {
@@ -456,6 +484,30 @@ pub fn face_normals<M: Mesh + ?Sized>(mesh: &M) -> impl Iterator<Item = [f32; 3]
         let n = newell_normal(mesh.face(f).iter().map(|&i| mesh.position(usize::from(i))));
         let n = unit(n);
         [n.x, n.y, n.z]
+    })
+}
+
+/// The normals of the fans of a mesh's faces that are not planar, for
+/// [`MeshArrays::fan_normals`] (and [`Mesh::fan_normal`]): one slot per
+/// corner, so that face `f`'s slots start where its corners do. Slot
+/// `k - 1` of a face of `n > 3` corners that is not planar holds the
+/// normal of its fan's triangle `k` (corners `0, k, k + 1`, for `k` in
+/// `1..n - 1`): [`newell_normal`] of those corners, model space, at unit
+/// length (zero for no area), the normal a frame would compute for it.
+/// Every other slot is zero.
+pub fn fan_normals<M: Mesh + ?Sized>(mesh: &M) -> impl Iterator<Item = [f32; 3]> + '_ {
+    (0..mesh.face_count()).flat_map(move |f| {
+        let corners = mesh.face(f);
+        let bent = corners.len() > 3 && !mesh.face_is_planar(f);
+        (0..corners.len()).map(move |slot| match corners.get(slot + 1..slot + 3) {
+            Some(&[b, c]) if bent => {
+                let triangle = [corners[0], b, c];
+                let n = newell_normal(triangle.iter().map(|&i| mesh.position(usize::from(i))));
+                let n = unit(n);
+                [n.x, n.y, n.z]
+            }
+            _ => [0.0; 3],
+        })
     })
 }
 

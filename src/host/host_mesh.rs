@@ -5,7 +5,8 @@ use std::vec::Vec;
 
 use crate::front::geometry::{Vec3, newell_normal, unit};
 use crate::front::mesh::{
-    Mesh, MeshArrays, SharedPlane, StaticMesh, check_shared_planes, face_normals, planar_face_bits,
+    Mesh, MeshArrays, SharedPlane, StaticMesh, check_shared_planes, face_normals, fan_normals,
+    planar_face_bits,
 };
 use crate::front::obj::{ObjCorner, ObjError, ObjErrorKind, ObjReader, Statement};
 use crate::limits::MAX_FACE_CORNERS;
@@ -36,6 +37,12 @@ pub struct HostMesh {
     /// instead of the corners; empty or short, the faces past its end
     /// compute theirs each frame. [`Self::from_obj`] computes them.
     pub face_normals: Vec<[f32; 3]>,
+    /// The normals of the fans of faces that are not planar
+    /// ([`Mesh::fan_normal`](crate::Mesh::fan_normal)), one slot per
+    /// corner ([`fan_normals`](crate::fan_normals)); empty, each frame
+    /// computes them. [`Self::from_obj`] computes them when the mesh has
+    /// such a face.
+    pub fan_normals: Vec<[f32; 3]>,
     /// Each vertex's unit normal, for smooth shading
     /// ([`Mesh::vertex_normal`](crate::Mesh::vertex_normal)); empty when
     /// the mesh has none ([`Self::from_obj_smooth`] and
@@ -278,6 +285,12 @@ impl HostMesh {
     pub fn with_face_analysis(mut self) -> Self {
         self.planar_faces = planar_face_bits(&self).collect();
         self.face_normals = face_normals(&self).collect();
+        let bent = (0..self.face_count()).any(|f| !self.face_is_planar(f));
+        self.fan_normals = if bent {
+            fan_normals(&self).collect()
+        } else {
+            Vec::new()
+        };
         self.shared_planes = crate::host::coplanar::shared_planes(&self);
         self
     }
@@ -429,6 +442,10 @@ impl MeshArrays for HostMesh {
         &self.face_normals
     }
 
+    fn fan_normals(&self) -> &[[f32; 3]] {
+        &self.fan_normals
+    }
+
     fn vertex_normals(&self) -> &[[f32; 3]] {
         &self.vertex_normals
     }
@@ -487,6 +504,61 @@ mod tests {
         for f in 32..40 {
             assert_eq!(mesh.face_is_planar(f), f % 3 != 0, "face {f}");
         }
+    }
+
+    /// A bent face's fan triangles keep their normals (Newell's of each
+    /// triangle, unit length, the value each frame computed before); a
+    /// planar face's and a mesh's with none bent keep none.
+    #[test]
+    fn from_obj_stores_the_normals_of_bent_faces_fans() {
+        let mesh = HostMesh::from_obj(&quads()).unwrap();
+        assert_eq!(mesh.fan_normals.len(), mesh.corners.len());
+        for f in 0..40 {
+            let c = mesh.face(f);
+            for k in [1, 2] {
+                let got = mesh.fan_normal(f, k);
+                if f % 3 != 0 {
+                    assert_eq!(got, None, "face {f}");
+                    continue;
+                }
+                let triangle = [c[0], c[k], c[k + 1]].map(|i| mesh.positions[usize::from(i)]);
+                let n = unit(newell_normal(triangle));
+                assert_eq!(got, Some([n.x, n.y, n.z]), "face {f}, triangle {k}");
+            }
+            assert_eq!(mesh.fan_normal(f, 0), None);
+        }
+        // The lifted corner tilts the two triangles apart.
+        assert_ne!(mesh.fan_normal(0, 1), mesh.fan_normal(0, 2));
+        let flat = HostMesh::from_obj(CUBE).unwrap();
+        assert!(flat.fan_normals.is_empty());
+        assert_eq!(flat.fan_normal(0, 1), None);
+    }
+
+    /// Drawing a bent face, the shading sees each fan triangle's stored
+    /// normal (here replaced by marks no corner gives), not one computed
+    /// from its corners.
+    #[test]
+    fn shading_reads_a_bent_faces_stored_fan_normals() {
+        use crate::host::HostRenderer;
+        use crate::{Camera, Cull, Mat4};
+        let mut mesh = HostMesh::from_obj(&quads()).unwrap();
+        let marks = [[0.0, 0.6, 0.8], [0.8, 0.0, 0.6]];
+        mesh.fan_normals[0] = marks[0];
+        mesh.fan_normals[1] = marks[1];
+        let mut renderer = HostRenderer::<u32, crate::Depth16>::for_mesh(&mesh, 64, 64, 0).unwrap();
+        let model = Mat4::translation(Vec3::new(-0.5, -0.5, -4.0));
+        let camera = Camera::perspective(Mat4::IDENTITY, 60.0, 64, 64, 0.5, 100.0);
+        let mut seen = Vec::new();
+        renderer
+            .draw_mesh(&mesh, &model, &camera, Cull::None, |f| {
+                if f.face == 0 {
+                    seen.push(f.normal());
+                }
+                f.face
+            })
+            .unwrap();
+        let marks = marks.map(Vec3::from_array);
+        assert_eq!(seen, marks.to_vec());
     }
 
     /// A cube of quads.

@@ -23,10 +23,11 @@ pub struct FaceInfo<'a> {
 /// Where a [`FaceInfo`]'s normal and depth come from.
 #[derive(Clone, Copy)]
 enum FaceGeometry<'a> {
-    /// From the mesh, on demand: the normal the mesh stores for the face
-    /// ([`Mesh::face_normal`]) when `corners` are all of its corners (a
-    /// triangle of a bent face's fan has its own normal), else Newell's
-    /// of `corners`.
+    /// From the mesh, on demand: the normal the mesh stores for the
+    /// polygon drawn, the face's ([`Mesh::face_normal`]) when `corners` are
+    /// all of its corners, a triangle's of a bent face's fan
+    /// ([`Mesh::fan_normal`]) when they are that; else Newell's of
+    /// `corners`.
     Mesh {
         mesh: &'a dyn Mesh,
         corners: &'a [u16],
@@ -170,14 +171,26 @@ pub(super) fn normal_vector_i32(n: [i32; 3]) -> Vec3 {
     Vec3::new(n[0] as f32 * s, n[1] as f32 * s, n[2] as f32 * s)
 }
 
+/// Which polygon of a face is drawn: what says where its normal comes
+/// from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum FacePart {
+    /// The face, all of its corners.
+    Whole,
+    /// Triangle `k` (corners `0, k, k + 1`, `k` from 1) of the fan of a
+    /// face that is not planar.
+    Fan(usize),
+    /// Any other polygon of its corners (its normal is Newell's of them).
+    Other,
+}
+
 impl Frame {
     /// What the shader may ask about a face: `face` of `mesh`, drawn as the
-    /// polygon of `corners`, which are all of the face's when `whole` (else
-    /// a triangle of its fan).
+    /// polygon of `corners`, which are `part` of the face.
     pub(super) fn face_info<'a, M: Mesh>(
         &'a self,
         mesh: &'a M,
-        (face, whole): (usize, bool),
+        (face, part): (usize, FacePart),
         corners: &'a [u16],
         front: bool,
     ) -> FaceInfo<'a> {
@@ -194,7 +207,11 @@ impl Frame {
                 mesh,
                 corners,
                 frame: self,
-                stored: mesh.face_normal(face).filter(|_| whole),
+                stored: match part {
+                    FacePart::Whole => mesh.face_normal(face),
+                    FacePart::Fan(k) => mesh.fan_normal(face, k),
+                    FacePart::Other => None,
+                },
             },
         };
         FaceInfo {

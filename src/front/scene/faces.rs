@@ -19,7 +19,7 @@ use crate::front::scene::camera::Camera;
 #[cfg(feature = "clipping")]
 use crate::front::scene::clipping::clip_face;
 use crate::front::scene::cull::Cull;
-use crate::front::scene::face_info::FaceInfo;
+use crate::front::scene::face_info::{FaceInfo, FacePart};
 use crate::front::scene::transform::{Frame, ProjectedVertex, TransformEach, VertexSource};
 use crate::front::scene::vertex_info::VertexInfo;
 use crate::limits::MAX_FACE_CORNERS;
@@ -408,6 +408,7 @@ where
         shade: &mut shade,
         planes: mesh.shared_planes(),
         face_corners: 0,
+        fan_triangle: 0,
         values,
     };
     let mut draw_face = |face: usize| {
@@ -450,6 +451,9 @@ struct Draw<'a, T: ?Sized, M: ?Sized, S, P, V> {
     /// The number of corners of the face being drawn: a polygon of fewer
     /// is a triangle of its fan.
     face_corners: usize,
+    /// Which triangle of its fan is drawn (from 1) while a face that is
+    /// not planar is.
+    fan_triangle: usize,
     /// Where each vertex's value goes (nothing for flat shading).
     values: V,
 }
@@ -499,12 +503,14 @@ where
         if !self.mesh.triangles_only() && corners.len() > 3 && !self.mesh.face_is_planar(face) {
             self.stats.split += 1;
             for k in 1..corners.len() - 1 {
+                self.fan_triangle = k;
                 self.part(
                     face,
                     &[corners[0], corners[k], corners[k + 1]],
                     Side::Unsure,
                 )?;
             }
+            self.fan_triangle = 0;
             Ok(())
         } else {
             self.part(face, corners, side)
@@ -526,10 +532,11 @@ where
                     self.stats.back_faces += 1;
                     return Ok(());
                 }
+                let part = self.part_of(corners);
                 let (frame, mesh, stats) = (self.frame, self.mesh, &mut *self.stats);
-                let (shade, whole) = (&mut *self.shade, corners.len() == self.face_corners);
+                let shade = &mut *self.shade;
                 let admission = self.tables.offer_triangle(ids, |outline| {
-                    shade_front_face(frame, mesh, (face, whole), corners, outline, stats, shade)
+                    shade_front_face(frame, mesh, (face, part), corners, outline, stats, shade)
                 })?;
                 self.count(face, admission)?;
                 return Ok(());
@@ -577,12 +584,13 @@ where
                 return self.quad_as_triangles(face, corners, ids, twice_area);
             }
         }
+        let part = self.part_of(corners);
         let (frame, mesh, stats) = (self.frame, self.mesh, &mut *self.stats);
-        let (shade, whole) = (&mut *self.shade, corners.len() == self.face_corners);
+        let shade = &mut *self.shade;
         let slots = &self.slots;
         let ids = corners.iter().map(|&index| slots[usize::from(index)]);
         let admission = self.tables.offer_polygon(ids, |outline| {
-            shade_front_face(frame, mesh, (face, whole), corners, outline, stats, shade)
+            shade_front_face(frame, mesh, (face, part), corners, outline, stats, shade)
         })?;
         self.count(face, admission)
     }
@@ -653,12 +661,24 @@ where
             let shade = &mut *self.shade;
             let admission = self.tables.offer_triangle(triangle, |_| {
                 *color.get_or_insert_with(|| {
-                    shade_front_face(frame, mesh, (face, true), corners, &outline, stats, shade)
+                    let whole = (face, FacePart::Whole);
+                    shade_front_face(frame, mesh, whole, corners, &outline, stats, shade)
                 })
             })?;
             self.count(face, admission)?;
         }
         Ok(())
+    }
+
+    /// Which part of the face being drawn the polygon of `corners` is: all
+    /// of it, or a triangle of its fan.
+    #[inline(always)]
+    fn part_of(&self, corners: &[u16]) -> FacePart {
+        match (corners.len() == self.face_corners, self.fan_triangle) {
+            (true, _) => FacePart::Whole,
+            (false, 0) => FacePart::Other,
+            (false, k) => FacePart::Fan(k),
+        }
     }
 
     /// Whether the triangle of these vertex-table entries runs clockwise
@@ -854,9 +874,9 @@ where
             self.stats.off_screen += 1;
             return Ok(());
         }
+        let part = (face, self.part_of(corners));
         let (mesh, stats, shade) = (self.mesh, &mut *self.stats, &mut *self.shade);
-        let whole = (face, corners.len() == self.face_corners);
-        let Some(color) = shade_front_face(frame, mesh, whole, corners, &outline, stats, shade)
+        let Some(color) = shade_front_face(frame, mesh, part, corners, &outline, stats, shade)
         else {
             return Ok(());
         };
@@ -907,7 +927,7 @@ where
 fn shade_front_face<C, M: Mesh>(
     frame: &Frame,
     mesh: &M,
-    face: (usize, bool),
+    face: (usize, FacePart),
     corners: &[u16],
     outline: &Outline,
     stats: &mut DrawStats,

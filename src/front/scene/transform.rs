@@ -534,6 +534,7 @@ impl VertexSource for &[ProjectedVertex] {
 mod tests {
     use super::*;
     use crate::front::geometry::unit;
+    use crate::front::scene::face_info::FacePart;
 
     fn similarity(scale: f32, yaw: f32, pitch: f32) -> Mat4 {
         Mat4::translation(Vec3::new(0.5, -2.0, -7.0))
@@ -699,10 +700,11 @@ mod tests {
             let normals = [[normal.x, normal.y, normal.z]];
             let plain = StaticMesh::new(&positions, &[0, 1, 2], &[0]).unwrap();
             let stored = plain.with_face_normals(&normals).unwrap();
-            for (front, whole) in [(true, true), (false, true), (true, false)] {
+            let (whole, fan) = (FacePart::Whole, FacePart::Fan(1));
+            for (front, part) in [(true, whole), (false, whole), (true, fan)] {
                 for face in [
-                    frame.face_info(&plain, (0, whole), &[0, 1, 2], front),
-                    frame.face_info(&stored, (0, whole), &[0, 1, 2], front),
+                    frame.face_info(&plain, (0, part), &[0, 1, 2], front),
+                    frame.face_info(&stored, (0, part), &[0, 1, 2], front),
                     FaceInfo::new(0, front, normal, 2.0),
                 ] {
                     for v in lights {
