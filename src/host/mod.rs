@@ -14,5 +14,6 @@ pub use bands::{
 pub use host_mesh::{DEFAULT_CREASE_DEGREES, HostMesh};
 pub use quantize::QuantizedHostMesh;
 pub use storage::{
-    HostPaintedRenderer, HostRenderer, PaintVecs, ScanVecs, TableVecs, host_renderer,
+    HostPaintedRenderer, HostRenderer, PaintVecs, SMALL_TABLE_ENTRIES_PER_COLUMN, ScanVecs,
+    TableVecs, host_renderer,
 };

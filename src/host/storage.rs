@@ -72,15 +72,31 @@ pub struct ScanVecs<C, D: DepthFormat> {
     key_row: Vec<u32>,
 }
 
+/// Most entries of a [`ScanVecs`]' small triangles' table per pixel of a
+/// row. The table holds small triangles that cover samples on the next
+/// four rows; the bunny at 800x600, not culled, has at most 637 active
+/// polygons of both kinds over a turn (`needs`), against 6,400 entries
+/// here. A small triangle that finds no room waits in the active polygon
+/// table, which has room for all, so the bound decides only where it
+/// waits, never whether it is drawn.
+pub const SMALL_TABLE_ENTRIES_PER_COLUMN: usize = 8;
+
 impl<C: Copy, D: DepthFormat> ScanVecs<C, D> {
     /// Storage for rows of `caps.width` pixels, `caps.active_polygons`
-    /// active polygons and `caps.pooled_edges` pooled edges.
+    /// active polygons and `caps.pooled_edges` pooled edges; the small
+    /// triangles' table takes at most [`SMALL_TABLE_ENTRIES_PER_COLUMN`]
+    /// entries a pixel of the row (`Capacities::worst_case` gives a mesh
+    /// of many faces 65,536 active polygons, which this table need not
+    /// match: 3 MB for the bunny).
     pub fn new(caps: &Capacities, filler: C) -> Self {
+        let small = caps
+            .active_polygons
+            .min(SMALL_TABLE_ENTRIES_PER_COLUMN.saturating_mul(caps.width));
         Self {
             active: vec![ActivePolygon::filler(filler); caps.active_polygons],
             order: vec![0; caps.active_polygons],
             pool: vec![ActiveEdge::EMPTY; caps.pooled_edges],
-            small: vec![SmallActive::filler(filler); caps.active_polygons],
+            small: vec![SmallActive::filler(filler); small],
             depth_row: vec![D::CLEAR; caps.width],
             color_row: vec![filler; caps.width],
             key_row: vec![0; caps.width],
@@ -258,5 +274,31 @@ impl<M: PaintMode, D: DepthFormat> HostPaintedRenderer<M, D> {
         background: M::Color,
     ) -> Result<Self, Error> {
         Self::with_capacities(&mesh.capacities(width), (width, height), mode, background)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Depth24;
+
+    /// The small triangles' table takes the active polygons' count up to
+    /// its bound a pixel of the row, and never more.
+    #[test]
+    fn the_small_table_is_bounded_by_the_row() {
+        let caps = |width, active_polygons| Capacities {
+            width,
+            vertices: 3,
+            polygons: 1 << 16,
+            corners: 3 << 16,
+            active_polygons,
+            pooled_edges: 0,
+            mesh_vertices: 0,
+        };
+        for (width, active, want) in [(800, 1 << 16, 6400), (800, 637, 637), (240, 1 << 16, 1920)] {
+            let mut vecs = ScanVecs::<u16, Depth24>::new(&caps(width, active), 0);
+            let parts = vecs.parts_mut();
+            assert_eq!((parts.small.len(), parts.active.len()), (want, active));
+        }
     }
 }

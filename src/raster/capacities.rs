@@ -136,10 +136,11 @@ impl Capacities {
     /// the vertex, polygon, corner and edge tables, the active tables and
     /// the vertex cache: what a Cortex-M build holds. A build for a
     /// target that draws small triangles from coverage masks (every
-    /// target but 32-bit Arm) also holds the small triangles' table,
-    /// `active_polygons` entries of [`SmallActive`] (48 bytes each on a
-    /// 64-bit host), not counted here, so that a firmware sized on a
-    /// desktop gets its own figure.
+    /// target but 32-bit Arm) also holds the small triangles' table, up
+    /// to `active_polygons` entries of [`SmallActive`] (48 bytes each on
+    /// a 64-bit host; the host's `ScanVecs` bounds it by the row's
+    /// width), not counted here, so that a firmware sized on a desktop
+    /// gets its own figure.
     pub fn ram_bytes<C, D: DepthFormat>(&self) -> usize {
         self.width * (size_of::<C>() + size_of::<D::Value>() + size_of::<u32>())
             + self.vertices * size_of::<ScreenVertex>()
