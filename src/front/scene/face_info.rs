@@ -235,9 +235,7 @@ pub(super) enum FacePart {
     Whole,
     /// Triangle `k` (corners `0, k, k + 1`, `k` from 1) of the fan of a
     /// face that is not planar.
-    Fan(usize),
-    /// Any other polygon of its corners (its normal is Newell's of them).
-    Other,
+    Fan(u16),
 }
 
 impl Frame {
@@ -265,8 +263,7 @@ impl Frame {
                 frame: self,
                 stored: match part {
                     FacePart::Whole => mesh.face_normal(face),
-                    FacePart::Fan(k) => mesh.fan_normal(face, k),
-                    FacePart::Other => None,
+                    FacePart::Fan(k) => mesh.fan_normal(face, usize::from(k)),
                 }
                 .map(PackedNormal::pack),
             },

@@ -407,8 +407,7 @@ where
         stats: &mut stats,
         shade: &mut shade,
         planes: mesh.shared_planes(),
-        face_corners: 0,
-        fan_triangle: 0,
+        drawing: FacePart::Whole,
         values,
     };
     let mut draw_face = |face: usize| {
@@ -448,12 +447,10 @@ struct Draw<'a, T: ?Sized, M: ?Sized, S, P, V> {
     shade: &'a mut S,
     /// The mesh's shared planes not yet reached (sorted by face).
     planes: &'a [SharedPlane],
-    /// The number of corners of the face being drawn: a polygon of fewer
-    /// is a triangle of its fan.
-    face_corners: usize,
-    /// Which triangle of its fan is drawn (from 1) while a face that is
-    /// not planar is.
-    fan_triangle: usize,
+    /// Which part of the face being drawn the polygon in hand is: all of
+    /// it, or a triangle of its fan (a face that is not planar; set back to
+    /// `Whole` after the fan, and an error ends the draw).
+    drawing: FacePart,
     /// Where each vertex's value goes (nothing for flat shading).
     values: V,
 }
@@ -469,7 +466,6 @@ where
 {
     fn face(&mut self, face: usize) -> Result<(), Error> {
         let corners = self.mesh.face(face);
-        self.face_corners = corners.len();
         if self.mesh.triangles_only() && corners.len() != 3 {
             // (`Triangles::new` checked; a mesh of triangles draws none.)
             return Err(Error::NotATriangle);
@@ -503,14 +499,15 @@ where
         if !self.mesh.triangles_only() && corners.len() > 3 && !self.mesh.face_is_planar(face) {
             self.stats.split += 1;
             for k in 1..corners.len() - 1 {
-                self.fan_triangle = k;
+                // (`k` is below `MAX_FACE_CORNERS`, checked above.)
+                self.drawing = FacePart::Fan(k as u16);
                 self.part(
                     face,
                     &[corners[0], corners[k], corners[k + 1]],
                     Side::Unsure,
                 )?;
             }
-            self.fan_triangle = 0;
+            self.drawing = FacePart::Whole;
             Ok(())
         } else {
             self.part(face, corners, side)
@@ -532,7 +529,7 @@ where
                     self.stats.back_faces += 1;
                     return Ok(());
                 }
-                let part = self.part_of(corners);
+                let part = self.drawing;
                 let (frame, mesh, stats) = (self.frame, self.mesh, &mut *self.stats);
                 let shade = &mut *self.shade;
                 let admission = self.tables.offer_triangle(ids, |outline| {
@@ -584,7 +581,7 @@ where
                 return self.quad_as_triangles(face, corners, ids, twice_area);
             }
         }
-        let part = self.part_of(corners);
+        let part = self.drawing;
         let (frame, mesh, stats) = (self.frame, self.mesh, &mut *self.stats);
         let shade = &mut *self.shade;
         let slots = &self.slots;
@@ -668,17 +665,6 @@ where
             self.count(face, admission)?;
         }
         Ok(())
-    }
-
-    /// Which part of the face being drawn the polygon of `corners` is: all
-    /// of it, or a triangle of its fan.
-    #[inline(always)]
-    fn part_of(&self, corners: &[u16]) -> FacePart {
-        match (corners.len() == self.face_corners, self.fan_triangle) {
-            (true, _) => FacePart::Whole,
-            (false, 0) => FacePart::Other,
-            (false, k) => FacePart::Fan(k),
-        }
     }
 
     /// Whether the triangle of these vertex-table entries runs clockwise
@@ -874,7 +860,7 @@ where
             self.stats.off_screen += 1;
             return Ok(());
         }
-        let part = (face, self.part_of(corners));
+        let part = (face, self.drawing);
         let (mesh, stats, shade) = (self.mesh, &mut *self.stats, &mut *self.shade);
         let Some(color) = shade_front_face(frame, mesh, part, corners, &outline, stats, shade)
         else {
