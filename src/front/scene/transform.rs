@@ -264,11 +264,17 @@ impl Frame {
     /// rotation alone; any other is [`normalised_view_normal`].
     #[inline]
     pub(super) fn view_normal(&self, n: Vec3) -> Vec3 {
-        if self.inverse_scale != 0.0 && (n.dot(n) - 1.0).abs() <= UNIT_TOLERANCE {
-            self.model_view.transform_vector(n) * self.inverse_scale
-        } else {
-            normalised_view_normal(n, &self.model_view)
-        }
+        self.turned_by_rotation(n)
+            .unwrap_or_else(|| normalised_view_normal(n, &self.model_view))
+    }
+
+    /// `n` turned by the model-view's rotation alone, when that is its view
+    /// normal: `n` of unit length and the model-view a rotation with
+    /// uniform scale (see [`Self::view_normal`]).
+    #[inline(always)]
+    fn turned_by_rotation(&self, n: Vec3) -> Option<Vec3> {
+        (self.inverse_scale != 0.0 && (n.dot(n) - 1.0).abs() <= UNIT_TOLERANCE)
+            .then(|| self.model_view.transform_vector(n) * self.inverse_scale)
     }
 
     /// [`Self::view_normal`]`(n).dot(v)`, the same value, with the turn
@@ -278,10 +284,9 @@ impl Frame {
     /// [`FaceInfo::normal_dot`]: crate::front::scene::FaceInfo::normal_dot
     #[inline(always)]
     pub(super) fn view_normal_dot(&self, n: Vec3, v: Vec3) -> f32 {
-        if self.inverse_scale != 0.0 && (n.dot(n) - 1.0).abs() <= UNIT_TOLERANCE {
-            (self.model_view.transform_vector(n) * self.inverse_scale).dot(v)
-        } else {
-            self.normalised_view_normal_dot(n, v)
+        match self.turned_by_rotation(n) {
+            Some(turned) => turned.dot(v),
+            None => self.normalised_view_normal_dot(n, v),
         }
     }
 
