@@ -480,11 +480,16 @@ impl MeshArrays for StaticMesh<'_> {
 /// [`Mesh::face_normal`]): [`newell_normal`] of its corners, in model
 /// space, at unit length (zero for a face of no area).
 pub fn face_normals<M: Mesh + ?Sized>(mesh: &M) -> impl Iterator<Item = [f32; 3]> + '_ {
-    (0..mesh.face_count()).map(move |f| {
-        let n = newell_normal(mesh.face(f).iter().map(|&i| mesh.position(usize::from(i))));
-        let n = unit(n);
-        [n.x, n.y, n.z]
-    })
+    (0..mesh.face_count()).map(move |f| unit_normal_of(mesh, mesh.face(f)))
+}
+
+/// [`newell_normal`] of the polygon of `corners` of `mesh`, at unit length
+/// (zero for no area).
+fn unit_normal_of<M: Mesh + ?Sized>(mesh: &M, corners: &[u16]) -> [f32; 3] {
+    let n = unit(newell_normal(
+        corners.iter().map(|&i| mesh.position(usize::from(i))),
+    ));
+    [n.x, n.y, n.z]
 }
 
 /// The normals of the fans of a mesh's faces that are not planar, for
@@ -500,12 +505,7 @@ pub fn fan_normals<M: Mesh + ?Sized>(mesh: &M) -> impl Iterator<Item = [f32; 3]>
         let corners = mesh.face(f);
         let bent = corners.len() > 3 && !mesh.face_is_planar(f);
         (0..corners.len()).map(move |slot| match corners.get(slot + 1..slot + 3) {
-            Some(&[b, c]) if bent => {
-                let triangle = [corners[0], b, c];
-                let n = newell_normal(triangle.iter().map(|&i| mesh.position(usize::from(i))));
-                let n = unit(n);
-                [n.x, n.y, n.z]
-            }
+            Some(&[b, c]) if bent => unit_normal_of(mesh, &[corners[0], b, c]),
             _ => [0.0; 3],
         })
     })
