@@ -211,8 +211,14 @@ struct Dual {
     /// time): core 1 cuts no higher.
     core0_rows: u16,
     /// Microseconds each buffer of rows took to draw, in the last frame
-    /// that drew it (on either core): what [`choose_cut`] balances.
+    /// that drew it (on either core; a buffer the cut splits, both cores'
+    /// parts): what [`choose_cut`] balances.
     profile: [u32; PROFILE_BUFFERS],
+    /// Core 0's part of the buffer the cut splits (the buffer and its
+    /// rows above the cut), once core 0 has drawn it and before core 1's
+    /// part is full: whichever core finishes its part last copies core
+    /// 0's rows into core 1's buffer, which then goes to the wire whole.
+    partial: Option<(RowBuf, usize)>,
 }
 
 /// Buffers of rows in a frame (feature `dual-core`).
@@ -377,6 +383,13 @@ struct Band {
     buffer: usize,
     began: u32,
     stopped: bool,
+    /// Core 0's: the cut, when it splits the buffer being filled (the
+    /// band ends at that row, not at the buffer's end); the frame's height
+    /// otherwise.
+    stop_at: u16,
+    /// Core 1's: whether the buffer being filled is one the cut splits
+    /// (its time is then added to core 0's part's).
+    split: bool,
 }
 
 #[cfg(feature = "dual-core")]
@@ -387,6 +400,8 @@ impl Band {
             buffer: 0,
             began: 0,
             stopped: false,
+            stop_at: HEIGHT,
+            split: false,
         }
     }
 
@@ -462,6 +477,7 @@ impl LcdRows {
                     cut: HEIGHT,
                     core0_rows: 0,
                     profile: [0; PROFILE_BUFFERS],
+                    partial: None,
                 },
             };
             critical_section::with(|cs| QUEUE.borrow_ref_mut(cs).replace(queue));
@@ -602,6 +618,12 @@ impl LcdRows {
                 })
                 .ok_or(LcdError)?;
             }
+        }
+        // The cut splits the buffer being filled: core 1 draws from here.
+        #[cfg(feature = "dual-core")]
+        if y >= self.band.stop_at {
+            self.band.stopped = true;
+            return Err(LcdError);
         }
         let (buf, done) = match self.filling.take() {
             Some((buf, done)) if done < ROWS_PER_BUFFER => (buf, done),
@@ -755,14 +777,18 @@ impl PoolRows {
     }
 
     /// The buffer the next row goes into and the byte offset of its row
-    /// there (a core-1 part starts on a buffer's first row).
+    /// there. Core 1's band may start inside a buffer's rows (the cut
+    /// splits it): its first rows then go where they lie in that buffer,
+    /// below core 0's part, which joins them before the buffer is sent.
     fn row_slot(&mut self, y: u16) -> Result<(&mut [u8; BUFFER_BYTES], usize), LcdError> {
         let (buf, done) = match self.filling.take() {
             Some((buf, done)) if done < ROWS_PER_BUFFER => (buf, done),
             _ => {
                 let buf = pool_buffer()?;
                 self.band.start(y);
-                (buf, 0)
+                let skipped = usize::from(y) % ROWS_PER_BUFFER;
+                self.band.split = skipped != 0;
+                (buf, skipped)
             }
         };
         let (buf, done) = self.filling.insert((buf, done));
@@ -774,9 +800,21 @@ impl PoolRows {
         match self.filling.take() {
             Some((buf, done)) if done + 1 == ROWS_PER_BUFFER => with_queue(|q| {
                 if let Some(slot) = q.dual.profile.get_mut(self.band.buffer) {
-                    *slot = self.band.elapsed();
+                    // A split buffer's time is both cores' parts.
+                    let micros = self.band.elapsed();
+                    *slot = if self.band.split {
+                        slot.saturating_add(micros)
+                    } else {
+                        micros
+                    };
                 }
                 if q.dual.top_done {
+                    // Core 0's part of a split buffer came first: it joins
+                    // this one, the first of the band.
+                    let buf = match q.dual.partial.take() {
+                        Some((part, rows)) => merge_split(buf, part, rows, &mut q.sent),
+                        None => buf,
+                    };
                     q.queued.push(Queued {
                         buf,
                         opens_frame: false,
@@ -796,6 +834,18 @@ impl PoolRows {
             None => Err(LcdError),
         }
     }
+}
+
+/// Core 1's first buffer of a band whose cut splits it, with core 0's
+/// `rows` rows above the cut copied in from `part` (which goes to be
+/// cleared): the buffer, whole. (At most `ROWS_PER_BUFFER - 1` rows, once
+/// a frame.)
+#[cfg(feature = "dual-core")]
+fn merge_split(first: RowBuf, part: RowBuf, rows: usize, sent: &mut Ring) -> RowBuf {
+    let bytes = rows.min(ROWS_PER_BUFFER) * ROW_BYTES;
+    first[..bytes].copy_from_slice(&part[..bytes]);
+    sent.push(part);
+    first
 }
 
 /// A free buffer of core 1's; when all are held or on their way out,
@@ -868,7 +918,35 @@ impl LcdRows {
     /// Core 0's rows of this frame are queued: core 1's held buffers
     /// follow them, and its later ones go straight to the wire.
     pub fn top_done(&mut self) -> Result<(), LcdError> {
+        // Core 0's part of a buffer the cut splits: its rows above the cut.
+        let part = match self.filling.take() {
+            Some((buf, rows)) if self.band.stopped && rows > 0 => {
+                Some((buf, rows, self.band.buffer, self.band.elapsed()))
+            }
+            other => {
+                self.filling = other;
+                None
+            }
+        };
         with_queue(|q| {
+            if let Some((buf, rows, index, micros)) = part {
+                if let Some(slot) = q.dual.profile.get_mut(index) {
+                    *slot = slot.saturating_add(micros);
+                }
+                // Core 1's first buffer holds the rows below the cut: when
+                // it is full already, core 0's rows go into it here, else
+                // core 1 takes them when it is.
+                match q.dual.held.pop() {
+                    Some(first) => {
+                        let merged = merge_split(first, buf, rows, &mut q.sent);
+                        q.queued.push(Queued {
+                            buf: merged,
+                            opens_frame: false,
+                        });
+                    }
+                    None => q.dual.partial = Some((buf, rows)),
+                }
+            }
             while let Some(buf) = q.dual.held.pop() {
                 q.queued.push(Queued {
                     buf,
@@ -888,7 +966,12 @@ impl LcdRows {
     /// draws every row until core 1 cuts its share.
     pub fn frame_done(&mut self) -> Result<(), LcdError> {
         self.band.stopped = false;
+        self.band.stop_at = HEIGHT;
         with_queue(|q| {
+            // Left only when core 1's rows failed: cleared, not sent.
+            if let Some((buf, _)) = q.dual.partial.take() {
+                q.sent.push(buf);
+            }
             // Held buffers are left only when core 0's rows failed: they
             // are cleared, not sent after the next frame's rows.
             while let Some(buf) = q.dual.held.pop() {
@@ -930,7 +1013,7 @@ impl LcdRows {
                 if buf.is_some() {
                     q.dual.core0_rows = y + ROWS_PER_BUFFER as u16;
                 }
-                Ok(buf)
+                Ok(buf.map(|buf| (buf, q.dual.cut)))
             })
             .ok_or(LcdError)?;
             match claimed {
@@ -938,8 +1021,16 @@ impl LcdRows {
                     self.band.stopped = true;
                     return Err(LcdError);
                 }
-                Ok(Some(buf)) => {
+                Ok(Some((buf, cut))) => {
                     self.band.start(y);
+                    // A cut inside this buffer ends the band there (the
+                    // cut is chosen below the rows core 0 has claimed, so
+                    // it is known by the time core 0 claims its buffer).
+                    self.band.stop_at = if cut < y + ROWS_PER_BUFFER as u16 {
+                        cut
+                    } else {
+                        HEIGHT
+                    };
                     return Ok(buf);
                 }
                 Ok(None) => core::hint::spin_loop(),
@@ -952,33 +1043,61 @@ impl LcdRows {
 /// Core 1's share of this frame (feature `dual-core`): the first row it
 /// draws, chosen once it has drawn the next frame's scene, and noted for
 /// core 0 (which stops there). By the last frame's time per buffer of
-/// rows: the lowest cut (a buffer's edge, below the rows core 0 has
-/// started, leaving core 1 no more rows than its buffers hold) at which
-/// core 0's rows still to draw, plus `bias` microseconds (what the rows'
-/// times leave out: core 0's waits for the wire, the rest of the buffer
-/// it is in), take at least as long as core 1's.
-pub fn choose_cut(bias: i32) -> Option<u16> {
+/// rows: the row (below the rows core 0 has started, leaving core 1 no
+/// more rows than its buffers hold) at which core 0's rows still to draw,
+/// plus `bias` microseconds (what the rows' times leave out: core 0's
+/// waits for the wire, the rest of the buffer it is in), take as long as
+/// core 1's, within the buffer where the two meet taken as spread evenly
+/// over its rows. A cut inside a buffer splits it between the cores
+/// (see [`merge_split`]): cut at buffers' edges only, the cores' ends
+/// were apart by up to a buffer's time (about 0.13 M cycles), and the cut
+/// swung from frame to frame between two edges. Before any row has a time
+/// (the first frame), the rows core 0 has still to draw are halved, as if
+/// each took as long. Returns the cut and whether it came from times.
+pub fn choose_cut(bias: i32) -> Option<(u16, bool)> {
     with_queue(|q| {
         let d = &mut q.dual;
-        let per_buffer = ROWS_PER_BUFFER as u16;
-        let first = usize::from(d.core0_rows.div_ceil(per_buffer))
+        let per_buffer = ROWS_PER_BUFFER as i32;
+        let first = usize::from(d.core0_rows.div_ceil(ROWS_PER_BUFFER as u16))
             .max(PROFILE_BUFFERS.saturating_sub(POOL_BUFFERS));
-        let mut core1: i64 = d
-            .profile
-            .get(first..)
-            .map_or(0, |p| p.iter().map(|&m| i64::from(m)).sum());
-        let mut core0 = i64::from(bias);
-        let mut cut = first;
-        for (buffer, &micros) in d.profile.iter().enumerate().skip(first) {
-            if core0 >= core1 {
-                break;
-            }
-            core0 += i64::from(micros);
-            core1 -= i64::from(micros);
-            cut = buffer + 1;
+        // Microseconds: a frame is far below 2^31 of them.
+        let mut core1: i32 = d.profile.get(first..).map_or(0, |p| {
+            p.iter().fold(0i32, |sum, &m| {
+                sum.saturating_add(m.min(i32::MAX as u32) as i32)
+            })
+        });
+        let lowest = first as i32 * per_buffer;
+        if core1 == 0 {
+            let from = i32::from(d.core0_rows);
+            d.cut = (from + (i32::from(HEIGHT) - from) / 2).max(lowest) as u16;
+            return (d.cut, false);
         }
-        // (`cut` is at most PROFILE_BUFFERS, so the row fits the frame.)
-        d.cut = (cut as u16) * per_buffer;
-        d.cut
+        let mut core0 = bias;
+        let mut cut = lowest;
+        for &micros in d.profile.iter().skip(first) {
+            let m = micros.min(i32::MAX as u32 / 16) as i32;
+            if core0.saturating_add(m) <= core1 - m {
+                core0 += m;
+                core1 -= m;
+                cut += per_buffer;
+                continue;
+            }
+            // They meet in this buffer: `r` of its rows to core 0, where
+            // core0 + r·m/8 = core1 - r·m/8, rounded.
+            if core1 > core0 && m > 0 {
+                let gap = (core1 - core0).min(2 * m);
+                cut += ((gap * per_buffer + m) / (2 * m)).min(per_buffer - 1);
+            }
+            break;
+        }
+        // (`cut` is at most the frame's height.)
+        d.cut = cut as u16;
+        // Both cores add their parts of a split buffer's time.
+        if cut % per_buffer != 0
+            && let Some(slot) = d.profile.get_mut(cut as usize / ROWS_PER_BUFFER)
+        {
+            *slot = 0;
+        }
+        (d.cut, true)
     })
 }

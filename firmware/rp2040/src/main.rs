@@ -435,11 +435,17 @@ fn run() -> Result<core::convert::Infallible, Fault> {
                 let _ = next_renderer.tables.prepare();
                 #[cfg(any(feature = "gouraud", feature = "textured"))]
                 let _ = next_renderer.renderer.tables.prepare();
-                let cut = lcd::choose_cut(bias).unwrap_or(HEIGHT).min(scanned_rows);
+                let (cut, timed) = lcd::choose_cut(bias).unwrap_or((HEIGHT, false));
+                let cut = cut.min(scanned_rows);
                 let begun = pool_rows.begin_band().map_err(RenderError::Sink);
                 let scanned =
                     begun.and_then(|()| scan_bottom(next_renderer, pool_rows, cut..scanned_rows));
-                theirs = Some((drawn, scanned, timer.get_counter_low()));
+                theirs = Some((
+                    drawn,
+                    scanned,
+                    timer.get_counter_low(),
+                    cut < scanned_rows && timed,
+                ));
             },
             || {
                 let scanned = match scan_top(&mut rows) {
@@ -453,18 +459,26 @@ fn run() -> Result<core::convert::Infallible, Fault> {
         );
         let (ours, our_end) = ours;
         let frame_done = rows.frame_done();
-        let Some((drawn, their_scan, their_end)) = theirs else {
+        let Some((drawn, their_scan, their_end, learn)) = theirs else {
             // Core 1 ran the job (join returned), so this cannot happen.
             return Err(Fault::Core1);
         };
-        // Half the gap between the cores' ends, in the direction that
-        // closes it (by the timer: the cut does not change what is drawn).
+        // The gap between the cores' ends, in the direction that closes
+        // it (by the timer: the cut does not change what is drawn). The
+        // cut moves by rows, so the whole gap is learnt: a bias of `b`
+        // moves about `b / 2` of work from one core to the other, closing
+        // a gap of `b`. Not learnt when the cut was not chosen by the
+        // rows' times (the first frame's, when no row had a time yet) or
+        // core 1 drew no rows: that gap says nothing of the bias, and
+        // learnt, it set the next frames' cuts far off.
         let gap = our_end.wrapping_sub(their_end) as i32;
-        // (Within a frame's time either way: a cut pinned at a limit does
-        // not wind it up further.)
-        bias = bias
-            .saturating_add(gap / 2)
-            .clamp(-BIAS_LIMIT_US, BIAS_LIMIT_US);
+        if learn {
+            // (Within a frame's time either way: a cut pinned at a limit
+            // does not wind it up further.)
+            bias = bias
+                .saturating_add(gap)
+                .clamp(-BIAS_LIMIT_US, BIAS_LIMIT_US);
+        }
         let outcome = match (&scene, ours, their_scan, frame_done) {
             (Err(_), ..) => Err(FrameError::Tables),
             (Ok(_), Ok(()), Ok(stats), Ok(())) => Ok(stats),
