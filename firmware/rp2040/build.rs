@@ -90,8 +90,6 @@ const ROW_BUFFERS: usize = 64;
 const DUAL_CORE_POOL_ROWS: usize = 128;
 /// Rows of core 1's own buffers with `dual-core` and `textured`.
 const DUAL_CORE_POOL_ROWS_TEXTURED: usize = 176;
-/// Bytes of core 1's stack with `dual-core` (`src/dual.rs`).
-const DUAL_CORE_STACK: usize = 8 * 1024;
 /// Rows per DMA buffer (`src/lcd.rs`): each buffer holds this many rows,
 /// sent and cleared by one transfer each, so the per-transfer work is paid
 /// once per eight rows. It divides both `HEIGHT` and `ROW_BUFFERS`.
@@ -430,14 +428,14 @@ fn measure_views(
     let mut ram = renderer + 2 * mesh_vertices + SPI_BUFFER + ROW_BUFFERS * 2 * usize::from(WIDTH);
     if env::var_os("CARGO_FEATURE_DUAL_CORE").is_some() {
         // Both cores (`src/dual.rs`, `src/lcd.rs`): a second renderer and
-        // vertex cache, the ring doubled, core 1's 128 rows of buffers and
-        // its stack; when textured, one ring and 176 rows for core 1.
+        // vertex cache, the ring doubled and core 1's 128 rows of buffers;
+        // when textured, one ring and 176 rows for core 1. (Core 1's stack
+        // is in SRAM4/SRAM5, outside `memory.x`'s RAM.)
         let (ring, pool) = match texture {
             Some(_) => (0, DUAL_CORE_POOL_ROWS_TEXTURED),
             None => (ROW_BUFFERS, DUAL_CORE_POOL_ROWS),
         };
-        ram +=
-            renderer + 2 * mesh_vertices + (ring + pool) * 2 * usize::from(WIDTH) + DUAL_CORE_STACK;
+        ram += renderer + 2 * mesh_vertices + (ring + pool) * 2 * usize::from(WIDTH);
     }
     // The renderer is built at compile time in its static
     // (`Renderer::new_in_static`), so it needs room once.
