@@ -7,8 +7,8 @@ use crate::machine::Interleave;
 /// The usage message.
 pub const USAGE: &str = "\
 usage: dual-core-check --single ELF [--dual ELF] [--frames N] [--budget-ratio R]
-                       [--bootrom PATH] [--quantum Q] [--interleave MODE]
-                       [--max-cycles N]
+                       [--budget-period N] [--bootrom PATH] [--quantum Q]
+                       [--interleave MODE] [--max-cycles N]
 
 Runs each RP2040 firmware ELF on the emulated RP2040 (rp2040-emu), decodes
 what it sends the ST7789 over SPI0, checks every frame's CRC-32 against the
@@ -20,6 +20,8 @@ last line compares the median frame periods of the two builds.
                       EXPECTED_CRCS, else the check fails)
   --frames N          frames to check after the start-up clear (default 4)
   --budget-ratio R    fail if the dual/single period ratio exceeds R (needs --dual)
+  --budget-period N   fail if the median frame period (the dual build's, with
+                      --dual) exceeds N cycles (at 125 MHz, 5,000,000 is 25 fps)
   --bootrom PATH      the boot ROM module, rp2040js's bootrom.mjs (default:
                       $ZLINE_RP2040_BOOTROM, else ../shared/rp2040-emu/bootrom.mjs
                       beside the repository)
@@ -56,6 +58,9 @@ pub struct Options {
     pub frames: usize,
     /// Largest dual/single period ratio accepted.
     pub budget_ratio: Option<f64>,
+    /// Largest median frame period accepted, in cycles (the dual build's
+    /// when there is one).
+    pub budget_period: Option<u64>,
     /// The boot ROM module, if given.
     pub bootrom: Option<PathBuf>,
     /// Cycles per quantum.
@@ -90,6 +95,7 @@ pub fn parse(args: impl IntoIterator<Item = String>) -> Result<Command, String> 
     let mut dual = None;
     let mut frames = None;
     let mut budget_ratio = None;
+    let mut budget_period = None;
     let mut bootrom = None;
     let mut quantum = None;
     let mut max_cycles = None;
@@ -119,6 +125,7 @@ pub fn parse(args: impl IntoIterator<Item = String>) -> Result<Command, String> 
             "--quantum" => set(&mut quantum, &flag, number::<u32>(&flag, &value()?)?)?,
             "--max-cycles" => set(&mut max_cycles, &flag, number::<u64>(&flag, &value()?)?)?,
             "--budget-ratio" => set(&mut budget_ratio, &flag, ratio(&value()?)?)?,
+            "--budget-period" => set(&mut budget_period, &flag, number::<u64>(&flag, &value()?)?)?,
             "--interleave" => set(&mut interleave, &flag, interleave_mode(&value()?)?)?,
             other => return Err(format!("unknown argument {other:?}")),
         }
@@ -140,6 +147,7 @@ pub fn parse(args: impl IntoIterator<Item = String>) -> Result<Command, String> 
         dual,
         frames,
         budget_ratio,
+        budget_period,
         bootrom,
         quantum,
         interleave: interleave.unwrap_or(Interleave::Lockstep),
@@ -204,6 +212,7 @@ mod tests {
             (o.budget_ratio, o.bootrom, o.max_cycles),
             (None, None, None)
         );
+        assert_eq!(o.budget_period, None);
         assert_eq!(o.interleave, Interleave::Lockstep);
     }
 
@@ -217,6 +226,7 @@ mod tests {
             "5",
             "--budget-ratio",
             "0.6",
+            "--budget-period=5_000_000",
             "--bootrom",
             "rom.mjs",
             "--quantum=2",
@@ -231,6 +241,7 @@ mod tests {
         assert_eq!(o.dual, Some(PathBuf::from("d")));
         assert_eq!((o.frames, o.quantum, o.max_cycles), (5, 2, Some(1_000_000)));
         assert_eq!(o.budget_ratio, Some(0.6));
+        assert_eq!(o.budget_period, Some(5_000_000));
         assert_eq!(o.bootrom, Some(PathBuf::from("rom.mjs")));
         assert_eq!(o.interleave, Interleave::Independent);
     }
@@ -244,6 +255,7 @@ mod tests {
         assert!(parse_args(&["--single", "a", "--budget-ratio", "1.1"]).is_err());
         assert!(parse_args(&["--single", "a", "--dual", "b", "--budget-ratio", "-1"]).is_err());
         assert!(parse_args(&["--single", "a", "--single", "b"]).is_err());
+        assert!(parse_args(&["--single", "a", "--budget-period", "25fps"]).is_err());
         assert!(parse_args(&["--single", "a", "--wat"]).is_err());
         assert!(parse_args(&["--single", "a", "--interleave", "both"]).is_err());
         let Ok(Command::Run(o)) = parse_args(&["--single", "a", "--interleave", "contended"])

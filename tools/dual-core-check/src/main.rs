@@ -93,6 +93,7 @@ fn check(options: &Options) -> Result<bool, String> {
     print_verdict("single", &single_verdict);
     let mut passed = single_verdict.failures.is_empty();
     let Some((dual, dual_outcome)) = dual.as_ref().zip(dual_outcome.as_ref()) else {
+        passed &= within_period_budget(options.budget_period, &single_verdict);
         println!("{}", report::single_summary(&single_verdict));
         return Ok(passed);
     };
@@ -111,8 +112,21 @@ fn check(options: &Options) -> Result<bool, String> {
         println!("FAIL: period ratio {ratio:.3} is over the budget of {budget:.3}");
         passed = false;
     }
+    passed &= within_period_budget(options.budget_period, &dual_verdict);
     println!("{}", report::dual_summary(&single_verdict, &dual_verdict));
     Ok(passed)
+}
+
+/// Whether the median period of `verdict` is within `budget` cycles
+/// (`--budget-period`; none given: yes), saying why not.
+fn within_period_budget(budget: Option<u64>, verdict: &Verdict) -> bool {
+    match (budget, verdict.median_period) {
+        (Some(budget), Some(period)) if period > budget => {
+            println!("FAIL: median period {period} cycles is over the budget of {budget}");
+            false
+        }
+        _ => true,
+    }
 }
 
 /// The boot ROM module: `--bootrom`, else `$ZLINE_RP2040_BOOTROM`, else the
