@@ -77,7 +77,8 @@ fn take_core1_stack() -> Option<StackAllocation> {
 pub fn measure_core1_stack() -> u32 {
     let start = CORE1_STACK_START as *const usize;
     let mut untouched = 0;
-    // SAFETY: every word read is inside the array; core 1 is waiting on
+    // SAFETY: every word read is inside core 1's stack (SRAM4/SRAM5,
+    // which nothing else uses); core 1 is waiting on
     // the FIFO in `core1_main`, whose frame is at the stack's top, above
     // the painted words this stops at.
     while untouched < CORE1_STACK_WORDS && unsafe { start.add(untouched).read_volatile() } == PAINT

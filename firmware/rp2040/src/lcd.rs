@@ -916,7 +916,10 @@ impl RowSink<WireColor, u16> for PoolRows {
 #[cfg(feature = "dual-core")]
 impl LcdRows {
     /// Core 0's rows of this frame are queued: core 1's held buffers
-    /// follow them, and its later ones go straight to the wire.
+    /// follow them, and its later ones go straight to the wire. Core 0's
+    /// part of a buffer the cut splits goes into core 1's first buffer
+    /// here when that is full already, else it waits for core 1 there
+    /// ([`merge_split`]).
     pub fn top_done(&mut self) -> Result<(), LcdError> {
         // Core 0's part of a buffer the cut splits: its rows above the cut.
         let part = match self.filling.take() {
@@ -1024,8 +1027,9 @@ impl LcdRows {
                 Ok(Some((buf, cut))) => {
                     self.band.start(y);
                     // A cut inside this buffer ends the band there (the
-                    // cut is chosen below the rows core 0 has claimed, so
-                    // it is known by the time core 0 claims its buffer).
+                    // cut is chosen at or below the rows core 0 has
+                    // claimed, so it is known by the time core 0 claims
+                    // its buffer).
                     self.band.stop_at = if cut < y + ROWS_PER_BUFFER as u16 {
                         cut
                     } else {
@@ -1051,20 +1055,23 @@ impl LcdRows {
 /// over its rows. A cut inside a buffer splits it between the cores
 /// (see [`merge_split`]): cut at buffers' edges only, the cores' ends
 /// were apart by up to a buffer's time (about 0.13 M cycles), and the cut
-/// swung from frame to frame between two edges. Before any row has a time
-/// (the first frame), the rows core 0 has still to draw are halved, as if
-/// each took as long. Returns the cut and whether it came from times.
+/// swung from frame to frame between two edges. Before any row below core
+/// 0's has a time (the first frame), the rows core 0 has still to draw are
+/// halved, as if each took as long. Returns the cut and whether it came
+/// from times.
 pub fn choose_cut(bias: i32) -> Option<(u16, bool)> {
     with_queue(|q| {
         let d = &mut q.dual;
         let per_buffer = ROWS_PER_BUFFER as i32;
         let first = usize::from(d.core0_rows.div_ceil(ROWS_PER_BUFFER as u16))
             .max(PROFILE_BUFFERS.saturating_sub(POOL_BUFFERS));
-        // Microseconds: a frame is far below 2^31 of them.
+        // Microseconds, each buffer's capped so that the sums and the
+        // split's `gap · 8 + m` below stay in an i32 (a frame takes far
+        // fewer than 2^26 of them).
+        let micros_of = |m: u32| m.min(i32::MAX as u32 / 32) as i32;
         let mut core1: i32 = d.profile.get(first..).map_or(0, |p| {
-            p.iter().fold(0i32, |sum, &m| {
-                sum.saturating_add(m.min(i32::MAX as u32) as i32)
-            })
+            p.iter()
+                .fold(0i32, |sum, &m| sum.saturating_add(micros_of(m)))
         });
         let lowest = first as i32 * per_buffer;
         if core1 == 0 {
@@ -1075,7 +1082,7 @@ pub fn choose_cut(bias: i32) -> Option<(u16, bool)> {
         let mut core0 = bias;
         let mut cut = lowest;
         for &micros in d.profile.iter().skip(first) {
-            let m = micros.min(i32::MAX as u32 / 16) as i32;
+            let m = micros_of(micros);
             if core0.saturating_add(m) <= core1 - m {
                 core0 += m;
                 core1 -= m;

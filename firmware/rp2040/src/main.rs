@@ -435,17 +435,18 @@ fn run() -> Result<core::convert::Infallible, Fault> {
                 let _ = next_renderer.tables.prepare();
                 #[cfg(any(feature = "gouraud", feature = "textured"))]
                 let _ = next_renderer.renderer.tables.prepare();
-                let (cut, timed) = lcd::choose_cut(bias).unwrap_or((HEIGHT, false));
+                // (No cut for a frame that is not scanned: choosing one
+                // clears the time of the buffer it splits, which no core
+                // would then time.)
+                let (cut, timed) = match scanned_rows {
+                    0 => (0, false),
+                    _ => lcd::choose_cut(bias).unwrap_or((HEIGHT, false)),
+                };
                 let cut = cut.min(scanned_rows);
                 let begun = pool_rows.begin_band().map_err(RenderError::Sink);
                 let scanned =
                     begun.and_then(|()| scan_bottom(next_renderer, pool_rows, cut..scanned_rows));
-                theirs = Some((
-                    drawn,
-                    scanned,
-                    timer.get_counter_low(),
-                    cut < scanned_rows && timed,
-                ));
+                theirs = Some((drawn, scanned, timer.get_counter_low(), timed));
             },
             || {
                 let scanned = match scan_top(&mut rows) {
@@ -459,7 +460,7 @@ fn run() -> Result<core::convert::Infallible, Fault> {
         );
         let (ours, our_end) = ours;
         let frame_done = rows.frame_done();
-        let Some((drawn, their_scan, their_end, learn)) = theirs else {
+        let Some((drawn, their_scan, their_end, timed)) = theirs else {
             // Core 1 ran the job (join returned), so this cannot happen.
             return Err(Fault::Core1);
         };
@@ -467,12 +468,13 @@ fn run() -> Result<core::convert::Infallible, Fault> {
         // it (by the timer: the cut does not change what is drawn). The
         // cut moves by rows, so the whole gap is learnt: a bias of `b`
         // moves about `b / 2` of work from one core to the other, closing
-        // a gap of `b`. Not learnt when the cut was not chosen by the
-        // rows' times (the first frame's, when no row had a time yet) or
-        // core 1 drew no rows: that gap says nothing of the bias, and
-        // learnt, it set the next frames' cuts far off.
+        // a gap of `b`. Learnt only from a frame both cores drew whole,
+        // its cut chosen by the rows' times: the first frame's cut (no row
+        // had a time yet) and a band an error cut short say nothing of the
+        // bias, and learnt at full gain such a gap could pin the cut at
+        // the frame's foot, where core 1 draws nothing.
         let gap = our_end.wrapping_sub(their_end) as i32;
-        if learn {
+        if timed && ours.is_ok() && their_scan.is_ok() && frame_done.is_ok() {
             // (Within a frame's time either way: a cut pinned at a limit
             // does not wind it up further.)
             bias = bias
