@@ -90,6 +90,9 @@ const ROW_BUFFERS: usize = 64;
 const DUAL_CORE_POOL_ROWS: usize = 128;
 /// Rows of core 1's own buffers with `dual-core` and `textured`.
 const DUAL_CORE_POOL_ROWS_TEXTURED: usize = 176;
+/// Bytes of code the flat `dual-core` build runs from RAM (`src/frame.rs`'s
+/// `draw_scene`, 10,056 B on 2026-11-30), with room to grow.
+const DUAL_CORE_RAM_CODE: usize = 12 * 1024;
 /// Rows per DMA buffer (`src/lcd.rs`): each buffer holds this many rows,
 /// sent and cleared by one transfer each, so the per-transfer work is paid
 /// once per eight rows. It divides both `HEIGHT` and `ROW_BUFFERS`.
@@ -436,6 +439,11 @@ fn measure_views(
             None => (ROW_BUFFERS, DUAL_CORE_POOL_ROWS),
         };
         ram += renderer + 2 * mesh_vertices + (ring + pool) * 2 * usize::from(WIDTH);
+        // The flat build's scene code, run from RAM (`frame::draw_scene`).
+        let painted = env::var_os("CARGO_FEATURE_GOURAUD").is_some() || texture.is_some();
+        if !painted {
+            ram += DUAL_CORE_RAM_CODE;
+        }
     }
     // The renderer is built at compile time in its static
     // (`Renderer::new_in_static`), so it needs room once.

@@ -66,8 +66,23 @@ where
 /// The scene of [`render_frame`] alone (feature `dual-core`, where two
 /// cores scan it in bands): `renderer`'s tables cleared and `mesh` drawn
 /// into them, as `render_frame` draws it.
+///
+/// On the board it runs from RAM (`.data`, which cortex-m-rt copies from
+/// flash before `main`): core 1 runs it while core 0 scans rows with code
+/// from flash, and the two cores' fetches from the XIP cache, one slave
+/// of the bus, made one wait for the other (`tools/dual-core-check
+/// --interleave contended`: the period ratio fell from 0.547 to 0.540).
+/// The face loop, the tables' admission and the shading are inlined here
+/// (about 10 KB); the functions it calls in flash are reached through the
+/// linker's long-branch thunks.
 #[cfg(feature = "dual-core")]
-#[allow(dead_code)] // The build script includes this file for `render_frame`.
+#[allow(dead_code)]
+// The build script includes this file for `render_frame`.
+// SAFETY: `.data.*` is linked into RAM with its image in flash and copied
+// there by cortex-m-rt's reset handler before `main`, like any
+// initialised static; the RP2040 executes from SRAM, and nothing writes
+// this section after the copy.
+#[cfg_attr(target_arch = "arm", unsafe(link_section = ".data.draw_scene"))]
 pub fn draw_scene<T, S, C, M>(
     renderer: &mut Renderer<T, S, C>,
     mesh: &M,
