@@ -440,8 +440,7 @@ fn measure_views(
         };
         ram += renderer + 2 * mesh_vertices + (ring + pool) * 2 * usize::from(WIDTH);
         // The flat build's scene code, run from RAM (`frame::draw_scene`).
-        let painted = env::var_os("CARGO_FEATURE_GOURAUD").is_some() || texture.is_some();
-        if !painted {
+        if !gouraud && texture.is_none() {
             ram += DUAL_CORE_RAM_CODE;
         }
     }
