@@ -89,6 +89,7 @@ pub use raster::zbuffer;
 
 pub use error::{Error, RenderError};
 pub use front::clip::ClipValue;
+pub use front::closed_hull::ClosedHull;
 pub use front::geometry::{Mat4, Vec3, Vec4, newell_normal, radians};
 pub use front::mesh::{
     Mesh, MeshArrays, MeshError, PLANARITY_TOLERANCE, QuantizedView, SharedPlane, StaticMesh,

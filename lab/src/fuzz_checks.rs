@@ -569,7 +569,9 @@ pub fn pipeline(data: &[u8]) {
     );
     // Byte 22 (zero in the inputs saved before it was read): bit 0, near
     // and far anywhere in the f32 range (bytes 23-30); bit 1, the banded
-    // renderer cut at a row of byte 31's choosing.
+    // renderer cut at a row of byte 31's choosing; bit 2, a closed mesh
+    // keeps its hull (`Cull::None` then culls back faces where none can
+    // show, checked against the mesh drawn two-sided).
     let wide = bytes.u8();
     let (near, far) = if wide & 1 != 0 {
         let a = finite(&mut bytes, near).abs();
@@ -585,9 +587,12 @@ pub fn pipeline(data: &[u8]) {
         (near, far)
     };
     let band_cut = (wide & 2 != 0).then(|| 1 + u16::from(bytes.u8()) % height.max(1));
-    let Ok(mesh) = HostMesh::from_obj(obj) else {
+    let Ok(mut mesh) = HostMesh::from_obj(obj) else {
         return; // The reader's own target checks its errors.
     };
+    if wide & 4 == 0 {
+        mesh.closed_hull = None;
+    }
     let (model, camera) = if reference_view {
         let Ok(model) = reference_model(&mesh, yaw, pitch) else {
             return; // Error::MeshExtent: documented and tested.
@@ -630,6 +635,9 @@ pub fn pipeline(data: &[u8]) {
         reference: reference_camera.map(|c| (c, view)),
         band_cut: band_cut.filter(|&c| c < height),
     };
+    if mesh.closed_hull.is_some() && cull == Cull::None {
+        closed_hull_check(&mesh, &model, &camera);
+    }
     // Flag 8: the same mesh quantized, through the integer front end.
     // The mesh's own capacities, worst case over every view: no capacity
     // error may occur below the core's own limits.
@@ -648,6 +656,46 @@ pub fn pipeline(data: &[u8]) {
         pipeline_check::<Depth24, _>(&mesh, &model, &camera, cull, &methods, &caps);
     } else {
         pipeline_check::<Depth16, _>(&mesh, &model, &camera, cull, &methods, &caps);
+    }
+}
+
+/// A closed mesh drawn with `Cull::None` covers the samples it covers
+/// drawn two-sided (its hull cleared), and a pixel differs only where the
+/// two-sided frame shows a back face and the other a front face (see
+/// [`zline::ClosedHull`]). Draws that fail (capacities, clipping range)
+/// are the pipeline check's to judge.
+fn closed_hull_check(mesh: &HostMesh, model: &Mat4, camera: &Camera) {
+    const NONE: u32 = u32::MAX;
+    let frame = |mesh: &HostMesh| -> Option<Vec<u32>> {
+        let (w, h) = (camera.width, camera.height);
+        let caps = mesh.capacities(w);
+        let mut renderer = host_renderer::<u32, Depth24>(&caps, w, h, NONE).ok()?;
+        renderer
+            .draw_mesh(mesh, model, camera, Cull::None, |f| {
+                f.face << 1 | u32::from(f.front)
+            })
+            .ok()?;
+        let mut pixels = Vec::new();
+        renderer
+            .render(&mut FnSink(|_: u16, row: &[u32], _: &[u32]| {
+                pixels.extend_from_slice(row);
+                Ok::<(), ()>(())
+            }))
+            .ok()?;
+        Some(pixels)
+    };
+    let open = HostMesh {
+        closed_hull: None,
+        ..mesh.clone()
+    };
+    let (Some(culled), Some(two_sided)) = (frame(mesh), frame(&open)) else {
+        return;
+    };
+    for (k, (&a, &b)) in culled.iter().zip(&two_sided).enumerate() {
+        assert!(
+            a == b || (a != NONE && a & 1 == 1 && b != NONE && b & 1 == 0),
+            "pixel {k}: culled {a:#x}, two-sided {b:#x}"
+        );
     }
 }
 
@@ -881,7 +929,8 @@ fn pipeline_check<D: DepthFormat, M: Mesh + Sync>(
         // Finite positions (the reader's) and matrices: no corner is lost.
         assert_eq!(stats.non_finite, 0, "{stats:?}");
     }
-    if cull == Cull::None && mesh.quantized().is_none() {
+    // (Every face drawn: no back face left out for a closed hull.)
+    if cull == Cull::None && mesh.quantized().is_none() && stats.back_faces == 0 {
         clip_reference_check(mesh, model, camera, &queued);
     }
     let mut next_row = 0u16;

@@ -11,7 +11,8 @@ use zline::{SharedPlane, face_normals, planar_face_bits};
 
 /// Rust source defining `pub static NAME: zline::StaticMesh<'static>`
 /// and its arrays (`NAME_POSITIONS`, `NAME_CORNERS`, `NAME_FACE_STARTS`;
-/// the precomputed planarity bits, shared planes and face normals). The mesh goes through the `const`
+/// the precomputed planarity bits, shared planes and face normals, and
+/// the hull of a closed mesh). The mesh goes through the `const`
 /// `StaticMesh::new`, so a broken one fails at compile time. Floats are
 /// written so they read back bit for bit. `origin` names the source in a
 /// comment. `Err` when `name` is not a Rust identifier.
@@ -74,6 +75,14 @@ pub fn static_mesh_source(mesh: &HostMesh, name: &str, origin: &str) -> Result<S
             n[0], n[1], n[2]
         ))
     );
+    // A closed mesh's hull: `Cull::None` then leaves out the back faces
+    // where none can show (`zline::ClosedHull`).
+    let closed = mesh.closed_hull.map_or(String::new(), |h| {
+        format!(
+            ".with_closed_hull(zline::ClosedHull {{ centre: [{:?}, {:?}, {:?}], radius: {:?} }})",
+            h.centre[0], h.centre[1], h.centre[2], h.radius
+        )
+    });
     let _ = writeln!(
         out,
         "/// Mesh from {origin}, checked at compile time.\n\
@@ -82,7 +91,7 @@ pub fn static_mesh_source(mesh: &HostMesh, name: &str, origin: &str) -> Result<S
          Ok(mesh) => match mesh.with_planar_faces(&{name}_PLANAR) {{\n        \
          Ok(mesh) => match mesh.with_shared_planes(&{name}_SHARED) {{\n            \
          Ok(mesh) => match mesh.with_face_normals(&{name}_NORMALS) {{\n                \
-         Ok(mesh) => mesh,\n                Err(_) => panic!(\"{name}: invalid face normals\"),\n            }},\n            \
+         Ok(mesh) => mesh{closed},\n                Err(_) => panic!(\"{name}: invalid face normals\"),\n            }},\n            \
          Err(_) => panic!(\"{name}: invalid shared planes\"),\n        }},\n        \
          Err(_) => panic!(\"{name}: invalid planarity bits\"),\n    }},\n    \
          Err(_) => panic!(\"{name}: invalid mesh\"),\n}};"

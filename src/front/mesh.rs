@@ -9,6 +9,7 @@
 //! from `face_starts[f]` up to `face_starts[f + 1]` (or the end of
 //! `corners` for the last face), each corner a 0-based vertex index.
 
+use crate::front::closed_hull::ClosedHull;
 use crate::front::geometry::{newell_normal, unit};
 use crate::limits::POSITION_SCALE;
 
@@ -96,6 +97,15 @@ pub trait Mesh {
     fn triangles_only(&self) -> bool {
         false
     }
+
+    /// The mesh's [`ClosedHull`], when it is a closed surface that winds
+    /// counter-clockwise seen from outside: then a draw with
+    /// [`Cull::None`](crate::Cull::None) leaves out the back faces
+    /// wherever they cannot show. `None` (the default) when it is not
+    /// closed or does not know.
+    fn closed_hull(&self) -> Option<ClosedHull> {
+        None
+    }
 }
 
 /// A face whose depth comes from a plane it shares with other faces of
@@ -181,6 +191,8 @@ pub struct StaticMesh<'a> {
     vertex_normals: &'a [[f32; 3]],
     /// Each vertex's texture coordinates; empty when the mesh has none.
     uvs: &'a [[f32; 2]],
+    /// The hull of a closed mesh, when it is one.
+    closed_hull: Option<ClosedHull>,
 }
 
 impl<'a> StaticMesh<'a> {
@@ -239,6 +251,7 @@ impl<'a> StaticMesh<'a> {
             normals: &[],
             vertex_normals: &[],
             uvs: &[],
+            closed_hull: None,
         })
     }
 
@@ -296,6 +309,19 @@ impl<'a> StaticMesh<'a> {
             return Err(MeshError::BadVertexAttributes);
         }
         Ok(Self { uvs, ..self })
+    }
+
+    /// The same mesh declared closed, with its hull ([`ClosedHull`]: every
+    /// edge met once by a face running the other way, faces
+    /// counter-clockwise seen from outside, every position in the
+    /// sphere), as `obj2rust` writes it for a mesh the host found closed
+    /// (`HostMesh::closed_hull`). A hull that does not hold can leave out
+    /// faces that show.
+    pub const fn with_closed_hull(self, hull: ClosedHull) -> Self {
+        Self {
+            closed_hull: Some(hull),
+            ..self
+        }
     }
 
     /// All positions.
@@ -388,6 +414,11 @@ pub trait MeshArrays {
     fn uvs(&self) -> &[[f32; 2]] {
         &[]
     }
+    /// The hull of a closed mesh ([`Mesh::closed_hull`]); `None` when it is
+    /// not one or is not known to be.
+    fn closed_hull(&self) -> Option<ClosedHull> {
+        None
+    }
 }
 
 impl<T: MeshArrays + ?Sized> Mesh for T {
@@ -440,6 +471,10 @@ impl<T: MeshArrays + ?Sized> Mesh for T {
     fn vertex_uv(&self, index: usize) -> Option<[f32; 2]> {
         self.uvs().get(index).copied()
     }
+
+    fn closed_hull(&self) -> Option<ClosedHull> {
+        MeshArrays::closed_hull(self)
+    }
 }
 
 impl MeshArrays for StaticMesh<'_> {
@@ -473,6 +508,10 @@ impl MeshArrays for StaticMesh<'_> {
 
     fn uvs(&self) -> &[[f32; 2]] {
         self.uvs
+    }
+
+    fn closed_hull(&self) -> Option<ClosedHull> {
+        self.closed_hull
     }
 }
 

@@ -22,6 +22,7 @@
 pub(crate) mod backface;
 pub(crate) mod clip;
 pub(crate) mod clip_w;
+pub(crate) mod closed_hull;
 pub(crate) mod fixed_point;
 pub(crate) mod geometry;
 pub(crate) mod mesh;

@@ -1,6 +1,7 @@
 //! [`Triangles`]: a mesh known, by its type, to be all triangles.
 
 use crate::error::Error;
+use crate::front::closed_hull::ClosedHull;
 use crate::front::mesh::{Mesh, QuantizedView, SharedPlane};
 
 /// A mesh whose faces are all triangles, checked once when it is made:
@@ -82,6 +83,10 @@ impl<M: Mesh + ?Sized> Mesh for Triangles<'_, M> {
 
     fn triangles_only(&self) -> bool {
         true
+    }
+
+    fn closed_hull(&self) -> Option<ClosedHull> {
+        self.mesh.closed_hull()
     }
 }
 

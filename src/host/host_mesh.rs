@@ -3,6 +3,7 @@
 use std::collections::HashMap;
 use std::vec::Vec;
 
+use crate::front::closed_hull::ClosedHull;
 use crate::front::geometry::{Vec3, newell_normal, unit};
 use crate::front::mesh::{
     Mesh, MeshArrays, SharedPlane, StaticMesh, check_shared_planes, face_normals, fan_normals,
@@ -52,6 +53,13 @@ pub struct HostMesh {
     /// ([`Mesh::vertex_uv`](crate::Mesh::vertex_uv)); empty when the mesh
     /// has none.
     pub uvs: Vec<[f32; 2]>,
+    /// The mesh's [`ClosedHull`] when it is a closed surface wound
+    /// counter-clockwise seen from outside ([`crate::host::closed_hull`]),
+    /// so that a draw with [`Cull::None`](crate::Cull::None) leaves out the
+    /// back faces where none can show; [`Self::from_obj`] and
+    /// [`Self::with_face_analysis`] find it. Clear it to have every face
+    /// drawn, or for a mesh that passes through itself inside out.
+    pub closed_hull: Option<ClosedHull>,
 }
 
 /// The crease angle the tools give [`HostMesh::from_obj_smooth`] unless
@@ -279,7 +287,8 @@ impl HostMesh {
     /// again: which faces are planar ([`Self::planar_faces`], so that no
     /// frame tests them), their normals ([`Self::face_normals`]) and which
     /// share a plane with overlapping coplanar faces
-    /// ([`crate::host::coplanar::shared_planes`]). Call it after changing
+    /// ([`crate::host::coplanar::shared_planes`]), and whether it is closed
+    /// ([`Self::closed_hull`]). Call it after changing
     /// positions or faces: stale planarity bits would draw a face that is
     /// no longer planar as one polygon, stale normals would shade it wrong.
     pub fn with_face_analysis(mut self) -> Self {
@@ -292,6 +301,7 @@ impl HostMesh {
             Vec::new()
         };
         self.shared_planes = crate::host::coplanar::shared_planes(&self);
+        self.closed_hull = crate::host::closed_hull(&self);
         self
     }
 }
@@ -452,6 +462,10 @@ impl MeshArrays for HostMesh {
 
     fn uvs(&self) -> &[[f32; 2]] {
         &self.uvs
+    }
+
+    fn closed_hull(&self) -> Option<ClosedHull> {
+        self.closed_hull
     }
 }
 

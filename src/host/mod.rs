@@ -3,6 +3,7 @@
 //! threads. None of it is needed on a microcontroller.
 
 mod bands;
+mod closed;
 pub mod coplanar;
 mod host_mesh;
 mod quantize;
@@ -11,6 +12,7 @@ mod storage;
 pub use bands::{
     BandTables, BandTiming, BandedRenderer, MESH_VERTICES, ONE_THREAD_BELOW, SharedSteps,
 };
+pub use closed::closed_hull;
 pub use host_mesh::{DEFAULT_CREASE_DEGREES, HostMesh};
 pub use quantize::QuantizedHostMesh;
 pub use storage::{

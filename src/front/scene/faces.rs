@@ -382,7 +382,16 @@ where
     V: VertexValues,
 {
     let quantized = mesh.quantized();
-    let frame = Frame::new(model, camera, cull, quantized.as_ref());
+    let mut frame = Frame::new(model, camera, cull, quantized.as_ref());
+    // A closed mesh seen from outside shows no back face: `Cull::None`
+    // culls them (the same samples covered; see `ClosedHull`).
+    if cull == Cull::None
+        && mesh
+            .closed_hull()
+            .is_some_and(|h| frame.hides_back_faces(&h))
+    {
+        frame.cull = Cull::Back;
+    }
     let mut stats = DrawStats {
         faces: mesh.face_count() as u32,
         ..DrawStats::default()
@@ -392,7 +401,7 @@ where
         .map(|q| q.positions);
     // The model-space back-face test, for the integer front end.
     let eye = match (&frame.fixed, positions) {
-        (Some(fixed), Some(_)) if cull == Cull::Back => EyeTest::new(fixed),
+        (Some(fixed), Some(_)) if frame.cull == Cull::Back => EyeTest::new(fixed),
         _ => None,
     };
     let mut draw = Draw {

@@ -13,7 +13,7 @@ use zline::{Camera, Cull as ZCull, Depth24, FrameBufferSink, Mat4, Shading, refe
 
 use crate::renderer::Renderer;
 use crate::view::{BACKGROUND, Cull, Scene, View};
-use crate::zline_renderer::PlainTarget;
+use crate::zline_renderer::{CLOSED_MESHES, PlainTarget};
 
 /// A paint mode the bench times: its row name, its timed region and the
 /// per-vertex closure its frame draws with.
@@ -156,8 +156,10 @@ impl<M: PaintKind> Renderer for ZlinePaintedRenderer<'_, M> {
             "`renderer.clear()` (its tables), {}, `renderer.render(..)` through \
              `FrameBufferSink`: each row painted in place in a `Vec<Rgb565>` frame, every pixel \
              written, background included, so no frame clear; mesh from \
-             `HostMesh::from_obj_smooth(.., DEFAULT_CREASE_DEGREES)`; depth z24 in its one z row",
-            M::SHADE
+             `HostMesh::from_obj_smooth(.., DEFAULT_CREASE_DEGREES)`; depth z24 in its one z row; \
+             {}",
+            M::SHADE,
+            CLOSED_MESHES
         )
     }
 

@@ -21,6 +21,12 @@ use zline::{
 use crate::renderer::Renderer;
 use crate::view::{BACKGROUND, Cull, Scene, View};
 
+/// What zline does with `--cull none` on a closed mesh, in every zline
+/// row's timed region.
+pub const CLOSED_MESHES: &str = "with `--cull none`, a mesh `HostMesh` finds closed \
+    (`HostMesh::closed_hull`) has its back faces left out by zline itself, as none can show \
+    (`ClosedHull`: the same pixels covered)";
+
 /// Where zline's finished rows go.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Output {
@@ -223,8 +229,9 @@ impl<D: DepthFormat> Renderer for ZlineRenderer<'_, D> {
         format!(
             "`renderer.clear()` (its tables), `Shading::lambert()`, `renderer.draw_mesh(.., \
              |f| light.color(f).into())` (transform, cull, clip, project, Lambert per face), \
-             `renderer.render(..)` through {sink}; depth {} in its one z row",
-            D::NAME
+             `renderer.render(..)` through {sink}; depth {} in its one z row; {}",
+            D::NAME,
+            CLOSED_MESHES
         )
     }
 
@@ -355,11 +362,12 @@ impl Renderer for ZlineBandsRenderer<'_> {
     }
 
     fn timed_region(&self) -> String {
-        "`BandedRenderer::render_mesh(.., |f| light.color(f).into())` with \
+        format!(
+            "`BandedRenderer::render_mesh(.., |f| light.color(f).into())` with \
          `Shading::lambert()`: threads started, vertices projected and faces sorted into bands, \
          each band's tables filled and its rows drawn in place (`FrameBufferSink::from_row`); \
-         wall clock, not thread CPU time; depth z24"
-            .into()
+         wall clock, not thread CPU time; depth z24; {CLOSED_MESHES}"
+        )
     }
 
     fn render(&mut self) -> Result<(), String> {
