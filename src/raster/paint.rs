@@ -18,7 +18,7 @@ use core::ops::Range;
 use crate::error::{Error, RenderError};
 use crate::raster::active::EdgePool;
 use crate::raster::depth::DepthFormat;
-use crate::raster::scan::{ScanParts, ScanStorage, Scanner};
+use crate::raster::scan::{ScanParts, ScanStorage, Scanner, columns_written};
 use crate::raster::slots::{OrderedSlots, Slots};
 use crate::raster::small::SMALL_TRIANGLES;
 use crate::raster::small_table::SmallTable;
@@ -56,6 +56,22 @@ pub trait RowPainter {
         out: &mut [Self::Color],
         filled: bool,
     );
+
+    /// [`Self::paint`], told that every slot outside `columns` is
+    /// [`NO_SLOT`] (the scan wrote nothing there), so that a painter need
+    /// not look at them. The default paints the whole row.
+    fn paint_columns(
+        &mut self,
+        row: u16,
+        slots: &[u16],
+        tables: &Prepared<'_, u16>,
+        out: &mut [Self::Color],
+        filled: bool,
+        columns: Range<usize>,
+    ) {
+        let _ = columns;
+        self.paint(row, slots, tables, out, filled);
+    }
 
     /// The colour of pixels no polygon covers.
     fn background(&self) -> Self::Color;
@@ -158,6 +174,9 @@ fn painted_rows<D: DepthFormat, P: RowPainter, K: RowSink<P::Color, D::Value>>(
     let polygons = tables.polygons;
     let mut next_polygon = polygons.partition_point(|p| p.first_row < first);
     let mut next_edge = tables.edges.partition_point(|e| e.row() <= first);
+    // The columns any polygon can write: outside them every row's slots
+    // stay NO_SLOT, which the painter need not look at.
+    let columns = columns_written(tables, width);
     for row in first..end {
         depth_row.fill(D::CLEAR);
         slot_row.fill(NO_SLOT);
@@ -202,6 +221,12 @@ fn painted_rows<D: DepthFormat, P: RowPainter, K: RowSink<P::Color, D::Value>>(
             state.activate_edges(slot, row, false)?;
         }
         state.note_peaks();
+        // A row no polygon is active on holds no slot.
+        let painted = if state.active.len() == 0 {
+            0..0
+        } else {
+            columns.clone()
+        };
         state.scan_row(row, &mut row_buffers)?;
         let lent = sink
             .lend_row(row, width, painter.background())
@@ -211,11 +236,11 @@ fn painted_rows<D: DepthFormat, P: RowPainter, K: RowSink<P::Color, D::Value>>(
                 let colors = colors
                     .get_mut(..width)
                     .ok_or(RenderError::Table(Error::BadFrameSize))?;
-                painter.paint(row, slot_row, tables, colors, filled);
+                painter.paint_columns(row, slot_row, tables, colors, filled, painted);
                 sink.send_lent_row(row, depth_row)
             }
             None => {
-                painter.paint(row, slot_row, tables, own_row, false);
+                painter.paint_columns(row, slot_row, tables, own_row, false, painted);
                 sink.write_row(row, own_row, depth_row)
             }
         }

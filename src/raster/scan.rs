@@ -350,7 +350,7 @@ fn scan_rows<C: Copy, D: DepthFormat, K: RowSink<C, D::Value>>(
 /// vertices' y cost the icosphere 32,000 more. The depth row is cleared
 /// whole: a `memset` from an unaligned column took more instructions than
 /// the whole row's.
-fn columns_written<C>(tables: &Prepared<'_, C>, width: usize) -> Range<usize> {
+pub(crate) fn columns_written<C>(tables: &Prepared<'_, C>, width: usize) -> Range<usize> {
     let (mut x0, mut x1) = (i32::MAX, i32::MIN);
     for v in tables.vertices {
         (x0, x1) = (x0.min(v.x), x1.max(v.x));
