@@ -11,7 +11,9 @@ lower ratio, a drawtarget row's higher). Then, for
 all runs: how many peer rows are at or below 1.00, against zline z24 and
 z16, and the largest drawtarget ratio. The wrong-face shares come from the
 first run's `peers_wrong_faces.csv` beside its CSV (a share of the
-object's pixels).
+object's pixels). Runs of `--shading gouraud,textured` give a Gouraud and
+a texture-mapping table instead (zline's median at each size, each
+peer's ratio at each size).
 """
 
 import csv
@@ -56,6 +58,8 @@ def main(paths):
         print(__doc__.strip())
         return 0 if paths else 2
     runs = [load(p) for p in paths]
+    if any(key[3] == "zline gouraud z24" for key in runs[0]):
+        return shading(runs)
     first = runs[0]
     wrongs = wrong(paths[0])
     configs = sorted({k[:3] for k in first}, key=lambda c: (c[1], c[0], c[2]))
@@ -118,6 +122,52 @@ def main(paths):
             top = max(dt)
             print(f"- run {k + 1}: largest drawtarget over in place {top[0]:.2f} ({' '.join(top[1])});"
                   f" {sum(1 for v, _ in dt if v <= 1.10)} of {len(dt)} within 1.10")
+    return 0
+
+
+SHADED = [
+    ("Gouraud", "zline gouraud z24", ["embedded-3dgfx gouraud", "euc gouraud"]),
+    ("Texture mapping", "zline textured z24", ["embedded-3dgfx textured", "euc textured"]),
+]
+
+
+def shading(runs):
+    """The `--shading gouraud,textured` runs: per mode, one row per mesh
+    and cull with zline's median at each size (first run) and each peer's
+    ratio at each size, the worse for zline of the runs."""
+    first = runs[0]
+    sizes = sorted({k[1] for k in first}, key=lambda s: [int(x) for x in s.split("x")])
+    for title, ours, peers in SHADED:
+        configs = sorted({(k[0], k[2]) for k in first if k[3] == ours})
+        if not configs:
+            continue
+        print(f"\n{title}:\n")
+        print("| mesh | cull | zline ms (" + " / ".join(sizes) + ") | "
+              + " | ".join(p.split(" ")[0] for p in peers) + " |")
+        print("|---|---|---|" + "---|" * len(peers))
+        low, total = [0] * len(runs), 0
+        for mesh, cull in configs:
+            ms = " / ".join(f"{float(first[(mesh, s, cull, ours)]['median_ms']):.2f}"
+                            if (mesh, s, cull, ours) in first else "–" for s in sizes)
+            cells = []
+            for p in peers:
+                parts = []
+                for s in sizes:
+                    key = (mesh, s, cull, p)
+                    values = [float(r[key]["ratio"]) for r in runs if key in r]
+                    if not values:
+                        parts.append("–")
+                        continue
+                    total += 1
+                    for k, r in enumerate(runs):
+                        if key in r and float(r[key]["ratio"]) <= 1.0:
+                            low[k] += 1
+                    v = min(values)
+                    parts.append(f"**{v:.2f}**" if v <= 1.0 else f"{v:.2f}")
+                cells.append(" / ".join(parts))
+            print(f"| {mesh} | {cull} | {ms} | " + " | ".join(cells) + " |")
+        print(f"\n({title}: peer rows at or below 1.00: "
+              + ", ".join(f"run {k + 1} {n} of {total}" for k, n in enumerate(low)) + ")")
     return 0
 
 
