@@ -382,16 +382,15 @@ where
     V: VertexValues,
 {
     let quantized = mesh.quantized();
-    let mut frame = Frame::new(model, camera, cull, quantized.as_ref());
     // A closed mesh seen from outside shows no back face: `Cull::None`
-    // culls them (the same samples covered; see `ClosedHull`).
-    if cull == Cull::None
-        && mesh
-            .closed_hull()
-            .is_some_and(|h| frame.hides_back_faces(&h))
-    {
-        frame.cull = Cull::Back;
-    }
+    // culls them (the same samples covered; see `ClosedHull`). Decided
+    // before the frame is made, so that a draw with `Cull::Back` builds
+    // the very frame it did before.
+    let cull = match (cull, mesh.closed_hull()) {
+        (Cull::None, Some(hull)) if hull.hides_back_faces(&mvp_of(model, camera)) => Cull::Back,
+        _ => cull,
+    };
+    let frame = Frame::new(model, camera, cull, quantized.as_ref());
     let mut stats = DrawStats {
         faces: mesh.face_count() as u32,
         ..DrawStats::default()
@@ -401,7 +400,7 @@ where
         .map(|q| q.positions);
     // The model-space back-face test, for the integer front end.
     let eye = match (&frame.fixed, positions) {
-        (Some(fixed), Some(_)) if frame.cull == Cull::Back => EyeTest::new(fixed),
+        (Some(fixed), Some(_)) if cull == Cull::Back => EyeTest::new(fixed),
         _ => None,
     };
     let mut draw = Draw {
@@ -911,6 +910,11 @@ where
         let admission = self.tables.finish_polygon(|_| Some(color))?;
         self.count(face, admission)
     }
+}
+
+/// Projection · view · model, as the frame makes it.
+fn mvp_of(model: &Mat4, camera: &Camera) -> Mat4 {
+    camera.projection.mul(&camera.view.mul(model))
 }
 
 /// The back-face test and the shading of a face the core accepted: its

@@ -12,7 +12,6 @@ use crate::error::Error;
 #[cfg(feature = "clipping")]
 use crate::front::clip::ClipPoint;
 use crate::front::clip_w::ClipW;
-use crate::front::closed_hull::ClosedHull;
 use crate::front::fixed_point::FixedFrame;
 use crate::front::geometry::{Mat4, Vec3, Vec4};
 use crate::front::mesh::{Mesh, QuantizedView};
@@ -257,12 +256,6 @@ impl Frame {
             ),
             cull,
         }
-    }
-
-    /// Whether `hull`'s mesh shows no back face in this frame
-    /// ([`ClosedHull::hides_back_faces`] of the frame's matrices).
-    pub(super) fn hides_back_faces(&self, hull: &ClosedHull) -> bool {
-        hull.hides_back_faces(&self.mvp)
     }
 
     /// A model-space normal `n` as a unit normal in view space. A unit `n`
