@@ -76,8 +76,10 @@ pub fn static_mesh_source(mesh: &HostMesh, name: &str, origin: &str) -> Result<S
         ))
     );
     // A closed mesh's hull: `Cull::None` then leaves out the back faces
-    // where none can show (`zline::ClosedHull`).
-    let closed = mesh.closed_hull.map_or(String::new(), |h| {
+    // where none can show (`zline::ClosedHull`). A hull that holds only
+    // with caps over holes is not written (a static mesh carries no caps).
+    let hull = mesh.closed_hull.filter(|_| mesh.hull_caps.is_empty());
+    let closed = hull.map_or(String::new(), |h| {
         format!(
             ".with_closed_hull(zline::ClosedHull {{ centre: [{:?}, {:?}, {:?}], radius: {:?} }})",
             h.centre[0], h.centre[1], h.centre[2], h.radius

@@ -46,10 +46,27 @@ const MARGIN: f64 = 1e-4;
 /// and so outside the surface, and the front end clips nothing away but
 /// parts beyond the frame's sides (outside the frame).
 ///
+/// # A mesh with holes, closed by caps
+/// A mesh whose open edges run round holes may have a hull with caps
+/// ([`Mesh::hull_caps`](crate::Mesh::hull_caps)): triangles over each
+/// hole, wound against its rim, so that mesh and caps together are closed
+/// and wound as above. Then the argument holds for mesh and caps together.
+/// Every frame, each cap triangle is placed on the screen where the front
+/// end places vertices, and tested as a face is. Where every cap faces
+/// away (or covers nothing), the caps' share of the signed coverage is at
+/// most zero at every sample, so the mesh's front faces cover every
+/// sample its back faces cover; and a ray from the eye can reach the
+/// inside only through a cap it crosses going in, which would face the
+/// viewer. Where some caps face the viewer, the frame keeps their
+/// rectangle on the screen, grown by a pixel (the caps between their
+/// snapped corners lie within half a sub-pixel step of it): a back face
+/// that meets the rectangle is drawn, and one outside it is culled, since
+/// at its samples no cap faces the viewer and both reasons hold there.
+///
 /// # What is checked, and where
-/// The host checks the mesh (`zline::host::HostMesh` finds its hull when
-/// it reads a file; `obj2rust` writes it into flash
-/// meshes). Every frame, [`ClosedHull::hides_back_faces`] checks the
+/// The host checks the mesh (`zline::host::HostMesh` finds its hull,
+/// with caps over any holes, when it reads a file; `obj2rust` writes the
+/// hull of a closed mesh into flash meshes, which carry no caps). Every frame, [`ClosedHull::hides_back_faces`] checks the
 /// sphere against the near and far planes and that the model, view and
 /// projection keep the faces' winding, in `f64` with a margin for the
 /// front end's own rounding.

@@ -106,6 +106,16 @@ pub trait Mesh {
     fn closed_hull(&self) -> Option<ClosedHull> {
         None
     }
+
+    /// Triangles (model space, corners counter-clockwise seen from
+    /// outside) that close the mesh's holes, when its
+    /// [`closed_hull`](Self::closed_hull) is that of the mesh with them:
+    /// a draw with [`Cull::None`](crate::Cull::None) then leaves out back
+    /// faces only when every cap faces away, so that no hole shows the
+    /// inside. Empty (the default) for a closed mesh or one with no hull.
+    fn hull_caps(&self) -> &[[[f32; 3]; 3]] {
+        &[]
+    }
 }
 
 /// A face whose depth comes from a plane it shares with other faces of
@@ -419,6 +429,11 @@ pub trait MeshArrays {
     fn closed_hull(&self) -> Option<ClosedHull> {
         None
     }
+    /// The caps over the holes of a mesh whose hull holds with them
+    /// ([`Mesh::hull_caps`]); empty when none.
+    fn hull_caps(&self) -> &[[[f32; 3]; 3]] {
+        &[]
+    }
 }
 
 impl<T: MeshArrays + ?Sized> Mesh for T {
@@ -474,6 +489,10 @@ impl<T: MeshArrays + ?Sized> Mesh for T {
 
     fn closed_hull(&self) -> Option<ClosedHull> {
         MeshArrays::closed_hull(self)
+    }
+
+    fn hull_caps(&self) -> &[[[f32; 3]; 3]] {
+        MeshArrays::hull_caps(self)
     }
 }
 

@@ -88,6 +88,10 @@ impl<M: Mesh + ?Sized> Mesh for Triangles<'_, M> {
     fn closed_hull(&self) -> Option<ClosedHull> {
         self.mesh.closed_hull()
     }
+
+    fn hull_caps(&self) -> &[[[f32; 3]; 3]] {
+        self.mesh.hull_caps()
+    }
 }
 
 #[cfg(test)]

@@ -2,6 +2,7 @@
 //! consistently and outward, and the sphere that holds it.
 
 use std::collections::HashMap;
+use std::vec;
 use std::vec::Vec;
 
 use crate::front::closed_hull::ClosedHull;
@@ -21,12 +22,37 @@ use crate::front::scene::bounding_sphere;
 /// region enclosed with the wrong sign): such a mesh, rare outside
 /// tests, must not be given a hull.
 pub fn closed_hull<M: Mesh + ?Sized>(mesh: &M) -> Option<ClosedHull> {
+    match capped_hull(mesh)? {
+        (hull, caps) if caps.is_empty() => Some(hull),
+        _ => None,
+    }
+}
+
+/// Largest number of edges of a hole [`capped_hull`] caps.
+pub const CAP_EDGES_MAX: usize = 256;
+
+/// The hull of `mesh` closed by caps over its holes, and the caps'
+/// triangles ([`Mesh::hull_caps`]): as [`closed_hull`], but each edge
+/// that no other edge meets running the other way may lie on a hole's
+/// rim, a loop of such edges in which every position starts one and ends
+/// one. Each hole is capped by triangles between its rim's positions
+/// (the triangulation of the rim whose triangles turn least from its
+/// Newell normal, along which it must show as a simple polygon of at most
+/// [`CAP_EDGES_MAX`] edges), wound against the rim, so that mesh and caps are closed; the volume they
+/// enclose together must be positive. A closed mesh gets no caps. `None`
+/// for anything else.
+///
+/// As with [`closed_hull`], a surface (mesh and caps) that passes through
+/// itself inside out is not seen: a cap that crosses the mesh, which a
+/// rim curled over its own hole could make, is such a surface.
+pub fn capped_hull<M: Mesh + ?Sized>(mesh: &M) -> Option<(ClosedHull, Vec<[[f32; 3]; 3]>)> {
     if mesh.face_count() == 0 {
         return None;
     }
     // Positions by value (`+ 0.0` makes `-0.0` the same as `0.0`).
     let mut ids: HashMap<[u32; 3], u32> = HashMap::new();
     let mut id_of = Vec::with_capacity(mesh.vertex_count());
+    let mut positions: Vec<[f32; 3]> = Vec::new();
     for v in 0..mesh.vertex_count() {
         let p = mesh.position(v);
         if !p.iter().all(|c| c.is_finite()) {
@@ -34,11 +60,14 @@ pub fn closed_hull<M: Mesh + ?Sized>(mesh: &M) -> Option<ClosedHull> {
         }
         let key = p.map(|c| (c + 0.0).to_bits());
         let next = ids.len() as u32;
-        id_of.push(*ids.entry(key).or_insert(next));
+        let id = *ids.entry(key).or_insert(next);
+        if id == next {
+            positions.push(p);
+        }
+        id_of.push(id);
     }
     let mut edges = Vec::new();
-    let mut volume = 0.0f64;
-    let mut magnitude = 0.0f64;
+    let mut volume = Volume::default();
     for f in 0..mesh.face_count() {
         let corners = mesh.face(f);
         let n = corners.len();
@@ -49,37 +78,255 @@ pub fn closed_hull<M: Mesh + ?Sized>(mesh: &M) -> Option<ClosedHull> {
                 edges.push((a, b));
             }
         }
-        // Six times the signed volume of the fan's tetrahedra from the
-        // origin (any point gives the same sum for a closed surface).
-        let p = |k: usize| mesh.position(usize::from(corners[k])).map(f64::from);
+        let p = |k: usize| mesh.position(usize::from(corners[k]));
         for k in 1..n.saturating_sub(1) {
-            let (a, b, c) = (p(0), p(k), p(k + 1));
-            let cross = [
-                b[1] * c[2] - b[2] * c[1],
-                b[2] * c[0] - b[0] * c[2],
-                b[0] * c[1] - b[1] * c[0],
-            ];
-            volume += a[0] * cross[0] + a[1] * cross[1] + a[2] * cross[2];
-            magnitude += (0..3).map(|i| (a[i] * cross[i]).abs()).sum::<f64>();
+            volume.add([p(0), p(k), p(k + 1)]);
         }
     }
     edges.sort_unstable();
-    let unique = edges.windows(2).all(|w| w[0] != w[1]);
-    let matched = edges
+    if !edges.windows(2).all(|w| w[0] != w[1]) {
+        return None;
+    }
+    // The rims: edges no edge meets running the other way, followed from
+    // the position each ends at (one rim edge must start there).
+    let rims: Vec<(u32, u32)> = edges
         .iter()
-        .all(|&(a, b)| edges.binary_search(&(b, a)).is_ok());
-    // A positive volume well beyond the sum's rounding (a closed surface
-    // folded flat, two faces back to back, sums to about 0).
-    let outward = volume > 1e-9 * magnitude;
-    if !(unique && matched && outward) {
+        .copied()
+        .filter(|&(a, b)| edges.binary_search(&(b, a)).is_err())
+        .collect();
+    let mut next: HashMap<u32, u32> = HashMap::with_capacity(rims.len());
+    for &(a, b) in &rims {
+        if next.insert(a, b).is_some() {
+            return None;
+        }
+    }
+    let mut caps = Vec::new();
+    let mut done: HashMap<u32, ()> = HashMap::with_capacity(rims.len());
+    for &(start, _) in &rims {
+        if done.contains_key(&start) {
+            continue;
+        }
+        let mut rim = Vec::new();
+        let mut at = start;
+        loop {
+            if rim.len() >= CAP_EDGES_MAX || done.insert(at, ()).is_some() {
+                return None;
+            }
+            rim.push(positions[at as usize]);
+            at = *next.get(&at)?;
+            if at == start {
+                break;
+            }
+        }
+        // The cap runs against the rim.
+        rim.reverse();
+        for triangle in cap_triangles(&rim)? {
+            volume.add(triangle);
+            caps.push(triangle);
+        }
+    }
+    if !volume.outward() {
         return None;
     }
     let (centre, radius) = bounding_sphere(mesh).ok()?;
     let radius = radius * (1.0 + 1e-6) + f32::MIN_POSITIVE;
-    radius.is_finite().then_some(ClosedHull {
+    let hull = ClosedHull {
         centre: [centre.x, centre.y, centre.z],
         radius,
-    })
+    };
+    radius.is_finite().then_some((hull, caps))
+}
+
+/// Six times the signed volume of triangles' tetrahedra from the origin
+/// (any point gives the same sum for a closed surface), with the sum of
+/// its terms' magnitudes for the rounding.
+#[derive(Default)]
+struct Volume {
+    sum: f64,
+    magnitude: f64,
+}
+
+impl Volume {
+    fn add(&mut self, [a, b, c]: [[f32; 3]; 3]) {
+        let (a, b, c) = (a.map(f64::from), b.map(f64::from), c.map(f64::from));
+        let cross = [
+            b[1] * c[2] - b[2] * c[1],
+            b[2] * c[0] - b[0] * c[2],
+            b[0] * c[1] - b[1] * c[0],
+        ];
+        self.sum += a[0] * cross[0] + a[1] * cross[1] + a[2] * cross[2];
+        self.magnitude += (0..3).map(|i| (a[i] * cross[i]).abs()).sum::<f64>();
+    }
+
+    /// A positive volume well beyond the sum's rounding (a closed surface
+    /// folded flat, two faces back to back, sums to about 0).
+    fn outward(&self) -> bool {
+        self.sum > 1e-9 * self.magnitude
+    }
+}
+
+/// Triangles covering the polygon `rim` (3D, in order), wound as it is,
+/// each turned as little as can be from its Newell normal. `None` when
+/// its outline seen along that normal is not a simple polygon (edges that
+/// cross or touch, a normal of no length) or some triangle would be
+/// turned a right angle from it or more.
+fn cap_triangles(rim: &[[f32; 3]]) -> Option<Vec<[[f32; 3]; 3]>> {
+    let n = rim.len();
+    let p: Vec<[f64; 3]> = rim.iter().map(|v| v.map(f64::from)).collect();
+    let mut normal = [0.0f64; 3];
+    for k in 0..n {
+        let (a, b) = (p[k], p[(k + 1) % n]);
+        normal[0] += (a[1] - b[1]) * (a[2] + b[2]);
+        normal[1] += (a[2] - b[2]) * (a[0] + b[0]);
+        normal[2] += (a[0] - b[0]) * (a[1] + b[1]);
+    }
+    let length = (normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]).sqrt();
+    if !(length > 0.0 && length.is_finite()) {
+        return None;
+    }
+    let normal = normal.map(|c| c / length);
+    // A basis of the plane across the normal, (u, v, normal) right-handed:
+    // the outline runs counter-clockwise in (u, v).
+    let helper = if normal[0].abs() < 0.6 {
+        [1.0, 0.0, 0.0]
+    } else {
+        [0.0, 1.0, 0.0]
+    };
+    let u = unit(cross3(helper, normal));
+    let v = cross3(normal, u);
+    let flat: Vec<[f64; 2]> = p.iter().map(|q| [dot3(*q, u), dot3(*q, v)]).collect();
+    if n < 3 || !simple(&flat) {
+        return None;
+    }
+    // The triangulation whose triangles turn least from the normal (the
+    // largest smallest cosine; dynamic programming over the outline's
+    // sub-polygons `i..=j`). Every triangle turned less than a right angle
+    // from it is positive seen along it, so the triangles tile the simple
+    // outline without overlap.
+    let cosine = |a: usize, b: usize, c: usize| {
+        let t = cross3(sub3(p[b], p[a]), sub3(p[c], p[a]));
+        let length = dot3(t, t).sqrt();
+        if length > 0.0 {
+            dot3(t, normal) / length
+        } else {
+            -1.0
+        }
+    };
+    let mut best = vec![f64::INFINITY; n * n];
+    let mut split = vec![0usize; n * n];
+    for span in 2..n {
+        for i in 0..n - span {
+            let j = i + span;
+            let (mut value, mut at) = (f64::NEG_INFINITY, i + 1);
+            for k in i + 1..j {
+                let v = best[i * n + k].min(best[k * n + j]).min(cosine(i, k, j));
+                if v > value {
+                    (value, at) = (v, k);
+                }
+            }
+            best[i * n + j] = value;
+            split[i * n + j] = at;
+        }
+    }
+    // (The whole outline is the sub-polygon 0..=n-1; NaN fails.)
+    if best[n - 1].partial_cmp(&MIN_CAP_COSINE) != Some(core::cmp::Ordering::Greater) {
+        return None;
+    }
+    let mut triangles = Vec::with_capacity(n - 2);
+    let mut stack = vec![(0, n - 1)];
+    while let Some((i, j)) = stack.pop() {
+        if j > i + 1 {
+            let k = split[i * n + j];
+            triangles.push([rim[i], rim[k], rim[j]]);
+            stack.push((i, k));
+            stack.push((k, j));
+        }
+    }
+    Some(triangles)
+}
+
+/// The least cosine between a cap triangle's normal and its hole's: a
+/// triangle nearly on edge to the hole is refused.
+const MIN_CAP_COSINE: f64 = 1e-3;
+
+fn sub3(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn cross3(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn dot3(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn unit(a: [f64; 3]) -> [f64; 3] {
+    let length = dot3(a, a).sqrt();
+    a.map(|c| c / length)
+}
+
+/// Twice the signed area of `a b c` (positive counter-clockwise).
+fn orient(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
+    (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+}
+
+/// Whether the closed outline `q` is a simple polygon: no two edges meet
+/// but neighbours at their shared end (and those only there), no position
+/// twice.
+fn simple(q: &[[f64; 2]]) -> bool {
+    let n = q.len();
+    let edge = |k: usize| (q[k], q[(k + 1) % n]);
+    for i in 0..n {
+        for j in i + 1..n {
+            let ((a, b), (c, d)) = (edge(i), edge(j));
+            let neighbours = j == i + 1 || (i == 0 && j == n - 1);
+            if neighbours {
+                // Meeting only at the shared end: not folded back on
+                // each other.
+                let (shared, p, r) = if j == i + 1 { (b, a, d) } else { (a, b, c) };
+                if orient(p, shared, r) == 0.0 && dot2(sub2(p, shared), sub2(r, shared)) > 0.0 {
+                    return false;
+                }
+                continue;
+            }
+            if segments_meet(a, b, c, d) {
+                return false;
+            }
+        }
+    }
+    true
+}
+
+fn sub2(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+    [a[0] - b[0], a[1] - b[1]]
+}
+
+fn dot2(a: [f64; 2], b: [f64; 2]) -> f64 {
+    a[0] * b[0] + a[1] * b[1]
+}
+
+/// Whether segments `a b` and `c d` share any point.
+fn segments_meet(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> bool {
+    let (d1, d2) = (orient(a, b, c), orient(a, b, d));
+    let (d3, d4) = (orient(c, d, a), orient(c, d, b));
+    if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0))
+        && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
+    {
+        return true;
+    }
+    let on = |p: [f64; 2], q: [f64; 2], r: [f64; 2], o: f64| {
+        o == 0.0
+            && r[0] >= p[0].min(q[0])
+            && r[0] <= p[0].max(q[0])
+            && r[1] >= p[1].min(q[1])
+            && r[1] <= p[1].max(q[1])
+    };
+    on(a, b, c, d1) || on(a, b, d, d2) || on(c, d, a, d3) || on(c, d, b, d4)
 }
 
 #[cfg(test)]
@@ -168,6 +415,42 @@ mod tests {
         positions[11][0] = f32::from_bits(1.0f32.to_bits() + 1);
         let mesh = StaticMesh::new(&positions, &corners, &STARTS).expect("mesh");
         assert_eq!(closed_hull(&mesh), None);
+    }
+
+    fn capped(corners: &[u16], starts: &[u32]) -> Option<(ClosedHull, Vec<[[f32; 3]; 3]>)> {
+        capped_hull(&StaticMesh::new(&CUBE, corners, starts).expect("mesh"))
+    }
+
+    #[test]
+    fn a_box_open_on_top_is_capped() {
+        let (found, caps) = capped(&QUADS[..20], &STARTS[..5]).expect("capped");
+        assert_eq!(found, hull_of_cube());
+        assert_eq!(caps.len(), 2);
+        // The caps lie on x = 1 and face +x, as the missing face did.
+        for [a, b, c] in caps {
+            assert!([a, b, c].iter().all(|p| p[0] == 1.0));
+            let turn = (b[1] - a[1]) * (c[2] - a[2]) - (b[2] - a[2]) * (c[1] - a[1]);
+            assert!(turn > 0.0, "{a:?} {b:?} {c:?}");
+        }
+        assert_eq!(hull(&QUADS[..20], &STARTS[..5]), None);
+        // A tube, open at both ends: two caps of two triangles.
+        let (_, caps) = capped(&QUADS[8..24], &STARTS[..4]).expect("capped");
+        assert_eq!(caps.len(), 4);
+    }
+
+    fn hull_of_cube() -> ClosedHull {
+        hull(&QUADS, &STARTS).expect("closed")
+    }
+
+    #[test]
+    fn an_open_box_wound_inward_or_a_card_is_not() {
+        let mut inward = QUADS;
+        for face in inward.chunks_mut(4) {
+            face.reverse();
+        }
+        assert_eq!(capped(&inward[..20], &STARTS[..5]), None);
+        // One quad: capped by its own reverse, it encloses nothing.
+        assert_eq!(capped(&QUADS[..4], &STARTS[..1]), None);
     }
 
     #[test]

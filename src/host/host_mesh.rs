@@ -54,12 +54,17 @@ pub struct HostMesh {
     /// has none.
     pub uvs: Vec<[f32; 2]>,
     /// The mesh's [`ClosedHull`] when it is a closed surface wound
-    /// counter-clockwise seen from outside ([`crate::host::closed_hull`]),
-    /// so that a draw with [`Cull::None`](crate::Cull::None) leaves out the
-    /// back faces where none can show; [`Self::from_obj`] and
+    /// counter-clockwise seen from outside, once its holes are capped by
+    /// [`Self::hull_caps`] ([`crate::host::capped_hull`]), so that a draw
+    /// with [`Cull::None`](crate::Cull::None) leaves out the back faces
+    /// where none can show; [`Self::from_obj`] and
     /// [`Self::with_face_analysis`] find it. Clear it to have every face
     /// drawn, or for a mesh that passes through itself inside out.
     pub closed_hull: Option<ClosedHull>,
+    /// The caps over the mesh's holes that [`Self::closed_hull`] holds
+    /// with ([`Mesh::hull_caps`](crate::Mesh::hull_caps)); empty for a
+    /// closed mesh.
+    pub hull_caps: Vec<[[f32; 3]; 3]>,
 }
 
 /// The crease angle the tools give [`HostMesh::from_obj_smooth`] unless
@@ -301,7 +306,10 @@ impl HostMesh {
             Vec::new()
         };
         self.shared_planes = crate::host::coplanar::shared_planes(&self);
-        self.closed_hull = crate::host::closed_hull(&self);
+        (self.closed_hull, self.hull_caps) = match crate::host::capped_hull(&self) {
+            Some((hull, caps)) => (Some(hull), caps),
+            None => (None, Vec::new()),
+        };
         self
     }
 }
@@ -466,6 +474,10 @@ impl MeshArrays for HostMesh {
 
     fn closed_hull(&self) -> Option<ClosedHull> {
         self.closed_hull
+    }
+
+    fn hull_caps(&self) -> &[[[f32; 3]; 3]] {
+        &self.hull_caps
     }
 }
 

@@ -12,7 +12,7 @@ mod storage;
 pub use bands::{
     BandTables, BandTiming, BandedRenderer, MESH_VERTICES, ONE_THREAD_BELOW, SharedSteps,
 };
-pub use closed::closed_hull;
+pub use closed::{CAP_EDGES_MAX, capped_hull, closed_hull};
 pub use host_mesh::{DEFAULT_CREASE_DEGREES, HostMesh};
 pub use quantize::QuantizedHostMesh;
 pub use storage::{

@@ -27,7 +27,7 @@ use crate::limits::MAX_FACE_CORNERS;
 use crate::limits::MAX_POLYGON_CORNERS;
 #[cfg(feature = "clipping")]
 use crate::raster::vertex::OutlineBuilder;
-use crate::raster::vertex::{Outline, ScreenVertex};
+use crate::raster::vertex::{Outline, ScreenRect, ScreenVertex};
 use crate::raster::{Admission, PolygonTables};
 
 /// Counts of what happened to a mesh's faces in one draw.
@@ -386,11 +386,20 @@ where
     // culls them (the same samples covered; see `ClosedHull`). Decided
     // before the frame is made, so that a draw with `Cull::Back` builds
     // the very frame it did before.
-    let cull = match (cull, mesh.closed_hull()) {
-        (Cull::None, Some(hull)) if hull.hides_back_faces(&mvp_of(model, camera)) => Cull::Back,
-        _ => cull,
+    let hull_culls = match (cull, mesh.closed_hull()) {
+        (Cull::None, Some(hull)) => hull.hides_back_faces(&mvp_of(model, camera)),
+        _ => false,
     };
-    let frame = Frame::new(model, camera, cull, quantized.as_ref());
+    let cull = if hull_culls { Cull::Back } else { cull };
+    let mut frame = Frame::new(model, camera, cull, quantized.as_ref());
+    // A mesh closed by caps over its holes: where a cap faces the viewer
+    // a hole may show the inside, and back faces there are drawn.
+    if hull_culls {
+        match cap_window(&frame, mesh) {
+            Some(window) => frame.cap_window = window,
+            None => frame.cull = Cull::None,
+        }
+    }
     let mut stats = DrawStats {
         faces: mesh.face_count() as u32,
         ..DrawStats::default()
@@ -400,7 +409,7 @@ where
         .map(|q| q.positions);
     // The model-space back-face test, for the integer front end.
     let eye = match (&frame.fixed, positions) {
-        (Some(fixed), Some(_)) if cull == Cull::Back => EyeTest::new(fixed),
+        (Some(fixed), Some(_)) if frame.cull == Cull::Back => EyeTest::new(fixed),
         _ => None,
     };
     let mut draw = Draw {
@@ -531,7 +540,11 @@ where
             if ids.iter().all(|&id| id < NON_FINITE) {
                 // (A front face beyond doubt skips the early test: the
                 // tables test its rounded corners anyway.)
-                if self.frame.cull == Cull::Back && side != Side::Front && self.faces_away(ids) {
+                if self.frame.cull == Cull::Back
+                    && side != Side::Front
+                    && self.faces_away(ids)
+                    && self.may_cull(ids)
+                {
                     // Culled before the tables' frame and sample tests, and
                     // their call into the shading closure.
                     self.stats.back_faces += 1;
@@ -646,7 +659,7 @@ where
         twice_area: i64,
     ) -> Result<(), Error> {
         let front = twice_area < 0;
-        if !front && self.frame.cull == Cull::Back {
+        if !front && self.frame.cull == Cull::Back && self.frame.cap_window.is_none() {
             self.stats.back_faces += 1;
             return Ok(());
         }
@@ -689,6 +702,21 @@ where
         // Table vertices lie inside the guard band: differences below
         // 2^23, products below 2^46.
         cross(b.x - a.x, b.y - a.y, c.x - a.x, c.y - a.y) > 0
+    }
+
+    /// Whether a back face of these vertex-table entries may be culled:
+    /// always, but where a cap of the mesh's hull faces the viewer
+    /// ([`Frame::cap_window`]).
+    #[inline(always)]
+    fn may_cull(&self, ids: [u16; 3]) -> bool {
+        self.frame.cap_window.is_none() || self.may_cull_near_caps(ids)
+    }
+
+    /// [`Self::may_cull`] with a window, out of line.
+    #[inline(never)]
+    fn may_cull_near_caps(&self, ids: [u16; 3]) -> bool {
+        let rect = ScreenRect::of(ids.iter().filter_map(|&id| self.tables.get_vertex(id)));
+        self.frame.may_cull_within(rect)
     }
 
     /// Counts what became of a polygon of `face`; a queued one whose face
@@ -912,6 +940,17 @@ where
     }
 }
 
+/// Where the holes of `mesh`'s hull may show in `frame`
+/// ([`Frame::cap_window`]; nowhere for a closed mesh). Out of line: rare,
+/// and a closed mesh's draw keeps its code.
+#[inline(never)]
+fn cap_window<M: Mesh>(frame: &Frame, mesh: &M) -> Option<Option<ScreenRect>> {
+    match mesh.hull_caps() {
+        [] => Some(None),
+        caps => frame.cap_window(caps, frame.fixed.is_some()),
+    }
+}
+
 /// Projection · view · model, as the frame makes it.
 fn mvp_of(model: &Mat4, camera: &Camera) -> Mat4 {
     camera.projection.mul(&camera.view.mul(model))
@@ -933,7 +972,7 @@ fn shade_front_face<C, M: Mesh>(
     shade: &mut impl FnMut(&FaceInfo) -> C,
 ) -> Option<C> {
     let front = outline.twice_area < 0;
-    if !front && frame.cull == Cull::Back {
+    if !front && frame.cull == Cull::Back && frame.may_cull_within(outline.rect) {
         stats.back_faces += 1;
         return None;
     }

@@ -21,11 +21,12 @@ use zline::{
 use crate::renderer::Renderer;
 use crate::view::{BACKGROUND, Cull, Scene, View};
 
-/// What zline does with `--cull none` on a closed mesh, in every zline
-/// row's timed region.
-pub const CLOSED_MESHES: &str = "with `--cull none`, a mesh `HostMesh` finds closed \
-    (`HostMesh::closed_hull`) has its back faces left out by zline itself, as none can show \
-    (`ClosedHull`: the same pixels covered)";
+/// What zline does with `--cull none` on a closed mesh, or one closed by
+/// caps over its holes, in every zline row's timed region.
+pub const CLOSED_MESHES: &str = "with `--cull none`, a mesh `HostMesh` finds closed, or closed \
+    by caps over its holes (`HostMesh::closed_hull`, `HostMesh::hull_caps`), has its back faces \
+    left out by zline itself where none can show (`ClosedHull`: the same pixels covered; near a \
+    cap that faces the viewer, back faces are drawn)";
 
 /// Where zline's finished rows go.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
