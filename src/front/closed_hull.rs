@@ -62,6 +62,10 @@ const MARGIN: f64 = 1e-4;
 /// snapped corners lie within half a sub-pixel step of it): a back face
 /// that meets the rectangle is drawn, and one outside it is culled, since
 /// at its samples no cap faces the viewer and both reasons hold there.
+/// The rectangle is kept only with the `std` feature (the host, whose
+/// meshes get caps): a build without it draws a mesh whose caps do not
+/// all face away with every face, and a microcontroller's draw keeps the
+/// code it had.
 ///
 /// # What is checked, and where
 /// The host checks the mesh (`zline::host::HostMesh` finds its hull,

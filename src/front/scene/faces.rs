@@ -395,9 +395,12 @@ where
     // A mesh closed by caps over its holes: where a cap faces the viewer
     // a hole may show the inside, and back faces there are drawn.
     if hull_culls {
-        match cap_window(&frame, mesh) {
-            Some(window) => frame.cap_window = window,
-            None => frame.cull = Cull::None,
+        let kept = match cap_window(&frame, mesh) {
+            Some(window) => frame.keep_window(window),
+            None => false,
+        };
+        if !kept {
+            frame.cull = Cull::None;
         }
     }
     let mut stats = DrawStats {
@@ -659,7 +662,7 @@ where
         twice_area: i64,
     ) -> Result<(), Error> {
         let front = twice_area < 0;
-        if !front && self.frame.cull == Cull::Back && self.frame.cap_window.is_none() {
+        if !front && self.frame.cull == Cull::Back && self.frame.window().is_none() {
             self.stats.back_faces += 1;
             return Ok(());
         }
@@ -709,7 +712,7 @@ where
     /// ([`Frame::cap_window`]).
     #[inline(always)]
     fn may_cull(&self, ids: [u16; 3]) -> bool {
-        self.frame.cap_window.is_none() || self.may_cull_near_caps(ids)
+        self.frame.window().is_none() || self.may_cull_near_caps(ids)
     }
 
     /// [`Self::may_cull`] with a window, out of line.

@@ -182,8 +182,11 @@ pub(super) struct Frame {
     pub(super) cull: Cull,
     /// With [`Cull::Back`] from a hull closed by caps, the screen
     /// rectangle of the caps that face the viewer: back faces that meet
-    /// it are drawn ([`Self::cap_window`]).
-    pub(super) cap_window: Option<ScreenRect>,
+    /// it are drawn ([`Self::cap_window`]). Only with the `std` feature
+    /// (the host's meshes have caps; a microcontroller's frame stays as
+    /// it was, and a mesh with caps draws every face there).
+    #[cfg(feature = "std")]
+    cap_window: Option<ScreenRect>,
     /// The integer front end, for a quantized mesh whose matrices fit it.
     pub(super) fixed: Option<FixedFrame>,
 }
@@ -260,6 +263,7 @@ impl Frame {
                 2.0 * CLIP_BAND_PX / height - 1.0,
             ),
             cull,
+            #[cfg(feature = "std")]
             cap_window: None,
         }
     }
@@ -437,13 +441,36 @@ impl Frame {
         }))
     }
 
+    /// The window where back faces are drawn ([`Self::cap_window`]);
+    /// `None` when none is, and always without the `std` feature.
+    #[inline(always)]
+    pub(super) fn window(&self) -> Option<&ScreenRect> {
+        #[cfg(feature = "std")]
+        return self.cap_window.as_ref();
+        #[cfg(not(feature = "std"))]
+        return None;
+    }
+
+    /// Keeps `window` ([`Self::cap_window`]); `false` when there is one
+    /// and this build keeps none (without the `std` feature), so the
+    /// frame must cull nothing.
+    pub(super) fn keep_window(&mut self, window: Option<ScreenRect>) -> bool {
+        #[cfg(feature = "std")]
+        {
+            self.cap_window = window;
+            true
+        }
+        #[cfg(not(feature = "std"))]
+        window.is_none()
+    }
+
     /// Whether a back face within `rect` may be culled: always, unless
     /// a cap of the mesh's hull faces the viewer
     /// ([`Self::cap_window`]) and `rect` (`None`: not known) meets its
     /// window.
     #[inline(always)]
     pub(super) fn may_cull_within(&self, rect: Option<ScreenRect>) -> bool {
-        match (&self.cap_window, rect) {
+        match (self.window(), rect) {
             (None, _) => true,
             (Some(window), Some(r)) => {
                 r.x1 < window.x0 || r.x0 > window.x1 || r.y1 < window.y0 || r.y0 > window.y1

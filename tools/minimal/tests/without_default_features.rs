@@ -70,3 +70,66 @@ fn polygons_of_more_corners_are_refused() {
         })
     );
 }
+
+/// A mesh whose hull holds with caps over its holes (`Mesh::hull_caps`),
+/// around a front face and a back face.
+struct Capped<'a> {
+    mesh: StaticMesh<'a>,
+    caps: &'a [[[f32; 3]; 3]],
+}
+
+impl zline::Mesh for Capped<'_> {
+    fn vertex_count(&self) -> usize {
+        self.mesh.vertex_count()
+    }
+    fn position(&self, index: usize) -> [f32; 3] {
+        self.mesh.position(index)
+    }
+    fn face_count(&self) -> usize {
+        self.mesh.face_count()
+    }
+    fn face(&self, index: usize) -> &[u16] {
+        self.mesh.face(index)
+    }
+    fn closed_hull(&self) -> Option<zline::ClosedHull> {
+        Some(zline::ClosedHull {
+            centre: [0.0, 0.0, -5.5],
+            radius: 2.0,
+        })
+    }
+    fn hull_caps(&self) -> &[[[f32; 3]; 3]] {
+        self.caps
+    }
+}
+
+/// Without the `std` feature the caps' window is not kept: a mesh with a
+/// cap that faces the viewer is drawn with every face, and one whose hull
+/// needs no caps culls its back face.
+#[test]
+fn a_mesh_with_caps_facing_the_viewer_draws_every_face() {
+    use zline::Mesh;
+    // A front face on the right, a back face (clockwise) on the left.
+    let positions = [
+        [0.2, -0.5, -5.0],
+        [1.2, -0.5, -5.0],
+        [0.7, 0.5, -5.0],
+        [-1.2, -0.5, -6.0],
+        [-0.7, 0.5, -6.0],
+        [-0.2, -0.5, -6.0],
+    ];
+    let corners = [0, 1, 2, 3, 4, 5];
+    let mesh = StaticMesh::new(&positions, &corners, &[0, 3]).unwrap();
+    let camera = Camera::perspective(Mat4::IDENTITY, 60.0, 32, 32, 0.5, 100.0);
+    let draw = |caps: &[[[f32; 3]; 3]]| {
+        let capped = Capped { mesh, caps };
+        assert_eq!(capped.face_count(), 2);
+        let mut renderer = Small::new(32, 32, 0).unwrap();
+        renderer
+            .draw_mesh(&capped, &Mat4::IDENTITY, &camera, Cull::None, |_| 1)
+            .unwrap()
+    };
+    // A cap facing the viewer, far to the right of the back face.
+    let cap = [[[0.9, 0.6, -5.0], [1.4, 0.6, -5.0], [1.1, 0.9, -5.0]]];
+    assert_eq!(draw(&cap).back_faces, 0);
+    assert_eq!(draw(&[]).back_faces, 1);
+}
