@@ -90,10 +90,11 @@ pub use raster::zbuffer;
 pub use error::{Error, RenderError};
 pub use front::clip::ClipValue;
 pub use front::closed_hull::ClosedHull;
+pub use front::face_plane::FacePlane;
 pub use front::geometry::{Mat4, Vec3, Vec4, newell_normal, radians};
 pub use front::mesh::{
     Mesh, MeshArrays, MeshError, PLANARITY_TOLERANCE, QuantizedView, SharedPlane, StaticMesh,
-    face_normals, fan_normals, is_planar, planar_face_bits,
+    face_normals, face_planes, fan_normals, is_planar, planar_face_bits,
 };
 pub use front::quantized::QuantizedMesh;
 pub use front::scene::{

@@ -10,6 +10,7 @@
 //! `corners` for the last face), each corner a 0-based vertex index.
 
 use crate::front::closed_hull::ClosedHull;
+use crate::front::face_plane::FacePlane;
 use crate::front::geometry::{newell_normal, unit};
 use crate::limits::POSITION_SCALE;
 
@@ -114,6 +115,16 @@ pub trait Mesh {
     /// faces only when every cap faces away, so that no hole shows the
     /// inside. Empty (the default) for a closed mesh or one with no hull.
     fn hull_caps(&self) -> &[[[f32; 3]; 3]] {
+        &[]
+    }
+
+    /// Each face's plane ([`FacePlane::of_triangle`] for a triangle,
+    /// [`FacePlane::NONE`] for any other), so that a draw with back faces
+    /// culled leaves out a face turned away beyond doubt before any of its
+    /// corners is transformed (host builds, the `std` feature). Empty (the
+    /// default) when the mesh has none; faces past its end are tested on
+    /// their projected corners.
+    fn face_planes(&self) -> &[FacePlane] {
         &[]
     }
 }
@@ -434,6 +445,10 @@ pub trait MeshArrays {
     fn hull_caps(&self) -> &[[[f32; 3]; 3]] {
         &[]
     }
+    /// Each face's plane ([`Mesh::face_planes`]); empty when none.
+    fn face_planes(&self) -> &[FacePlane] {
+        &[]
+    }
 }
 
 impl<T: MeshArrays + ?Sized> Mesh for T {
@@ -494,6 +509,10 @@ impl<T: MeshArrays + ?Sized> Mesh for T {
     fn hull_caps(&self) -> &[[[f32; 3]; 3]] {
         MeshArrays::hull_caps(self)
     }
+
+    fn face_planes(&self) -> &[FacePlane] {
+        MeshArrays::face_planes(self)
+    }
 }
 
 impl MeshArrays for StaticMesh<'_> {
@@ -539,6 +558,19 @@ impl MeshArrays for StaticMesh<'_> {
 /// space, at unit length (zero for a face of no area).
 pub fn face_normals<M: Mesh + ?Sized>(mesh: &M) -> impl Iterator<Item = [f32; 3]> + '_ {
     (0..mesh.face_count()).map(move |f| unit_normal_of(mesh, mesh.face(f)))
+}
+
+/// Each face's plane for [`Mesh::face_planes`]: [`FacePlane::of_triangle`]
+/// of a triangle's corners, [`FacePlane::NONE`] for a face of more
+/// corners (the early back-face test takes triangles only).
+pub fn face_planes<M: Mesh + ?Sized>(mesh: &M) -> impl Iterator<Item = FacePlane> + '_ {
+    (0..mesh.face_count()).map(move |f| match mesh.face(f) {
+        &[a, b, c] => {
+            let p = |i: u16| mesh.position(usize::from(i));
+            FacePlane::of_triangle(p(a), p(b), p(c))
+        }
+        _ => FacePlane::NONE,
+    })
 }
 
 /// [`newell_normal`] of the polygon of `corners` of `mesh`, at unit length

@@ -18,11 +18,14 @@
 //!   projection and normals without floating point.
 //! * [`backface`]: the integer front end's back-face test in model space,
 //!   before a triangle's corners are transformed.
+//! * [`face_plane`]: the same test for `f32` meshes, from each face's
+//!   plane found once per mesh.
 
 pub(crate) mod backface;
 pub(crate) mod clip;
 pub(crate) mod clip_w;
 pub(crate) mod closed_hull;
+pub(crate) mod face_plane;
 pub(crate) mod fixed_point;
 pub(crate) mod geometry;
 pub(crate) mod mesh;

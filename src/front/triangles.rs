@@ -2,6 +2,7 @@
 
 use crate::error::Error;
 use crate::front::closed_hull::ClosedHull;
+use crate::front::face_plane::FacePlane;
 use crate::front::mesh::{Mesh, QuantizedView, SharedPlane};
 
 /// A mesh whose faces are all triangles, checked once when it is made:
@@ -91,6 +92,10 @@ impl<M: Mesh + ?Sized> Mesh for Triangles<'_, M> {
 
     fn hull_caps(&self) -> &[[[f32; 3]; 3]] {
         self.mesh.hull_caps()
+    }
+
+    fn face_planes(&self) -> &[FacePlane] {
+        self.mesh.face_planes()
     }
 }
 

@@ -4,10 +4,11 @@ use std::collections::HashMap;
 use std::vec::Vec;
 
 use crate::front::closed_hull::ClosedHull;
+use crate::front::face_plane::FacePlane;
 use crate::front::geometry::{Vec3, newell_normal, unit};
 use crate::front::mesh::{
-    Mesh, MeshArrays, SharedPlane, StaticMesh, check_shared_planes, face_normals, fan_normals,
-    planar_face_bits,
+    Mesh, MeshArrays, SharedPlane, StaticMesh, check_shared_planes, face_normals, face_planes,
+    fan_normals, planar_face_bits,
 };
 use crate::front::obj::{ObjCorner, ObjError, ObjErrorKind, ObjReader, Statement};
 use crate::limits::MAX_FACE_CORNERS;
@@ -65,6 +66,13 @@ pub struct HostMesh {
     /// with ([`Mesh::hull_caps`](crate::Mesh::hull_caps)); empty for a
     /// closed mesh.
     pub hull_caps: Vec<[[f32; 3]; 3]>,
+    /// Each face's plane ([`Mesh::face_planes`](crate::Mesh::face_planes)),
+    /// so that a draw with back faces culled leaves out those turned away
+    /// before transforming their corners; empty or short, the faces past
+    /// its end are tested on their projected corners. [`Self::from_obj`]
+    /// and [`Self::with_face_analysis`] compute them: stale planes would
+    /// cull faces by their old positions.
+    pub face_planes: Vec<FacePlane>,
 }
 
 /// The crease angle the tools give [`HostMesh::from_obj_smooth`] unless
@@ -299,6 +307,7 @@ impl HostMesh {
     pub fn with_face_analysis(mut self) -> Self {
         self.planar_faces = planar_face_bits(&self).collect();
         self.face_normals = face_normals(&self).collect();
+        self.face_planes = face_planes(&self).collect();
         let bent = (0..self.face_count()).any(|f| !self.face_is_planar(f));
         self.fan_normals = if bent {
             fan_normals(&self).collect()
@@ -478,6 +487,9 @@ impl MeshArrays for HostMesh {
 
     fn hull_caps(&self) -> &[[[f32; 3]; 3]] {
         &self.hull_caps
+    }
+    fn face_planes(&self) -> &[FacePlane] {
+        &self.face_planes
     }
 }
 

@@ -12,6 +12,8 @@ use crate::front::backface::{EyeTest, Side};
 use crate::front::clip::ClipValue;
 #[cfg(feature = "clipping")]
 use crate::front::clip::ClipVertex;
+#[cfg(feature = "std")]
+use crate::front::face_plane::{FacePlane, PlaneEye};
 use crate::front::geometry::Mat4;
 use crate::front::mesh::{Mesh, SharedPlane};
 use crate::front::scene::cache::{CacheStorage, EMPTY, NEEDS_CLIP, NON_FINITE};
@@ -415,6 +417,15 @@ where
         (Some(fixed), Some(_)) if frame.cull == Cull::Back => EyeTest::new(fixed),
         _ => None,
     };
+    // The model-space back-face test for the `f32` front end, from the
+    // mesh's face planes (host builds; a window of caps facing the viewer
+    // needs each back face's screen rectangle).
+    #[cfg(feature = "std")]
+    let plane_eye = match mesh.face_planes() {
+        [] => None,
+        _ if frame.cull != Cull::Back || frame.fixed.is_some() || frame.window().is_some() => None,
+        _ => PlaneEye::new(frame.mvp()),
+    };
     let mut draw = Draw {
         tables,
         slots,
@@ -422,6 +433,10 @@ where
         projected,
         positions,
         eye,
+        #[cfg(feature = "std")]
+        plane_eye,
+        #[cfg(feature = "std")]
+        face_planes: mesh.face_planes(),
         exact_normals: quantized.map_or(&[][..], |q| q.exact_normals),
         frame: &frame,
         stats: &mut stats,
@@ -462,6 +477,13 @@ struct Draw<'a, T: ?Sized, M: ?Sized, S, P, V> {
     eye: Option<EyeTest>,
     /// The quantized mesh's exact normals, if it has them.
     exact_normals: &'a [[i16; 3]],
+    /// The eye for the model-space back-face test of the `f32` front end
+    /// ([`PlaneEye`]: back faces culled, the mesh's face planes known).
+    #[cfg(feature = "std")]
+    plane_eye: Option<PlaneEye>,
+    /// The mesh's face planes ([`Mesh::face_planes`]).
+    #[cfg(feature = "std")]
+    face_planes: &'a [FacePlane],
     frame: &'a Frame,
     stats: &'a mut DrawStats,
     shade: &'a mut S,
@@ -512,6 +534,17 @@ where
             if side == Side::Back {
                 // Turned away beyond doubt: no corner is transformed for
                 // it.
+                self.stats.back_faces += 1;
+                return Ok(());
+            }
+        }
+        #[cfg(feature = "std")]
+        if let (Some(eye), Some(plane), 3) =
+            (&self.plane_eye, self.face_planes.get(face), corners.len())
+        {
+            side = eye.side(plane);
+            if side == Side::Back {
+                // The same for a mesh the `f32` front end draws.
                 self.stats.back_faces += 1;
                 return Ok(());
             }

@@ -441,6 +441,12 @@ impl Frame {
         }))
     }
 
+    /// The model-view-projection matrix of the `f32` front end.
+    #[cfg(feature = "std")]
+    pub(super) fn mvp(&self) -> &Mat4 {
+        &self.mvp
+    }
+
     /// The window where back faces are drawn ([`Self::cap_window`]);
     /// `None` when none is, and always without the `std` feature.
     #[inline(always)]
