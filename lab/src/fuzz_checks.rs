@@ -26,7 +26,9 @@
 //!   picture from the painter is no finding; a panic or an overflow in any
 //!   method is); and the same scene from vertices projected beforehand
 //!   ([`draw_mesh_projected`]) and in two bands on two threads
-//!   ([`zline::host::BandedRenderer::render_mesh`]) gives the same rows.
+//!   ([`zline::host::BandedRenderer::render_mesh`]) gives the same rows;
+//!   with back faces culled, the mesh's face planes change only pixels of
+//!   faces seen edge-on.
 //! * [`painted`]: Gouraud shading on [`core_scene`]'s polygons with a
 //!   colour at each corner: uniform corners paint the flat frame, a
 //!   triangle's pixels stay within its corners' colours.
@@ -638,6 +640,9 @@ pub fn pipeline(data: &[u8]) {
     if mesh.closed_hull.is_some() && cull == Cull::None {
         closed_hull_check(&mesh, &model, &camera);
     }
+    if cull == Cull::Back && flags & 8 == 0 {
+        face_planes_check(&mesh, &model, &camera);
+    }
     // Flag 8: the same mesh quantized, through the integer front end.
     // The mesh's own capacities, worst case over every view: no capacity
     // error may occur below the core's own limits.
@@ -695,6 +700,84 @@ fn closed_hull_check(mesh: &HostMesh, model: &Mat4, camera: &Camera) {
         assert!(
             a == b || (a != NONE && a & 1 == 1 && b != NONE && b & 1 == 0),
             "pixel {k}: culled {a:#x}, two-sided {b:#x}"
+        );
+    }
+}
+
+/// A mesh drawn with `Cull::Back` and its face planes
+/// ([`zline::Mesh::face_planes`]) gives the frame it gives without them,
+/// but where a face that the planes' test left out showed: each such
+/// pixel shows, without the planes, a face the draw with them did not
+/// shade, and one not turned towards the eye by more than a rounding's
+/// worth (its corners' clip `x, y, w` determinant in `f64`). Draws that
+/// fail are the pipeline check's to judge.
+fn face_planes_check(mesh: &HostMesh, model: &Mat4, camera: &Camera) {
+    const NONE: u32 = u32::MAX;
+    let frame = |mesh: &HostMesh, shaded: &mut Vec<bool>| -> Option<Vec<u32>> {
+        let (w, h) = (camera.width, camera.height);
+        let caps = mesh.capacities(w);
+        let mut renderer = host_renderer::<u32, Depth24>(&caps, w, h, NONE).ok()?;
+        renderer
+            .draw_mesh(mesh, model, camera, Cull::Back, |f| {
+                if let Some(s) = shaded.get_mut(f.face as usize) {
+                    *s = true;
+                }
+                f.face
+            })
+            .ok()?;
+        let mut pixels = Vec::new();
+        renderer
+            .render(&mut FnSink(|_: u16, row: &[u32], _: &[u32]| {
+                pixels.extend_from_slice(row);
+                Ok::<(), ()>(())
+            }))
+            .ok()?;
+        Some(pixels)
+    };
+    if mesh.face_planes.is_empty() {
+        return;
+    }
+    let bare = HostMesh {
+        face_planes: Vec::new(),
+        ..mesh.clone()
+    };
+    let mut shaded = vec![false; mesh.face_count()];
+    let mut unused = Vec::new();
+    let (Some(with), Some(without)) = (frame(mesh, &mut shaded), frame(&bare, &mut unused)) else {
+        return;
+    };
+    let mvp = camera.projection.mul(&camera.view.mul(model));
+    for (k, (&a, &b)) in with.iter().zip(&without).enumerate() {
+        if a == b {
+            continue;
+        }
+        assert!(b != NONE, "pixel {k}: {a} drawn only with the planes");
+        assert!(
+            !shaded[b as usize],
+            "pixel {k}: face {b} shaded, yet hidden with the planes"
+        );
+        let corners = mesh.face(b as usize);
+        assert_eq!(corners.len(), 3, "pixel {k}: face {b} is no triangle");
+        let clip: Vec<[f64; 3]> = corners
+            .iter()
+            .map(|&i| {
+                let p = mesh.positions[usize::from(i)].map(f64::from);
+                let row = |r: [f32; 4]| {
+                    (0..3).map(|c| f64::from(r[c]) * p[c]).sum::<f64>() + f64::from(r[3])
+                };
+                [row(mvp.m[0]), row(mvp.m[1]), row(mvp.m[3])]
+            })
+            .collect();
+        let [p, q, r] = [clip[0], clip[1], clip[2]];
+        let d = p[0] * (q[1] * r[2] - q[2] * r[1]) - p[1] * (q[0] * r[2] - q[2] * r[0])
+            + p[2] * (q[0] * r[1] - q[1] * r[0]);
+        let size: f64 = clip
+            .iter()
+            .map(|c| c.iter().map(|v| v.abs()).sum::<f64>())
+            .product();
+        assert!(
+            d <= 1e-6 * size,
+            "pixel {k}: face {b} left out, turned towards the eye (D = {d:e} of {size:e})"
         );
     }
 }
