@@ -57,7 +57,10 @@ const MARGIN: f64 = 1e-4;
 /// most zero at every sample, so the mesh's front faces cover every
 /// sample its back faces cover; and a ray from the eye can reach the
 /// inside only through a cap it crosses going in, which would face the
-/// viewer. Where some caps face the viewer, the frame keeps their
+/// viewer. A cap that faces the viewer but has no pixel sample within a
+/// sub-pixel step of its snapped corners' triangle covers no sample (the
+/// cap lies within half a step of that triangle) and counts as facing
+/// away. Where some caps face the viewer, the frame keeps their
 /// rectangle on the screen, grown by a pixel (the caps between their
 /// snapped corners lie within half a sub-pixel step of it): a back face
 /// that meets the rectangle is drawn, and one outside it is culled, since

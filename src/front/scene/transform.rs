@@ -421,8 +421,12 @@ impl Frame {
             let [a, b, c] = triangle.map(|corner| self.screen_position(corner));
             let (a, b, c) = (a?, b?, c?);
             // Inside the guard band: differences below 2^23, products
-            // below 2^46. Zero area covers no sample.
-            if cross(b.x - a.x, b.y - a.y, c.x - a.x, c.y - a.y) < 0 {
+            // below 2^46. Zero area covers no sample, nor does a cap that
+            // no sample lies near (on a host: a `no_std` build keeps no
+            // window, and its code stays as it was).
+            if cross(b.x - a.x, b.y - a.y, c.x - a.x, c.y - a.y) < 0
+                && (!cfg!(feature = "std") || may_cover_a_sample([a, b, c]))
+            {
                 for v in [a, b, c] {
                     match window.as_mut() {
                         Some(w) => w.add(v),
@@ -539,6 +543,52 @@ impl Frame {
             z: depth,
         })
     }
+}
+
+/// Whether the triangle `t` (snapped corners, clockwise on the screen:
+/// its inside is where each edge's `cross(b - a, p - a)` is at most
+/// zero) may cover a pixel sample once each corner is moved by up to a
+/// sub-pixel step each way: whether a sample lies within that distance
+/// (`r`, one step, in the maximum norm) of it. A point `q` of `t` with
+/// `|p - q| <= r` has each edge's value at `p` at most `r (|e_x| +
+/// |e_y|)`, so a sample beyond that for some edge is not near; and none
+/// beyond the triangle's rectangle grown by `r` is. A triangle whose
+/// rectangle holds more than 64 samples is taken to cover one.
+fn may_cover_a_sample(t: [ScreenVertex; 3]) -> bool {
+    let Some(rect) = ScreenRect::of(t) else {
+        return false;
+    };
+    let r = 1i64;
+    let half = SUBPIXEL_STEPS / 2;
+    // Samples at `k·S + S/2`: the first at or after `lo - r`, the last at
+    // or before `hi + r`.
+    let samples = |lo: i32, hi: i32| {
+        let step = i64::from(SUBPIXEL_STEPS);
+        let first = (i64::from(lo) - r - i64::from(half) + step - 1).div_euclid(step);
+        let last = (i64::from(hi) + r - i64::from(half)).div_euclid(step);
+        first..=last
+    };
+    let (columns, rows) = (samples(rect.x0, rect.x1), samples(rect.y0, rect.y1));
+    let count =
+        (columns.end() - columns.start() + 1).max(0) * (rows.end() - rows.start() + 1).max(0);
+    if count > 64 {
+        return true;
+    }
+    let step = i64::from(SUBPIXEL_STEPS);
+    rows.clone().any(|row| {
+        columns.clone().any(|column| {
+            let (px, py) = (
+                column * step + i64::from(half),
+                row * step + i64::from(half),
+            );
+            (0..3).all(|k| {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                let (ex, ey) = (i64::from(b.x - a.x), i64::from(b.y - a.y));
+                let value = ex * (py - i64::from(a.y)) - ey * (px - i64::from(a.x));
+                value <= r * (ex.abs() + ey.abs())
+            })
+        })
+    })
 }
 
 /// `pixels` on the sub-pixel grid, rounded half away from zero, as
@@ -665,6 +715,58 @@ mod tests {
             .mul(&Mat4::rotation_x(pitch))
             .mul(&Mat4::rotation_y(yaw))
             .mul(&Mat4::scale(Vec3::new(scale, scale, scale)))
+    }
+
+    /// A corner in sub-pixel steps.
+    fn sv(x: i32, y: i32) -> ScreenVertex {
+        ScreenVertex { x, y, z: 0 }
+    }
+
+    /// A cap covers a sample only if one lies within a sub-pixel step of
+    /// it: samples sit at `k·256 + 128`.
+    #[test]
+    fn caps_near_no_sample_cover_none() {
+        // Clockwise on the screen (`y` down), between the samples of
+        // pixels (0, 0) and (1, 1).
+        let between = [sv(140, 140), sv(140, 360), sv(360, 140)];
+        assert!(!may_cover_a_sample(between));
+        // Its corner moved onto pixel (0, 0)'s sample, and to within a
+        // step of it; two steps away it is clear again.
+        assert!(may_cover_a_sample([
+            sv(128, 128),
+            sv(140, 360),
+            sv(360, 140)
+        ]));
+        assert!(may_cover_a_sample([
+            sv(129, 129),
+            sv(140, 360),
+            sv(360, 140)
+        ]));
+        assert!(!may_cover_a_sample([
+            sv(130, 130),
+            sv(140, 360),
+            sv(360, 140)
+        ]));
+        // Another between the samples, each beyond one of its edges.
+        assert!(!may_cover_a_sample([
+            sv(300, 140),
+            sv(140, 300),
+            sv(300, 300)
+        ]));
+        // A large cap, and one holding a sample well inside.
+        assert!(may_cover_a_sample([
+            sv(0, 0),
+            sv(0, 1 << 14),
+            sv(1 << 14, 0)
+        ]));
+        assert!(may_cover_a_sample([
+            sv(300, 300),
+            sv(300, 500),
+            sv(500, 300)
+        ]));
+        // Far below zero the samples' grid holds as well.
+        let shifted = between.map(|v| sv(v.x - 256 * 40, v.y - 256 * 7));
+        assert!(!may_cover_a_sample(shifted));
     }
 
     /// The projection's snapping gives what `ScreenVertex::from_f32`
