@@ -559,13 +559,12 @@ fn may_cover_a_sample(t: [ScreenVertex; 3]) -> bool {
         return false;
     };
     let r = 1i64;
-    let half = SUBPIXEL_STEPS / 2;
+    let (step, half) = (i64::from(SUBPIXEL_STEPS), i64::from(SUBPIXEL_STEPS / 2));
     // Samples at `k·S + S/2`: the first at or after `lo - r`, the last at
     // or before `hi + r`.
     let samples = |lo: i32, hi: i32| {
-        let step = i64::from(SUBPIXEL_STEPS);
-        let first = (i64::from(lo) - r - i64::from(half) + step - 1).div_euclid(step);
-        let last = (i64::from(hi) + r - i64::from(half)).div_euclid(step);
+        let first = (i64::from(lo) - r - half + step - 1).div_euclid(step);
+        let last = (i64::from(hi) + r - half).div_euclid(step);
         first..=last
     };
     let (columns, rows) = (samples(rect.x0, rect.x1), samples(rect.y0, rect.y1));
@@ -574,13 +573,9 @@ fn may_cover_a_sample(t: [ScreenVertex; 3]) -> bool {
     if count > 64 {
         return true;
     }
-    let step = i64::from(SUBPIXEL_STEPS);
     rows.clone().any(|row| {
         columns.clone().any(|column| {
-            let (px, py) = (
-                column * step + i64::from(half),
-                row * step + i64::from(half),
-            );
+            let (px, py) = (column * step + half, row * step + half);
             (0..3).all(|k| {
                 let (a, b) = (t[k], t[(k + 1) % 3]);
                 let (ex, ey) = (i64::from(b.x - a.x), i64::from(b.y - a.y));
