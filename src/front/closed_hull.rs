@@ -21,7 +21,13 @@ const MARGIN: f64 = 1e-4;
 /// [`Cull::Back`](crate::Cull::Back) whenever the sphere lies wholly
 /// between the camera's near and far planes and the matrices keep the
 /// winding: the same samples are covered, and a colour changes only where
-/// a back face tied in depth with a front face that is nearer.
+/// a back face tied in depth with a front face that is nearer. (A mesh
+/// with face planes, [`Mesh::face_planes`](crate::Mesh::face_planes), is
+/// then culled as with `Cull::Back` in this too: a face seen edge-on that
+/// the exact projection turns away is left out even where its rounded
+/// corners would cover a sample, which can leave such a sample to what
+/// lies behind: 1 pixel of the bunny in 96 views, none on the other shared
+/// meshes.)
 ///
 /// # Why back faces of a closed mesh never show
 /// Let every edge of the mesh's faces be met by exactly one other face
