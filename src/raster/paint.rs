@@ -177,9 +177,15 @@ fn painted_rows<D: DepthFormat, P: RowPainter, K: RowSink<P::Color, D::Value>>(
     // The columns any polygon can write: outside them every row's slots
     // stay NO_SLOT, which the painter need not look at.
     let columns = columns_written(tables, width);
+    // Whether the depth and slot rows may hold anything but CLEAR and
+    // NO_SLOT: a row scanned with no polygon active writes neither (here
+    // activation draws nothing), so the next row needs no clear.
+    let mut rows_dirty = true;
     for row in first..end {
-        depth_row.fill(D::CLEAR);
-        slot_row.fill(NO_SLOT);
+        if rows_dirty {
+            depth_row.fill(D::CLEAR);
+            slot_row.fill(NO_SLOT);
+        }
         let mut row_buffers = RowBuffers::<u16, D> {
             depth: &mut *depth_row,
             color: &mut *slot_row,
@@ -222,11 +228,8 @@ fn painted_rows<D: DepthFormat, P: RowPainter, K: RowSink<P::Color, D::Value>>(
         }
         state.note_peaks();
         // A row no polygon is active on holds no slot.
-        let painted = if state.active.len() == 0 {
-            0..0
-        } else {
-            columns.clone()
-        };
+        rows_dirty = state.active.len() != 0;
+        let painted = if rows_dirty { columns.clone() } else { 0..0 };
         state.scan_row(row, &mut row_buffers)?;
         let lent = sink
             .lend_row(row, width, painter.background())

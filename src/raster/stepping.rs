@@ -67,6 +67,12 @@ impl<C: Copy> ScanState<'_, '_, C> {
             })
     }
 
+    /// Whether any polygon is active (large or small): a row scanned with
+    /// none writes nothing.
+    pub(super) fn any_active(&self) -> bool {
+        self.active.len() + self.small.len() > 0
+    }
+
     pub(super) fn note_peaks(&mut self) {
         let s = &mut self.stats;
         let active = self.active.len() + self.small.len();
