@@ -62,11 +62,11 @@ pub(crate) fn fill_block<C: Copy, D: DepthFormat>(
     colors: &mut [C; LANES],
     left: usize,
     (key, color): (u32, C),
-    (mut acc, step): (D::Accum, D::Accum),
+    (acc, lane_steps): (D::Accum, &[D::Accum; LANES]),
 ) {
     use core::hint::select_unpredictable as select;
     for k in 0..LANES {
-        let depth = D::value(acc);
+        let depth = D::value(D::advance(acc, lane_steps[k]));
         let stored = depths[k];
         // `&` and `|`, not `&&` and `||`: no branch.
         let wins = (k < left)
@@ -74,8 +74,20 @@ pub(crate) fn fill_block<C: Copy, D: DepthFormat>(
         depths[k] = select(wins, depth, stored);
         keys[k] = select(wins, key, keys[k]);
         colors[k] = select(wins, color, colors[k]);
-        acc = D::advance(acc, step);
     }
+}
+
+/// `k · step` for each lane `k`, as the accumulator's wrapping steps
+/// make it: lane `k` of a block is the block's first accumulator advanced
+/// by `lane_steps[k]`, the same value as `k` advances one after another,
+/// and every lane's depth is computed at once.
+#[inline(always)]
+pub(crate) fn lane_steps<D: DepthFormat>(step: D::Accum) -> [D::Accum; LANES] {
+    let mut steps = [D::Accum::from(0); LANES];
+    for k in 1..LANES {
+        steps[k] = D::advance(steps[k - 1], step);
+    }
+    steps
 }
 
 #[cfg(test)]
@@ -111,7 +123,14 @@ mod tests {
     ) -> Result<(), TestCaseError> {
         let colors: [u16; LANES] = core::array::from_fn(|k| 100 + k as u16);
         let (mut d, mut k, mut c) = (stored, keys, colors);
-        fill_block::<u16, D>(&mut d, &mut k, &mut c, left, pixel, accumulator);
+        fill_block::<u16, D>(
+            &mut d,
+            &mut k,
+            &mut c,
+            left,
+            pixel,
+            (accumulator.0, &lane_steps::<D>(accumulator.1)),
+        );
         let (mut want_d, mut want_k, mut want_c) = (stored, keys, colors);
         let n = left.min(LANES);
         fill_scalar::<D>(
@@ -165,7 +184,14 @@ mod tests {
     #[test]
     fn a_block_of_a_short_span_writes_only_its_pixels() {
         let (mut d, mut k, mut c) = ([u16::MAX; LANES], [0u32; LANES], [0u16; LANES]);
-        fill_block::<u16, Depth16>(&mut d, &mut k, &mut c, 3, (5, 9), (10 << 16, 1 << 16));
+        fill_block::<u16, Depth16>(
+            &mut d,
+            &mut k,
+            &mut c,
+            3,
+            (5, 9),
+            (10 << 16, &lane_steps::<Depth16>(1 << 16)),
+        );
         assert_eq!(
             d,
             [10, 11, 12, u16::MAX, u16::MAX, u16::MAX, u16::MAX, u16::MAX]

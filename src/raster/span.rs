@@ -7,7 +7,7 @@ use crate::arith::ARMV6M;
 use crate::arith::wide::mul_i64_small;
 use crate::raster::BRANCH_FREE;
 use crate::raster::depth::DepthFormat;
-use crate::raster::lanes::{LANES, block, fill_block};
+use crate::raster::lanes::{LANES, block, fill_block, lane_steps};
 use crate::raster::plane::Plane;
 use crate::raster::small::SmallCoverage;
 
@@ -61,6 +61,7 @@ impl<C: Copy, D: DepthFormat> RowBuffers<'_, C, D> {
         if BRANCH_FREE {
             // Blocks while the row holds one from `first` (see `lanes`);
             // the scalar loop below finishes a span near the row's end.
+            let lane_steps = lane_steps::<D>(step);
             while let Some((depths, keys, colors)) = block(self.depth, self.key, self.color, first)
             {
                 fill_block::<C, D>(
@@ -69,7 +70,7 @@ impl<C: Copy, D: DepthFormat> RowBuffers<'_, C, D> {
                     colors,
                     last - first,
                     (key, color),
-                    (acc, step),
+                    (acc, &lane_steps),
                 );
                 first += LANES;
                 if first >= last {
