@@ -6,30 +6,19 @@
 //! back face and the culled one a front face (a depth tie).
 
 use proptest::prelude::*;
-use zline::host::{HostMesh, HostRenderer};
-use zline::{Camera, Cull, Depth24, DrawStats, FnSink, Mat4, Vec3, radians, reference_model};
+use zline::host::HostMesh;
+use zline::{Camera, Cull, Depth24, DrawStats, Mat4, Vec3, radians, reference_model};
 use zline_lab::shapes;
 
-/// No face: the background.
-const NONE: u32 = u32::MAX;
+mod common;
+
+use common::NO_FACE as NONE;
 
 /// The frame's pixels as `face << 1 | front`, and the draw's counts.
 fn frame(mesh: &HostMesh, model: &Mat4, camera: &Camera) -> (Vec<u32>, DrawStats) {
-    let (w, h) = (camera.width, camera.height);
-    let mut renderer = HostRenderer::<u32, Depth24>::for_mesh(mesh, w, h, NONE).expect("renderer");
-    let stats = renderer
-        .draw_mesh(mesh, model, camera, Cull::None, |f| {
-            f.face << 1 | u32::from(f.front)
-        })
-        .expect("draw");
-    let mut pixels = Vec::with_capacity(usize::from(w) * usize::from(h));
-    renderer
-        .render(&mut FnSink(|_: u16, row: &[u32], _: &[u32]| {
-            pixels.extend_from_slice(row);
-            Ok::<(), ()>(())
-        }))
-        .expect("render");
-    (pixels, stats)
+    common::mesh_frame(mesh, model, camera, Cull::None, |f| {
+        f.face << 1 | u32::from(f.front)
+    })
 }
 
 /// `mesh` with its hull and drawn two-sided (hull cleared); checks the

@@ -7,27 +7,16 @@
 
 use proptest::prelude::*;
 use zline::host::{HostMesh, HostRenderer};
-use zline::{Camera, Cull, Depth24, DrawStats, FnSink, Mat4, Vec3, reference_model};
+use zline::{Camera, Cull, Depth24, DrawStats, Mat4, Vec3, reference_model};
 use zline_lab::shapes;
 
-/// No face: the background.
-const NONE: u32 = u32::MAX;
+mod common;
+
+use common::NO_FACE as NONE;
 
 /// The frame's face ids and the draw's counts.
 fn frame(mesh: &HostMesh, model: &Mat4, camera: &Camera) -> (Vec<u32>, DrawStats) {
-    let (w, h) = (camera.width, camera.height);
-    let mut renderer = HostRenderer::<u32, Depth24>::for_mesh(mesh, w, h, NONE).expect("renderer");
-    let stats = renderer
-        .draw_mesh(mesh, model, camera, Cull::Back, |f| f.face)
-        .expect("draw");
-    let mut pixels = Vec::with_capacity(usize::from(w) * usize::from(h));
-    renderer
-        .render(&mut FnSink(|_: u16, row: &[u32], _: &[u32]| {
-            pixels.extend_from_slice(row);
-            Ok::<(), ()>(())
-        }))
-        .expect("render");
-    (pixels, stats)
+    common::mesh_frame(mesh, model, camera, Cull::Back, |f| f.face)
 }
 
 /// Face `face` of `mesh` on the screen, in `f64`: twice its signed area

@@ -664,30 +664,43 @@ pub fn pipeline(data: &[u8]) {
     }
 }
 
+/// No face: the background of [`face_frame`].
+const NONE: u32 = u32::MAX;
+
+/// `mesh` drawn z24 with `cull`, each face coloured by `color` on a
+/// background of [`NONE`]: the frame's pixels, row-major from the top.
+/// `None` when the draw or the render fails (capacities, clipping
+/// range: the pipeline check's to judge).
+fn face_frame(
+    mesh: &HostMesh,
+    (model, camera): (&Mat4, &Camera),
+    cull: Cull,
+    color: impl FnMut(&zline::FaceInfo) -> u32,
+) -> Option<Vec<u32>> {
+    let (w, h) = (camera.width, camera.height);
+    let caps = mesh.capacities(w);
+    let mut renderer = host_renderer::<u32, Depth24>(&caps, w, h, NONE).ok()?;
+    renderer.draw_mesh(mesh, model, camera, cull, color).ok()?;
+    let mut pixels = Vec::new();
+    renderer
+        .render(&mut FnSink(|_: u16, row: &[u32], _: &[u32]| {
+            pixels.extend_from_slice(row);
+            Ok::<(), ()>(())
+        }))
+        .ok()?;
+    Some(pixels)
+}
+
 /// A closed mesh drawn with `Cull::None` covers the samples it covers
 /// drawn two-sided (its hull cleared), and a pixel differs only where the
 /// two-sided frame shows a back face and the other a front face (see
 /// [`zline::ClosedHull`]). Draws that fail (capacities, clipping range)
 /// are the pipeline check's to judge.
 fn closed_hull_check(mesh: &HostMesh, model: &Mat4, camera: &Camera) {
-    const NONE: u32 = u32::MAX;
-    let frame = |mesh: &HostMesh| -> Option<Vec<u32>> {
-        let (w, h) = (camera.width, camera.height);
-        let caps = mesh.capacities(w);
-        let mut renderer = host_renderer::<u32, Depth24>(&caps, w, h, NONE).ok()?;
-        renderer
-            .draw_mesh(mesh, model, camera, Cull::None, |f| {
-                f.face << 1 | u32::from(f.front)
-            })
-            .ok()?;
-        let mut pixels = Vec::new();
-        renderer
-            .render(&mut FnSink(|_: u16, row: &[u32], _: &[u32]| {
-                pixels.extend_from_slice(row);
-                Ok::<(), ()>(())
-            }))
-            .ok()?;
-        Some(pixels)
+    let frame = |mesh: &HostMesh| {
+        face_frame(mesh, (model, camera), Cull::None, |f| {
+            f.face << 1 | u32::from(f.front)
+        })
     };
     let open = HostMesh {
         closed_hull: None,
@@ -746,27 +759,13 @@ fn turned_towards(mesh: &HostMesh, face: u32, model: &Mat4, camera: &Camera) -> 
 /// worth (its corners' clip `x, y, w` determinant in `f64`). Draws that
 /// fail are the pipeline check's to judge.
 fn face_planes_check(mesh: &HostMesh, model: &Mat4, camera: &Camera) {
-    const NONE: u32 = u32::MAX;
-    let frame = |mesh: &HostMesh, shaded: &mut Vec<bool>| -> Option<Vec<u32>> {
-        let (w, h) = (camera.width, camera.height);
-        let caps = mesh.capacities(w);
-        let mut renderer = host_renderer::<u32, Depth24>(&caps, w, h, NONE).ok()?;
-        renderer
-            .draw_mesh(mesh, model, camera, Cull::Back, |f| {
-                if let Some(s) = shaded.get_mut(f.face as usize) {
-                    *s = true;
-                }
-                f.face
-            })
-            .ok()?;
-        let mut pixels = Vec::new();
-        renderer
-            .render(&mut FnSink(|_: u16, row: &[u32], _: &[u32]| {
-                pixels.extend_from_slice(row);
-                Ok::<(), ()>(())
-            }))
-            .ok()?;
-        Some(pixels)
+    let frame = |mesh: &HostMesh, shaded: &mut Vec<bool>| {
+        face_frame(mesh, (model, camera), Cull::Back, |f| {
+            if let Some(s) = shaded.get_mut(f.face as usize) {
+                *s = true;
+            }
+            f.face
+        })
     };
     if mesh.face_planes.is_empty() {
         return;

@@ -345,3 +345,33 @@ pub const TILE_TEXELS: [u16; 16] = {
     }
     t
 };
+
+/// No face: the background of [`mesh_frame`].
+pub const NO_FACE: u32 = u32::MAX;
+
+/// `mesh` drawn by a `HostRenderer` sized for it, z24, each face
+/// coloured by `color` on a background of [`NO_FACE`]: the frame's
+/// pixels, row-major from the top, and the draw's counts.
+pub fn mesh_frame(
+    mesh: &zline::host::HostMesh,
+    model: &zline::Mat4,
+    camera: &zline::Camera,
+    cull: zline::Cull,
+    color: impl FnMut(&zline::FaceInfo) -> u32,
+) -> (Vec<u32>, zline::DrawStats) {
+    let (w, h) = (camera.width, camera.height);
+    let mut renderer =
+        zline::host::HostRenderer::<u32, zline::Depth24>::for_mesh(mesh, w, h, NO_FACE)
+            .expect("renderer");
+    let stats = renderer
+        .draw_mesh(mesh, model, camera, cull, color)
+        .expect("draw");
+    let mut pixels = Vec::with_capacity(usize::from(w) * usize::from(h));
+    renderer
+        .render(&mut FnSink(|_: u16, row: &[u32], _: &[u32]| {
+            pixels.extend_from_slice(row);
+            Ok::<(), ()>(())
+        }))
+        .expect("render");
+    (pixels, stats)
+}
