@@ -86,8 +86,9 @@ const MARGIN: f64 = 1e-4;
 ///
 /// A mesh that passes through itself may fold a pocket inside out, where
 /// a ray from outside meets a back face first. The host's check cannot
-/// see that (it refuses a mesh whose enclosed volume is not positive, not
-/// a pocket in one that is): there the draw shows the front face behind,
+/// see that (it refuses a mesh whose enclosed volume is not positive, or
+/// a face that crosses itself, not a pocket between faces): there the
+/// draw shows the front face behind,
 /// as [`Cull::Back`](crate::Cull::Back) would. The shared meshes' cow has
 /// such folds: at 320x240 they change 2 of 76,800 pixels in one of the
 /// accuracy run's three views (both within 1/16 px of a face's edge).

@@ -14,7 +14,11 @@ use crate::front::scene::bounding_sphere;
 /// equal when their coordinates are: a transform maps them alike) met by
 /// exactly one edge running the other way, and no directed edge twice;
 /// the volume its faces enclose positive beyond rounding (counter-clockwise
-/// seen from outside); every position finite. The sphere is
+/// seen from outside); every position finite; every face of more than
+/// three corners turned one way as drawn (a simple outline seen along its
+/// normal, and, when the draw splits it into a fan, no triangle of the
+/// fan turned back: a face that crosses itself, a bow tie, has a lobe
+/// that shows its back from any side). The sphere is
 /// [`bounding_sphere`]'s, its radius taken a millionth larger. `None` for
 /// anything else, a mesh with no faces included.
 ///
@@ -77,6 +81,9 @@ pub fn capped_hull<M: Mesh + ?Sized>(mesh: &M) -> Option<(ClosedHull, Vec<[[f32;
             if a != b {
                 edges.push((a, b));
             }
+        }
+        if n > 3 && !turned_one_way(mesh, f, &id_of) {
+            return None;
         }
         let p = |k: usize| mesh.position(usize::from(corners[k]));
         for k in 1..n.saturating_sub(1) {
@@ -165,14 +172,49 @@ impl Volume {
     }
 }
 
-/// Triangles covering the polygon `rim` (3D, in order), wound as it is,
-/// each turned as little as can be from its Newell normal. `None` when
-/// its outline seen along that normal is not a simple polygon (edges that
-/// cross or touch, a normal of no length) or some triangle would be
-/// turned a right angle from it or more.
-fn cap_triangles(rim: &[[f32; 3]]) -> Option<Vec<[[f32; 3]; 3]>> {
-    let n = rim.len();
-    let p: Vec<[f64; 3]> = rim.iter().map(|v| v.map(f64::from)).collect();
+/// Whether face `f` of more than three corners (`id_of`: each vertex's
+/// position id) is drawn as a surface turned one way, as every face of a
+/// hull must be: with its repeated corners taken once, a triangle or
+/// less, or an outline that is a simple polygon seen along its Newell
+/// normal; and, for a face the draw splits into a fan (one that is not
+/// planar, [`Mesh::face_is_planar`]), each triangle of the fan of no area
+/// or turned less than a right angle from that normal. A face that
+/// crosses itself (a bow tie) shows one lobe from the front and the other
+/// from behind, so no view hides all its back.
+fn turned_one_way<M: Mesh + ?Sized>(mesh: &M, f: usize, id_of: &[u32]) -> bool {
+    let corners = mesh.face(f);
+    let id = |k: usize| id_of[usize::from(corners[k])];
+    let n = corners.len();
+    let distinct: Vec<[f64; 3]> = (0..n)
+        .filter(|&k| id(k) != id((k + 1) % n))
+        .map(|k| mesh.position(usize::from(corners[k])).map(f64::from))
+        .collect();
+    if distinct.len() <= 3 {
+        return true;
+    }
+    let Some((normal, flat)) = outline_along_normal(&distinct) else {
+        return false;
+    };
+    if !simple(&flat) {
+        return false;
+    }
+    if mesh.face_is_planar(f) {
+        return true;
+    }
+    let p = |k: usize| mesh.position(usize::from(corners[k])).map(f64::from);
+    (1..n - 1).all(|k| {
+        let t = cross3(sub3(p(k), p(0)), sub3(p(k + 1), p(0)));
+        dot3(t, t) == 0.0 || dot3(t, normal) > 0.0
+    })
+}
+
+/// The unit Newell normal of the polygon `p` (3D, in order) and its
+/// outline seen along it: in a basis `(u, v)` of the plane across the
+/// normal with `(u, v, normal)` right-handed, so a polygon wound
+/// counter-clockwise about its normal runs counter-clockwise in `(u, v)`.
+/// `None` when the normal has no length (or is not finite).
+fn outline_along_normal(p: &[[f64; 3]]) -> Option<([f64; 3], Vec<[f64; 2]>)> {
+    let n = p.len();
     let mut normal = [0.0f64; 3];
     for k in 0..n {
         let (a, b) = (p[k], p[(k + 1) % n]);
@@ -185,8 +227,6 @@ fn cap_triangles(rim: &[[f32; 3]]) -> Option<Vec<[[f32; 3]; 3]>> {
         return None;
     }
     let normal = normal.map(|c| c / length);
-    // A basis of the plane across the normal, (u, v, normal) right-handed:
-    // the outline runs counter-clockwise in (u, v).
     let helper = if normal[0].abs() < 0.6 {
         [1.0, 0.0, 0.0]
     } else {
@@ -194,7 +234,19 @@ fn cap_triangles(rim: &[[f32; 3]]) -> Option<Vec<[[f32; 3]; 3]>> {
     };
     let u = unit(cross3(helper, normal));
     let v = cross3(normal, u);
-    let flat: Vec<[f64; 2]> = p.iter().map(|q| [dot3(*q, u), dot3(*q, v)]).collect();
+    let flat = p.iter().map(|q| [dot3(*q, u), dot3(*q, v)]).collect();
+    Some((normal, flat))
+}
+
+/// Triangles covering the polygon `rim` (3D, in order), wound as it is,
+/// each turned as little as can be from its Newell normal. `None` when
+/// its outline seen along that normal is not a simple polygon (edges that
+/// cross or touch, a normal of no length) or some triangle would be
+/// turned a right angle from it or more.
+fn cap_triangles(rim: &[[f32; 3]]) -> Option<Vec<[[f32; 3]; 3]>> {
+    let n = rim.len();
+    let p: Vec<[f64; 3]> = rim.iter().map(|v| v.map(f64::from)).collect();
+    let (normal, flat) = outline_along_normal(&p)?;
     if n < 3 || !simple(&flat) {
         return None;
     }
@@ -451,6 +503,86 @@ mod tests {
         assert_eq!(capped(&inward[..20], &STARTS[..5]), None);
         // One quad: capped by its own reverse, it encloses nothing.
         assert_eq!(capped(&QUADS[..4], &STARTS[..1]), None);
+    }
+
+    /// A closed mesh with a face that crosses itself (the fuzzer's case:
+    /// face 0 a bow tie in z = 0, the others bent quads), which showed a
+    /// lobe of that face from behind where nothing hid it.
+    #[test]
+    fn a_face_that_crosses_itself_is_not() {
+        let positions = [
+            [-1.0, -1.0, -1.0],
+            [1.0, -1.0, -1.0],
+            [1.0, 1.0, -9.0],
+            [-1.0, 1.0, -1.0],
+            [1.0, -1.0, 0.0],
+            [1.0, 5.0, 0.0],
+            [0.5, 1.0, 0.0],
+            [5.5, -0.5, 0.0],
+        ];
+        let corners = [4, 5, 6, 7, 1, 0, 3, 2, 5, 1, 2, 6, 0, 4, 7, 3, 3, 7, 2, 3];
+        let starts = [0, 4, 8, 12, 17];
+        let mesh = StaticMesh::new(&positions, &corners, &starts).expect("mesh");
+        assert_eq!(closed_hull(&mesh), None);
+    }
+
+    /// A pyramid over the flat quad `base` (corners in z = 0), its apex
+    /// at `(2, 1, 3)`, its sides wound against the base's edges.
+    fn pyramid(base: [[f32; 2]; 4]) -> Option<ClosedHull> {
+        let mut positions: Vec<[f32; 3]> = base.iter().map(|&[x, y]| [x, y, 0.0]).collect();
+        positions.push([2.0, 1.0, 3.0]);
+        let mut corners = vec![0, 1, 2, 3];
+        for k in 0..4u16 {
+            corners.extend_from_slice(&[(k + 1) % 4, k, 4]);
+        }
+        let starts = [0, 4, 7, 10, 13];
+        closed_hull(&StaticMesh::new(&positions, &corners, &starts).expect("mesh"))
+    }
+
+    #[test]
+    fn a_flat_bow_tie_is_not() {
+        // Wound clockwise seen from above (its normal points down, out of
+        // the pyramid): closed.
+        assert!(pyramid([[0.0, 0.0], [0.0, 1.0], [4.0, 2.0], [4.0, 0.0]]).is_some());
+        // Two of its corners swapped: a bow tie whose larger lobe runs
+        // clockwise and smaller one counter-clockwise, enclosing a volume
+        // of the right sign, drawn as one polygon (it is flat).
+        assert_eq!(
+            pyramid([[0.0, 0.0], [4.0, 2.0], [4.0, 0.0], [0.0, 1.0]]),
+            None
+        );
+    }
+
+    /// A pyramid over the dart-shaped quad `(4, 0), (0, 0), (0, 4), (1, 1)`
+    /// (its corner at `(1, 1)` raised by `lift`, the base listed from
+    /// corner `first`), wound outward.
+    fn dart_pyramid(lift: f32, first: usize) -> Option<ClosedHull> {
+        let positions = [
+            [4.0, 0.0, 0.0],
+            [0.0, 0.0, 0.0],
+            [0.0, 4.0, 0.0],
+            [1.0, 1.0, lift],
+            [0.5, 0.5, 3.0],
+        ];
+        let base: Vec<u16> = (0..4).map(|k| ((first + k) % 4) as u16).collect();
+        let mut corners = base.clone();
+        for k in 0..4 {
+            corners.extend_from_slice(&[base[(k + 1) % 4], base[k], 4]);
+        }
+        let starts = [0, 4, 7, 10, 13];
+        closed_hull(&StaticMesh::new(&positions, &corners, &starts).expect("mesh"))
+    }
+
+    #[test]
+    fn a_bent_face_whose_fan_turns_back_is_not() {
+        // Flat, the dart is drawn as one polygon: closed from any corner.
+        assert!(dart_pyramid(0.0, 0).is_some());
+        assert!(dart_pyramid(0.0, 1).is_some());
+        // Bent, it is drawn as a fan from its first corner: from (0, 0)
+        // both triangles face down with the base, from (4, 0) the one
+        // through (1, 1) faces up, into the pyramid.
+        assert!(dart_pyramid(0.3, 1).is_some());
+        assert_eq!(dart_pyramid(0.3, 0), None);
     }
 
     #[test]
