@@ -407,27 +407,36 @@ fn exact_gradient(divisor: &mut GradientDivisor, c: i64, coef: i64) -> Option<i6
     (g.abs() < STEEP_GRADIENT).then_some(g)
 }
 
+/// `1 / d` in `f64`, what [`float_gradient`] multiplies by.
+#[inline(always)]
+pub(crate) fn gradient_inverse(d: u32) -> f64 {
+    1.0 / f64::from(d)
+}
+
 /// `floor((n·2^16 + floor(d / 2)) / d)`, a gradient rounded to the unit,
-/// for `|n| < 2^57` and `0 < d < 2^31`, from one `f64` division; `None`
-/// when `|n| / d` is [`Divisor::QUOTIENT_LIMIT`] or more, as the integer
-/// paths. The same value as `(n div d)·2^16 + floor(((n mod d)·2^16 +
-/// floor(d / 2)) / d)` (floored division), which those paths compute.
+/// for `|n| < 2^57` and `0 < d < 2^31`, from one `f64` product by
+/// `inverse`, the `f64` value of `1 / d` ([`gradient_inverse`], one
+/// division for every gradient of a triangle); `None` when `|n| / d` is
+/// [`Divisor::QUOTIENT_LIMIT`] or more, as the integer paths. The same
+/// value as `(n div d)·2^16 + floor(((n mod d)·2^16 + floor(d / 2)) / d)`
+/// (floored division), which those paths compute.
 ///
 /// Ranges: with `|n| < 2^26·d`, the quotient `Q = (n·2^16 + h) / d`
 /// (`h = floor(d / 2)`) is below `2^42 + 1` in magnitude. `n as f64`, the
-/// product by `2^16` (exact), the sum with `h` and the division each round
-/// by at most half an ulp, so the estimate is within `2^-51·2^43 = 2^-8`
-/// of `Q`, and its truncation `g` within 2 of `floor(Q)`. The remainder
+/// product by `2^16` (exact), the sum with `h`, `1 / d` and the product
+/// by it each round by at most half an ulp (four roundings, relative
+/// `2^-53` each), so the estimate is within `2^-51·2^43 = 2^-8` of `Q`,
+/// and its truncation `g` within 2 of `floor(Q)`. The remainder
 /// `n·2^16 + h - g·d` is then below `3d < 2^33` in magnitude, so
 /// computing it modulo `2^64` (wrapping: `n·2^16` itself needs 73 bits)
 /// gives it exactly, and at most two steps of `d` bring it into `[0, d)`.
 #[inline(always)]
-pub(crate) fn float_gradient(n: i64, d: u32) -> Option<i64> {
+pub(crate) fn float_gradient(n: i64, d: u32, inverse: f64) -> Option<i64> {
     if n.unsigned_abs() >= Divisor::QUOTIENT_LIMIT * u64::from(d) {
         return None;
     }
     let (d, half) = (i64::from(d), i64::from(d >> 1));
-    let estimate = ((n as f64) * 65536.0 + half as f64) / d as f64;
+    let estimate = ((n as f64) * 65536.0 + half as f64) * inverse;
     // Truncation, not `floor` (a library call without SSE4.1).
     let mut g = estimate as i64;
     let mut rest = n
@@ -495,8 +504,9 @@ fn div_rem_by_bytes(n: u64, d: u32) -> (u64, u64) {
 /// divisions by `c`: `-a·2^8 = n·c + r` (`0 <= r < c`), then
 /// `n·2^16 + round(r·2^16 / c)`. That is the same rounding as
 /// [`Plane::gradients`], to the unit. On a 64-bit host each gradient is
-/// instead one `f64` division corrected exactly ([`float_gradient`]): the
-/// same values.
+/// instead one `f64` product by `1 / c` corrected exactly
+/// ([`float_gradient`]; one division for all a triangle's gradients):
+/// the same values.
 ///
 /// The row value at column 0 is anchored at `o` itself, where the plane's
 /// value is `z_o` exactly: `z_o·2^16 + round((dz_dx·(128 - o.x) +
@@ -547,9 +557,10 @@ impl TrianglePlane {
     fn with_float_division(o: ScreenVertex, p: ScreenVertex, q: ScreenVertex) -> Option<Self> {
         let (c, a, b) = Self::coefficients(o, p, q)?;
         let d = c.unsigned_abs() as u32;
+        let inverse = gradient_inverse(d);
         let gradient = |coef: i64| {
             let n = if c < 0 { coef } else { -coef } << SUBPIXEL_BITS;
-            float_gradient(n, d).filter(|g| g.abs() < STEEP_GRADIENT)
+            float_gradient(n, d, inverse).filter(|g| g.abs() < STEEP_GRADIENT)
         };
         Some(Self {
             dz_dx: gradient(a)?,
@@ -641,11 +652,16 @@ impl TrianglePlane {
         let d = c.unsigned_abs();
         let mut divisor =
             (!FLOAT_GRADIENTS).then(|| GradientDivisor::with_path(d as u32, DIVISION_PATH));
+        let inverse = if FLOAT_GRADIENTS {
+            gradient_inverse(d as u32)
+        } else {
+            0.0
+        };
         let mut gradient = |coef: i64| match divisor.as_mut() {
             Some(divisor) => exact_gradient(divisor, c, coef),
             None => {
                 let n = if c < 0 { coef } else { -coef } << SUBPIXEL_BITS;
-                float_gradient(n, d as u32).filter(|g| g.abs() < STEEP_GRADIENT)
+                float_gradient(n, d as u32, inverse).filter(|g| g.abs() < STEEP_GRADIENT)
             }
         };
         let mut planes = [Self {
@@ -911,7 +927,11 @@ mod tests {
             let exact = ((i128::from(signed) << 16) + i128::from(d / 2)).div_euclid(i128::from(d));
             let expected = (signed.unsigned_abs() / u64::from(d) < Divisor::QUOTIENT_LIMIT)
                 .then_some(exact as i64);
-            assert_eq!(float_gradient(signed, d), expected, "{signed} / {d}");
+            assert_eq!(
+                float_gradient(signed, d, gradient_inverse(d)),
+                expected,
+                "{signed} / {d}"
+            );
         }
         if d < 1 << 23 && n < 1 << 57 {
             // The byte steps themselves, past the quotient limit too.
@@ -955,7 +975,11 @@ mod tests {
             let n = numerator >> 16;
             let limit = i128::from(Divisor::QUOTIENT_LIMIT) * di;
             let expected = (n.abs() < limit).then_some(g as i64);
-            assert_eq!(float_gradient(n as i64, d), expected, "{n} / {d}");
+            assert_eq!(
+                float_gradient(n as i64, d, gradient_inverse(d)),
+                expected,
+                "{n} / {d}"
+            );
         }
     }
 
