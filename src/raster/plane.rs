@@ -407,10 +407,29 @@ fn exact_gradient(divisor: &mut GradientDivisor, c: i64, coef: i64) -> Option<i6
     (g.abs() < STEEP_GRADIENT).then_some(g)
 }
 
-/// `1 / d` in `f64`, what [`float_gradient`] multiplies by.
+/// What [`float_gradient`] takes for its divisor `d`: `1 / d` in `f64` on
+/// the hosts that take that path ([`FLOAT_GRADIENTS`]), where one division
+/// serves all of a triangle's gradients; nothing elsewhere, where the path
+/// is compiled but never taken (so that a microcontroller's code stays as
+/// it was: with the `f64` captured, the Cortex-M0+'s textured frame took
+/// 17,240 more instructions).
+#[cfg(any(target_arch = "x86_64", target_arch = "aarch64"))]
+pub(crate) type GradientInverse = f64;
+/// See the host's `GradientInverse`.
+#[cfg(not(any(target_arch = "x86_64", target_arch = "aarch64")))]
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct GradientInverse;
+
+/// The [`GradientInverse`] of `d`.
 #[inline(always)]
-pub(crate) fn gradient_inverse(d: u32) -> f64 {
-    1.0 / f64::from(d)
+pub(crate) fn gradient_inverse(d: u32) -> GradientInverse {
+    #[cfg(any(target_arch = "x86_64", target_arch = "aarch64"))]
+    return 1.0 / f64::from(d);
+    #[cfg(not(any(target_arch = "x86_64", target_arch = "aarch64")))]
+    {
+        let _ = d;
+        GradientInverse
+    }
 }
 
 /// `floor((n·2^16 + floor(d / 2)) / d)`, a gradient rounded to the unit,
@@ -431,12 +450,19 @@ pub(crate) fn gradient_inverse(d: u32) -> f64 {
 /// computing it modulo `2^64` (wrapping: `n·2^16` itself needs 73 bits)
 /// gives it exactly, and at most two steps of `d` bring it into `[0, d)`.
 #[inline(always)]
-pub(crate) fn float_gradient(n: i64, d: u32, inverse: f64) -> Option<i64> {
+pub(crate) fn float_gradient(n: i64, d: u32, inverse: GradientInverse) -> Option<i64> {
     if n.unsigned_abs() >= Divisor::QUOTIENT_LIMIT * u64::from(d) {
         return None;
     }
     let (d, half) = (i64::from(d), i64::from(d >> 1));
-    let estimate = ((n as f64) * 65536.0 + half as f64) * inverse;
+    let numerator = (n as f64) * 65536.0 + half as f64;
+    #[cfg(any(target_arch = "x86_64", target_arch = "aarch64"))]
+    let estimate = numerator * inverse;
+    #[cfg(not(any(target_arch = "x86_64", target_arch = "aarch64")))]
+    let estimate = {
+        let GradientInverse = inverse;
+        numerator / d as f64
+    };
     // Truncation, not `floor` (a library call without SSE4.1).
     let mut g = estimate as i64;
     let mut rest = n
@@ -652,11 +678,7 @@ impl TrianglePlane {
         let d = c.unsigned_abs();
         let mut divisor =
             (!FLOAT_GRADIENTS).then(|| GradientDivisor::with_path(d as u32, DIVISION_PATH));
-        let inverse = if FLOAT_GRADIENTS {
-            gradient_inverse(d as u32)
-        } else {
-            0.0
-        };
+        let inverse = gradient_inverse(d as u32);
         let mut gradient = |coef: i64| match divisor.as_mut() {
             Some(divisor) => exact_gradient(divisor, c, coef),
             None => {
