@@ -48,7 +48,10 @@ pub fn prepare_output(path: &Path) -> Result<(), String> {
     Ok(())
 }
 
-/// Writes `rows` as CSV to `path`, creating its directory.
+/// Writes `rows` as CSV to `path`, creating its directory: medians and
+/// minima to 0.0001 ms and ratios to 0.001, so that a frame of 0.007 ms
+/// is told from one of 0.0074 (with three decimals, two such medians
+/// read as a tie).
 pub fn write_csv(path: &Path, rows: &[Row]) -> Result<(), String> {
     prepare_output(path)?;
     let mut text = String::from(CSV_HEADER);
@@ -56,7 +59,7 @@ pub fn write_csv(path: &Path, rows: &[Row]) -> Result<(), String> {
     for r in rows {
         let _ = writeln!(
             text,
-            "{},{},{},{},{:.3},{:.3},{:.2}",
+            "{},{},{},{},{:.4},{:.4},{:.3}",
             csv_field(&r.mesh),
             r.size,
             r.cull,
