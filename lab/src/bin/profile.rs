@@ -30,6 +30,13 @@
 //! | sink | `profile::copy_row` |
 //! | row upkeep | `scan_rows`, less activation, spans and sink |
 //!
+//! `--texture FILE.png` draws the peers bench's `zline textured z24` row
+//! instead: the mesh read with `HostMesh::from_obj_smooth`, painted
+//! perspective-correct from the texture (nearest texel, repeat, unlit);
+//! `--report` then gives only the whole frame (`--report` stages are the
+//! flat scan's). It prints the last frame's hash, so a change meant to
+//! keep every pixel can be checked.
+//!
 //! Instructions are not time: a host also waits on memory and on
 //! mispredicted branches. `--perf-report` reads a sampling profile of the
 //! same frames instead and prints each stage's share of the samples, by
@@ -48,12 +55,15 @@ use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::IntoStorage;
 use zline::Mesh;
 use zline::Shading;
+use zline::host::{DEFAULT_CREASE_DEGREES, HostPaintedRenderer};
 use zline::host::{HostMesh, host_renderer};
+use zline::paint::Textured;
 use zline::{Camera, Cull, VertexCache, draw_mesh, reference_model};
-use zline::{Depth16, Depth24, DepthFormat, FnSink};
+use zline::{Depth16, Depth24, DepthFormat, FnSink, FrameBufferSink};
 use zline_lab::cli::parse_size;
 use zline_lab::cli::run_tool;
 use zline_lab::cli::{help_requested, load_model};
+use zline_lab::textures::Rgb565Texture;
 
 /// Copies one finished row into the frame buffer (the sink stage).
 #[inline(never)]
@@ -119,6 +129,46 @@ fn frames<D: DepthFormat>(
             }))
             .map_err(|e| format!("{e:?}"))?;
     }
+    Ok(())
+}
+
+/// `count` textured frames of the mesh at `path` (read for smooth shading)
+/// with the texture at `png`, as the peers bench's textured row draws.
+fn textured_frames(
+    path: &str,
+    png: &str,
+    size: (u16, u16),
+    cull: Cull,
+    count: usize,
+) -> Result<(), String> {
+    let bytes = std::fs::read(path).map_err(|e| format!("{path}: {e}"))?;
+    let mesh = HostMesh::from_obj_smooth(&bytes, DEFAULT_CREASE_DEGREES)
+        .map_err(|e| format!("{path}: {e}"))?;
+    let texels = Rgb565Texture::read(std::path::Path::new(png), 1)?;
+    let mode = Textured::<Rgb565>::new(texels.texture()?);
+    let black = Rgb565::new(0, 0, 0);
+    let mut renderer =
+        HostPaintedRenderer::<_, Depth24>::for_mesh(&mesh, size.0, size.1, mode, black)
+            .map_err(|e| e.to_string())?;
+    let model = reference_model(&mesh, 30.0, 20.0).map_err(|e| e.to_string())?;
+    let camera = Camera::reference(size.0, size.1);
+    let width = usize::from(size.0);
+    let mut frame = vec![black; width * usize::from(size.1)];
+    for _ in 0..count {
+        renderer.clear();
+        renderer
+            .draw_mesh(&mesh, &model, &camera, cull, |v| v.tex_coord())
+            .map_err(|e| e.to_string())?;
+        renderer
+            .render(&mut FrameBufferSink::new(&mut frame, width))
+            .map_err(|e| format!("{e:?}"))?;
+    }
+    // The last frame's FNV-1a hash: a change to the painter that should
+    // keep every pixel is checked by it.
+    let hash = frame.iter().fold(0xcbf2_9ce4_8422_2325u64, |h, c| {
+        (h ^ u64::from(c.into_storage())).wrapping_mul(0x100_0000_01b3)
+    });
+    eprintln!("frame hash {hash:016x}");
     Ok(())
 }
 
@@ -286,7 +336,7 @@ fn perf_report(path: &str) -> Result<(), String> {
 
 fn run(args: &[String]) -> Result<(), String> {
     let (mut path, mut size, mut cull, mut count) = (None, (800, 600), Cull::None, 4);
-    let (mut live_shading, mut z16) = (true, false);
+    let (mut live_shading, mut z16, mut texture) = (true, false, None);
     let mut it = args.iter();
     while let Some(a) = it.next() {
         let mut value = || it.next().ok_or_else(|| format!("{a} needs a value"));
@@ -302,6 +352,7 @@ fn run(args: &[String]) -> Result<(), String> {
                 }
             }
             "--size" => size = parse_size(value()?)?,
+            "--texture" => texture = Some(value()?.clone()),
             "--cull" => {
                 cull = match value()?.as_str() {
                     "none" => Cull::None,
@@ -320,7 +371,11 @@ fn run(args: &[String]) -> Result<(), String> {
             s => path = Some(s.to_string()),
         }
     }
-    let mesh = load_model(&path.ok_or("missing MODEL.obj")?)?;
+    let path = path.ok_or("missing MODEL.obj")?;
+    if let Some(png) = texture {
+        return textured_frames(&path, &png, size, cull, count);
+    }
+    let mesh = load_model(&path)?;
     if z16 {
         frames::<Depth16>(&mesh, size, cull, count, live_shading)
     } else {
@@ -330,6 +385,7 @@ fn run(args: &[String]) -> Result<(), String> {
 
 const USAGE: &str =
     "usage: profile MODEL.obj [--size WxH] [--cull none|back] [--depth z24|z16] [--frames N] [--table]
+               [--texture FILE.png]
        profile --report CALLGRIND.OUT | profile --perf-report PERF.DATA
 Draws frames for valgrind's callgrind or perf to profile (build with --features profile), or reports
 each stage's share of a profile.";
