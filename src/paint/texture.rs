@@ -139,6 +139,32 @@ impl<'a> Texture<'a> {
             .unwrap_or(0)
     }
 
+    /// The index masks of a repeating texture whose sides are both powers
+    /// of two (2 or more), for [`Self::masked_nearest`]; `None` for any
+    /// other.
+    #[inline(always)]
+    pub(crate) fn repeat_masks(&self) -> Option<[u16; 2]> {
+        (self.wrap == Wrap::Repeat && self.mask_x != 0 && self.mask_y != 0)
+            .then_some([self.mask_x, self.mask_y])
+    }
+
+    /// The texel nearest `(u, v)` (texel units with [`TEXEL_FRAC_BITS`]
+    /// fractional bits, any values) of a texture with these
+    /// [`Self::repeat_masks`]: each index's low bits are its value modulo
+    /// the side, whatever its high bits, so no coordinate needs narrowing
+    /// first. The same texel as [`Self::nearest`] of the coordinates
+    /// reduced modulo the sides.
+    #[inline(always)]
+    pub(crate) fn masked_nearest(&self, [mask_x, mask_y]: [u16; 2], u: i64, v: i64) -> u16 {
+        let x = (u >> TEXEL_FRAC_BITS) as usize & usize::from(mask_x);
+        let y = (v >> TEXEL_FRAC_BITS) as usize & usize::from(mask_y);
+        // In range by construction; 0 (black) would show a mistake.
+        self.texels
+            .get(y * usize::from(self.width) + x)
+            .copied()
+            .unwrap_or(0)
+    }
+
     /// The texel nearest `(u, v)` (texel units with [`TEXEL_FRAC_BITS`]
     /// fractional bits), as stored.
     #[inline(always)]

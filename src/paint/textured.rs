@@ -36,7 +36,7 @@ use crate::paint::color::{PaintColor, bayer_threshold};
 use crate::paint::texture::{
     Filter, TEXEL_FRAC_BITS, TEXEL_MAX, Texture, Wrap, levels as texel_levels,
 };
-use crate::raster::attribute::{AttributePlane, attribute_planes, exact_value_at};
+use crate::raster::attribute::{AttributePlane, attribute_planes, exact_value_at, triangle_planes};
 use crate::raster::vertex::ScreenVertex;
 
 /// The largest texel coordinate a pixel takes (`2^-8` texel, from its
@@ -291,16 +291,19 @@ impl<C: PaintColor> PaintMode for Textured<'_, C> {
         width: u16,
         height: u16,
     ) -> TexturedPlanes {
+        let mut three = corners.clone();
+        if let (Some(a), Some(b), Some(c), None) =
+            (three.next(), three.next(), three.next(), three.next())
+            && let Some(planes) = self.triangle_planes([a, b, c])
+        {
+            return planes;
+        }
         let scale = CornerValues::new(&self.texture, corners.clone().map(|(_, c)| c));
         let values = corners.map(|(v, c)| (v, scale.values(&self.texture, c)));
-        let sizes = [self.texture.width(), self.texture.height()];
         TexturedPlanes {
             planes: attribute_planes(values, width, height).unwrap_or_default(),
             shifts: scale.shifts.map(|s| s as u8),
-            offset: core::array::from_fn(|a| match self.texture.wrap() {
-                Wrap::Repeat => scale.base[a].rem_euclid(i64::from(sizes[a]) << TEXEL_FRAC_BITS),
-                Wrap::Clamp => scale.base[a],
-            }),
+            offset: self.offset(scale.base),
         }
     }
 
@@ -315,6 +318,27 @@ impl<C: PaintColor> PaintMode for Textured<'_, C> {
         y: u16,
         out: &mut [C],
     ) {
+        if !self.dither && C::MAX == TEXEL_MAX && self.texture.filter() == Filter::Nearest {
+            // Texels copied as they are: the one decision made once a run,
+            // so that each pixel's closure is small enough to inline.
+            if let Some(masks) = self.texture.repeat_masks() {
+                let [du, dv] = planes.offset;
+                self.coordinates(planes, corners(), (x0, y), out.len(), |k, [u, v]| {
+                    if let Some(pixel) = out.get_mut(k) {
+                        let texel = self.texture.masked_nearest(masks, u + du, v + dv);
+                        *pixel = C::from_levels(texel_levels(texel));
+                    }
+                });
+                return;
+            }
+            self.coordinates(planes, corners(), (x0, y), out.len(), |k, t| {
+                if let Some(pixel) = out.get_mut(k) {
+                    let [u, v] = self.texel_position(planes, t);
+                    *pixel = C::from_levels(texel_levels(self.texture.nearest(u, v)));
+                }
+            });
+            return;
+        }
         let threshold = |x: u16| self.dither.then(|| bayer_threshold(x, y));
         self.coordinates(planes, corners(), (x0, y), out.len(), |k, t| {
             if let Some(pixel) = out.get_mut(k) {
@@ -325,6 +349,61 @@ impl<C: PaintColor> PaintMode for Textured<'_, C> {
 }
 
 impl<C: PaintColor> Textured<'_, C> {
+    /// A triangle's planes as [`PaintMode::planes`] sets them up (the same
+    /// values), each corner's coordinates computed once: `None` where the
+    /// triangle set-up does not take it ([`triangle_planes`]), which the
+    /// general set-up then does.
+    #[inline(always)]
+    fn triangle_planes(&self, corners: [(ScreenVertex, TexCoord); 3]) -> Option<TexturedPlanes> {
+        let t = corners.map(|(_, c)| texel_units(&self.texture, c));
+        let base: [i64; 2] = core::array::from_fn(|a| t[0][a].min(t[1][a]).min(t[2][a]));
+        // The last corner of the smallest `w`, as `CornerValues::new` takes.
+        let mut w_min = corners[0].1.w;
+        for (_, c) in &corners[1..] {
+            if c.w.at_most(w_min) {
+                w_min = c.w;
+            }
+        }
+        let texels = t.map(|t| [0, 1].map(|a| (t[a] - base[a]).max(0) as u64));
+        let ranges: [u64; 2] =
+            core::array::from_fn(|a| texels[0][a].max(texels[1][a]).max(texels[2][a]));
+        let bits_of = |v: u64| 64 - v.leading_zeros();
+        let bits = 23.min(46u32.saturating_sub(bits_of(ranges[0].max(ranges[1]))));
+        let shifts = ranges.map(|r| (bits_of(r) + bits).saturating_sub(24));
+        let corner = |k: usize| {
+            let (v, c) = corners[k];
+            let q = w_min.ratio(c.w, bits);
+            let [tu, tv] = texels[k];
+            let values = [
+                q,
+                ((tu * u64::from(q)) >> shifts[0]) as u32,
+                ((tv * u64::from(q)) >> shifts[1]) as u32,
+            ];
+            (v, values)
+        };
+        Some(TexturedPlanes {
+            planes: triangle_planes(corner(0), corner(1), corner(2))?,
+            shifts: shifts.map(|s| s as u8),
+            offset: self.offset(base),
+        })
+    }
+
+    /// What a polygon's coordinates (from `base`, its smallest) are added
+    /// to: `base` itself, or modulo the texture's size when it repeats (a
+    /// mask when the size is a power of two).
+    #[inline(always)]
+    fn offset(&self, base: [i64; 2]) -> [i64; 2] {
+        let sizes = [self.texture.width(), self.texture.height()];
+        core::array::from_fn(|a| {
+            let period = i64::from(sizes[a]) << TEXEL_FRAC_BITS;
+            match self.texture.wrap() {
+                Wrap::Repeat if sizes[a].is_power_of_two() => base[a] & (period - 1),
+                Wrap::Repeat => base[a].rem_euclid(period),
+                Wrap::Clamp => base[a],
+            }
+        })
+    }
+
     /// The texel coordinates (from the polygon's base, `2^-8` texel) of
     /// the `n` pixels of row `y` from column `x0` on, given to `pixel` with
     /// each pixel's index in the run, in order: divided at the ends of

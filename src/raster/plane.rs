@@ -676,28 +676,41 @@ impl TrianglePlane {
             return None;
         }
         let d = c.unsigned_abs();
-        let mut divisor =
-            (!FLOAT_GRADIENTS).then(|| GradientDivisor::with_path(d as u32, DIVISION_PATH));
-        let inverse = gradient_inverse(d as u32);
-        let mut gradient = |coef: i64| match divisor.as_mut() {
-            Some(divisor) => exact_gradient(divisor, c, coef),
-            None => {
-                let n = if c < 0 { coef } else { -coef } << SUBPIXEL_BITS;
-                float_gradient(n, d as u32, inverse).filter(|g| g.abs() < STEEP_GRADIENT)
-            }
-        };
         let mut planes = [Self {
             dz_dx: 0,
             dz_dy: 0,
             twice_area: c as i32,
             origin: o,
         }; N];
-        for (plane, [vo, vp, vq]) in planes.iter_mut().zip(values) {
+        // Each plane's corner value and its two cross terms.
+        let terms = values.map(|[vo, vp, vq]| {
             let (vo, vp, vq) = (vo.min(DEPTH_MAX), vp.min(DEPTH_MAX), vq.min(DEPTH_MAX));
             let (pz, qz) = (vp as i32 - vo as i32, vq as i32 - vo as i32);
-            plane.dz_dx = gradient(mul_sub_small(qz, py, pz, qy))?;
-            plane.dz_dy = gradient(mul_sub_small(pz, qx, qz, px))?;
-            plane.origin.z = vo;
+            (
+                vo,
+                mul_sub_small(qz, py, pz, qy),
+                mul_sub_small(pz, qx, qz, px),
+            )
+        });
+        // One loop per division path, so that the host's (every gradient
+        // from one product by `1 / d`) is straight-line code.
+        if FLOAT_GRADIENTS {
+            let inverse = gradient_inverse(d as u32);
+            let gradient = |coef: i64| {
+                let n = if c < 0 { coef } else { -coef } << SUBPIXEL_BITS;
+                float_gradient(n, d as u32, inverse).filter(|g| g.abs() < STEEP_GRADIENT)
+            };
+            for (plane, (vo, a, b)) in planes.iter_mut().zip(terms) {
+                (plane.dz_dx, plane.dz_dy) = (gradient(a)?, gradient(b)?);
+                plane.origin.z = vo;
+            }
+        } else {
+            let mut divisor = GradientDivisor::with_path(d as u32, DIVISION_PATH);
+            for (plane, (vo, a, b)) in planes.iter_mut().zip(terms) {
+                plane.dz_dx = exact_gradient(&mut divisor, c, a)?;
+                plane.dz_dy = exact_gradient(&mut divisor, c, b)?;
+                plane.origin.z = vo;
+            }
         }
         Some(planes)
     }
