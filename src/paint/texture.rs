@@ -294,6 +294,37 @@ mod tests {
         assert_eq!(Texture::new(&[], 0, 0), Err(Error::BadTextureSize));
     }
 
+    /// The masked lookup of a repeating power-of-two texture picks the
+    /// texel the general one does, for coordinates of either sign, far
+    /// beyond `i32` too (reduced modulo the sides for the general one);
+    /// other textures have no masks.
+    #[test]
+    fn masked_nearest_is_nearest() {
+        let texels: [u16; 32] = core::array::from_fn(|k| k as u16 * 0x0841 + 7);
+        let texture = Texture::new(&texels, 8, 4).unwrap();
+        let masks = texture.repeat_masks().unwrap();
+        let period = [8i64 << TEXEL_FRAC_BITS, 4 << TEXEL_FRAC_BITS];
+        let mut x = 0x9E37_79B9_7F4A_7C15u64;
+        for k in 0..20_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            // Small coordinates around 0, then any up to 2^40.
+            let span = if k < 10_000 { 1 << 12 } else { 1 << 40 };
+            let u = (x % (2 * span)) as i64 - span as i64;
+            let v = ((x >> 20) % (2 * span)) as i64 - span as i64;
+            let general = texture.nearest(
+                u.rem_euclid(period[0]) as i32,
+                v.rem_euclid(period[1]) as i32,
+            );
+            assert_eq!(texture.masked_nearest(masks, u, v), general, "{u} {v}");
+        }
+        assert_eq!(Texture::new(&texels, 32, 1).unwrap().repeat_masks(), None);
+        let twelve = grid();
+        assert_eq!(Texture::new(&twelve, 4, 3).unwrap().repeat_masks(), None);
+        assert_eq!(texture.with_wrap(Wrap::Clamp).repeat_masks(), None);
+    }
+
     /// Nearest: the texel holding the point; repeat wraps both ways
     /// (power-of-two width and not); clamp extends the edges.
     #[test]

@@ -34,7 +34,8 @@ use crate::front::tex_coord::TexCoord;
 use crate::paint::PaintMode;
 use crate::paint::color::{PaintColor, bayer_threshold};
 use crate::paint::texture::{
-    Filter, TEXEL_FRAC_BITS, TEXEL_MAX, Texture, Wrap, levels as texel_levels,
+    Filter, TEXEL_FRAC_BITS, TEXEL_MAX, Texture, Wrap, channels as texel_channels,
+    levels as texel_levels,
 };
 use crate::raster::attribute::{AttributePlane, attribute_planes, exact_value_at, triangle_planes};
 use crate::raster::vertex::ScreenVertex;
@@ -148,6 +149,12 @@ impl<'a, C: PaintColor> Textured<'a, C> {
     /// from the polygon's offset), by its filter.
     #[inline(always)]
     pub(super) fn channels(&self, planes: &TexturedPlanes, t: [i64; 2]) -> [u32; 3] {
+        if self.texture.filter() == Filter::Nearest
+            && let Some(masks) = self.texture.repeat_masks()
+        {
+            let [du, dv] = planes.offset;
+            return texel_channels(self.texture.masked_nearest(masks, t[0] + du, t[1] + dv));
+        }
         let [u, v] = self.texel_position(planes, t);
         self.texture.sample(u, v)
     }

@@ -33,6 +33,7 @@
 //! `--texture FILE.png` draws the peers bench's `zline textured z24` row
 //! instead: the mesh read with `HostMesh::from_obj_smooth`, painted
 //! perspective-correct from the texture (nearest texel, repeat, unlit);
+//! `--gouraud` its `zline gouraud z24` row (Lambert per vertex, dithered);
 //! `--report` then gives only the whole frame (`--report` stages are the
 //! flat scan's). It prints the last frame's hash, so a change meant to
 //! keep every pixel can be checked.
@@ -57,7 +58,7 @@ use zline::Mesh;
 use zline::Shading;
 use zline::host::{DEFAULT_CREASE_DEGREES, HostPaintedRenderer};
 use zline::host::{HostMesh, host_renderer};
-use zline::paint::Textured;
+use zline::paint::{Gouraud, PaintMode, Textured};
 use zline::{Camera, Cull, VertexCache, draw_mesh, reference_model};
 use zline::{Depth16, Depth24, DepthFormat, FnSink, FrameBufferSink};
 use zline_lab::cli::parse_size;
@@ -132,11 +133,12 @@ fn frames<D: DepthFormat>(
     Ok(())
 }
 
-/// `count` textured frames of the mesh at `path` (read for smooth shading)
-/// with the texture at `png`, as the peers bench's textured row draws.
-fn textured_frames(
+/// `count` painted frames of the mesh at `path` (read for smooth shading):
+/// textured with the texture at `png` (`Some`), as the peers bench's
+/// textured row draws, or Gouraud shaded (`None`), as its Gouraud row.
+fn painted_frames(
     path: &str,
-    png: &str,
+    png: Option<&str>,
     size: (u16, u16),
     cull: Cull,
     count: usize,
@@ -144,27 +146,45 @@ fn textured_frames(
     let bytes = std::fs::read(path).map_err(|e| format!("{path}: {e}"))?;
     let mesh = HostMesh::from_obj_smooth(&bytes, DEFAULT_CREASE_DEGREES)
         .map_err(|e| format!("{path}: {e}"))?;
-    let texels = Rgb565Texture::read(std::path::Path::new(png), 1)?;
-    let mode = Textured::<Rgb565>::new(texels.texture()?);
+    let view = (&mesh, size, cull, count);
+    match png {
+        Some(png) => {
+            let texels = Rgb565Texture::read(std::path::Path::new(png), 1)?;
+            let mode = Textured::<Rgb565>::new(texels.texture()?);
+            painted(view, mode, |v| v.tex_coord())
+        }
+        None => {
+            let shading = Shading::lambert();
+            painted(view, Gouraud::<Rgb565>::new(), |v| shading.vertex_color(v))
+        }
+    }
+}
+
+/// The frames of [`painted_frames`] with `mode`, each vertex's value from
+/// `shade`; prints the last frame's FNV-1a hash, so that a change to the
+/// painter meant to keep every pixel can be checked.
+fn painted<M: PaintMode<Color = Rgb565>>(
+    (mesh, size, cull, count): (&HostMesh, (u16, u16), Cull, usize),
+    mode: M,
+    shade: impl Fn(&zline::VertexInfo<'_>) -> M::Source,
+) -> Result<(), String> {
     let black = Rgb565::new(0, 0, 0);
     let mut renderer =
-        HostPaintedRenderer::<_, Depth24>::for_mesh(&mesh, size.0, size.1, mode, black)
+        HostPaintedRenderer::<_, Depth24>::for_mesh(mesh, size.0, size.1, mode, black)
             .map_err(|e| e.to_string())?;
-    let model = reference_model(&mesh, 30.0, 20.0).map_err(|e| e.to_string())?;
+    let model = reference_model(mesh, 30.0, 20.0).map_err(|e| e.to_string())?;
     let camera = Camera::reference(size.0, size.1);
     let width = usize::from(size.0);
     let mut frame = vec![black; width * usize::from(size.1)];
     for _ in 0..count {
         renderer.clear();
         renderer
-            .draw_mesh(&mesh, &model, &camera, cull, |v| v.tex_coord())
+            .draw_mesh(mesh, &model, &camera, cull, &shade)
             .map_err(|e| e.to_string())?;
         renderer
             .render(&mut FrameBufferSink::new(&mut frame, width))
             .map_err(|e| format!("{e:?}"))?;
     }
-    // The last frame's FNV-1a hash: a change to the painter that should
-    // keep every pixel is checked by it.
     let hash = frame.iter().fold(0xcbf2_9ce4_8422_2325u64, |h, c| {
         (h ^ u64::from(c.into_storage())).wrapping_mul(0x100_0000_01b3)
     });
@@ -336,7 +356,7 @@ fn perf_report(path: &str) -> Result<(), String> {
 
 fn run(args: &[String]) -> Result<(), String> {
     let (mut path, mut size, mut cull, mut count) = (None, (800, 600), Cull::None, 4);
-    let (mut live_shading, mut z16, mut texture) = (true, false, None);
+    let (mut live_shading, mut z16, mut texture, mut gouraud) = (true, false, None, false);
     let mut it = args.iter();
     while let Some(a) = it.next() {
         let mut value = || it.next().ok_or_else(|| format!("{a} needs a value"));
@@ -353,6 +373,7 @@ fn run(args: &[String]) -> Result<(), String> {
             }
             "--size" => size = parse_size(value()?)?,
             "--texture" => texture = Some(value()?.clone()),
+            "--gouraud" => gouraud = true,
             "--cull" => {
                 cull = match value()?.as_str() {
                     "none" => Cull::None,
@@ -372,8 +393,8 @@ fn run(args: &[String]) -> Result<(), String> {
         }
     }
     let path = path.ok_or("missing MODEL.obj")?;
-    if let Some(png) = texture {
-        return textured_frames(&path, &png, size, cull, count);
+    if texture.is_some() || gouraud {
+        return painted_frames(&path, texture.as_deref(), size, cull, count);
     }
     let mesh = load_model(&path)?;
     if z16 {
@@ -385,7 +406,7 @@ fn run(args: &[String]) -> Result<(), String> {
 
 const USAGE: &str =
     "usage: profile MODEL.obj [--size WxH] [--cull none|back] [--depth z24|z16] [--frames N] [--table]
-               [--texture FILE.png]
+               [--texture FILE.png | --gouraud]
        profile --report CALLGRIND.OUT | profile --perf-report PERF.DATA
 Draws frames for valgrind's callgrind or perf to profile (build with --features profile), or reports
 each stage's share of a profile.";
