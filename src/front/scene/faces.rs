@@ -398,7 +398,7 @@ where
     // a hole may show the inside, and back faces there are drawn.
     if hull_culls {
         let kept = match cap_window(&frame, mesh) {
-            Some(window) => frame.keep_window(window),
+            Some(window) => frame.keep_window(window, mesh.hull_caps()),
             None => false,
         };
         if !kept {
@@ -423,7 +423,7 @@ where
     #[cfg(feature = "std")]
     let plane_eye = match mesh.face_planes() {
         [] => None,
-        _ if frame.cull != Cull::Back || frame.fixed.is_some() || frame.window().is_some() => None,
+        _ if frame.cull != Cull::Back || frame.fixed.is_some() || frame.has_window() => None,
         _ => PlaneEye::new(frame.mvp()),
     };
     let mut draw = Draw {
@@ -695,7 +695,7 @@ where
         twice_area: i64,
     ) -> Result<(), Error> {
         let front = twice_area < 0;
-        if !front && self.frame.cull == Cull::Back && self.frame.window().is_none() {
+        if !front && self.frame.cull == Cull::Back && !self.frame.has_window() {
             self.stats.back_faces += 1;
             return Ok(());
         }
@@ -745,7 +745,7 @@ where
     /// ([`Frame::cap_window`]).
     #[inline(always)]
     fn may_cull(&self, ids: [u16; 3]) -> bool {
-        self.frame.window().is_none() || self.may_cull_near_caps(ids)
+        !self.frame.has_window() || self.may_cull_near_caps(ids)
     }
 
     /// [`Self::may_cull`] with a window, out of line.

@@ -69,6 +69,8 @@
 
 mod cache;
 mod camera;
+#[cfg(feature = "std")]
+mod cap_cover;
 mod clipping;
 mod cull;
 mod face_info;

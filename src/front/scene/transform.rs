@@ -17,6 +17,8 @@ use crate::front::fixed_point::FixedFrame;
 use crate::front::geometry::{Mat4, Vec3, Vec4};
 use crate::front::mesh::{Mesh, QuantizedView};
 use crate::front::scene::camera::Camera;
+#[cfg(feature = "std")]
+use crate::front::scene::cap_cover::CapCover;
 use crate::front::scene::cull::Cull;
 use crate::limits::{CLIP_BAND_PX, DEPTH_MAX, DEPTH_ONE, GUARD_BAND, SUBPIXEL_STEPS};
 use crate::raster::vertex::{ScreenRect, ScreenVertex};
@@ -181,12 +183,13 @@ pub(super) struct Frame {
     near_far_terms: (f32, f32),
     pub(super) cull: Cull,
     /// With [`Cull::Back`] from a hull closed by caps, the screen
-    /// rectangle of the caps that face the viewer: back faces that meet
-    /// it are drawn ([`Self::cap_window`]). Only with the `std` feature
-    /// (the host's meshes have caps; a microcontroller's frame stays as
-    /// it was, and a mesh with caps draws every face there).
+    /// rectangles of the caps that face the viewer: back faces that meet
+    /// one are drawn ([`Self::cap_window`], [`CapCover`]). Only with the
+    /// `std` feature (the host's meshes have caps; a microcontroller's
+    /// frame stays as it was, and a mesh with caps draws every face
+    /// there).
     #[cfg(feature = "std")]
-    cap_window: Option<ScreenRect>,
+    cap_cover: Option<CapCover>,
     /// The integer front end, for a quantized mesh whose matrices fit it.
     pub(super) fixed: Option<FixedFrame>,
 }
@@ -264,7 +267,7 @@ impl Frame {
             ),
             cull,
             #[cfg(feature = "std")]
-            cap_window: None,
+            cap_cover: None,
         }
     }
 
@@ -418,30 +421,43 @@ impl Frame {
         }
         let mut window: Option<ScreenRect> = None;
         for triangle in caps {
-            let [a, b, c] = triangle.map(|corner| self.screen_position(corner));
-            let (a, b, c) = (a?, b?, c?);
-            // Inside the guard band: differences below 2^23, products
-            // below 2^46. Zero area covers no sample, nor does a cap that
-            // no sample lies near (on a host: a `no_std` build keeps no
-            // window, and its code stays as it was).
-            if cross(b.x - a.x, b.y - a.y, c.x - a.x, c.y - a.y) < 0
-                && (!cfg!(feature = "std") || may_cover_a_sample([a, b, c]))
-            {
-                for v in [a, b, c] {
-                    match window.as_mut() {
-                        Some(w) => w.add(v),
-                        None => window = Some(ScreenRect::point(v)),
+            if let Some(rect) = self.cap_rect(triangle)? {
+                match window.as_mut() {
+                    Some(w) => {
+                        (w.x0, w.x1) = (w.x0.min(rect.x0), w.x1.max(rect.x1));
+                        (w.y0, w.y1) = (w.y0.min(rect.y0), w.y1.max(rect.y1));
                     }
+                    None => window = Some(rect),
                 }
             }
         }
+        Some(window)
+    }
+
+    /// The screen rectangle of cap `triangle` grown by a pixel each way
+    /// when it faces the viewer and may cover a sample (`Some(None)` when
+    /// not); `None` when a corner is not projected as it is.
+    fn cap_rect(&self, triangle: &[[f32; 3]; 3]) -> Option<Option<ScreenRect>> {
+        let [a, b, c] = triangle.map(|corner| self.screen_position(corner));
+        let (a, b, c) = (a?, b?, c?);
+        // Inside the guard band: differences below 2^23, products below
+        // 2^46. Zero area covers no sample, nor does a cap that no sample
+        // lies near (on a host: a `no_std` build keeps no window, and its
+        // code stays as it was).
+        let faces_viewer = cross(b.x - a.x, b.y - a.y, c.x - a.x, c.y - a.y) < 0;
+        if !(faces_viewer && (!cfg!(feature = "std") || may_cover_a_sample([a, b, c]))) {
+            return Some(None);
+        }
+        let mut rect = ScreenRect::point(a);
+        rect.add(b);
+        rect.add(c);
         // The continuous cap lies within half a sub-pixel step of its
         // snapped corners' rectangle; a pixel is far beyond that.
-        Some(window.map(|w| ScreenRect {
-            x0: w.x0 - SUBPIXEL_STEPS,
-            x1: w.x1 + SUBPIXEL_STEPS,
-            y0: w.y0 - SUBPIXEL_STEPS,
-            y1: w.y1 + SUBPIXEL_STEPS,
+        Some(Some(ScreenRect {
+            x0: rect.x0 - SUBPIXEL_STEPS,
+            x1: rect.x1 + SUBPIXEL_STEPS,
+            y0: rect.y0 - SUBPIXEL_STEPS,
+            y1: rect.y1 + SUBPIXEL_STEPS,
         }))
     }
 
@@ -451,41 +467,61 @@ impl Frame {
         &self.mvp
     }
 
-    /// The window where back faces are drawn ([`Self::cap_window`]);
-    /// `None` when none is, and always without the `std` feature.
+    /// Whether back faces are drawn where caps face the viewer
+    /// ([`Self::cap_window`]); never without the `std` feature.
     #[inline(always)]
-    pub(super) fn window(&self) -> Option<&ScreenRect> {
+    pub(super) fn has_window(&self) -> bool {
         #[cfg(feature = "std")]
-        return self.cap_window.as_ref();
+        return self.cap_cover.is_some();
         #[cfg(not(feature = "std"))]
-        return None;
+        return false;
     }
 
-    /// Keeps `window` ([`Self::cap_window`]); `false` when there is one
-    /// and this build keeps none (without the `std` feature), so the
-    /// frame must cull nothing.
-    pub(super) fn keep_window(&mut self, window: Option<ScreenRect>) -> bool {
+    /// Keeps `window` ([`Self::cap_window`] of `caps`) with each cap's
+    /// own rectangle ([`CapCover`]); `false` when there is one and this
+    /// build keeps none (without the `std` feature), so the frame must
+    /// cull nothing.
+    pub(super) fn keep_window(
+        &mut self,
+        window: Option<ScreenRect>,
+        caps: &[[[f32; 3]; 3]],
+    ) -> bool {
         #[cfg(feature = "std")]
         {
-            self.cap_window = window;
+            self.cap_cover = window.map(|window| {
+                let mut cover = CapCover::new(window);
+                for triangle in caps {
+                    if let Some(Some(rect)) = self.cap_rect(triangle) {
+                        cover.add(&rect);
+                    }
+                }
+                cover
+            });
             true
         }
         #[cfg(not(feature = "std"))]
-        window.is_none()
+        {
+            let _ = caps;
+            window.is_none()
+        }
     }
 
     /// Whether a back face within `rect` may be culled: always, unless
     /// a cap of the mesh's hull faces the viewer
-    /// ([`Self::cap_window`]) and `rect` (`None`: not known) meets its
-    /// window.
+    /// ([`Self::cap_window`]) and `rect` (`None`: not known) meets a cap's
+    /// rectangle ([`CapCover::meets`]).
     #[inline(always)]
     pub(super) fn may_cull_within(&self, rect: Option<ScreenRect>) -> bool {
-        match (self.window(), rect) {
+        #[cfg(feature = "std")]
+        return match (&self.cap_cover, rect) {
             (None, _) => true,
-            (Some(window), Some(r)) => {
-                r.x1 < window.x0 || r.x0 > window.x1 || r.y1 < window.y0 || r.y0 > window.y1
-            }
+            (Some(cover), Some(r)) => !cover.meets(&r),
             (Some(_), None) => false,
+        };
+        #[cfg(not(feature = "std"))]
+        {
+            let _ = rect;
+            true
         }
     }
 
