@@ -145,15 +145,30 @@ impl<'a, C: PaintColor> Textured<'a, C> {
         C::from_channels(self.texture.sample(u, v), threshold)
     }
 
+    /// The texel nearest texel coordinates `t` (`2^-8` texel, from the
+    /// polygon's offset): by the texture's [`Texture::repeat_masks`]
+    /// (`masks`) where it has them, else through [`Self::texel_position`].
+    #[inline(always)]
+    fn nearest_texel(&self, planes: &TexturedPlanes, t: [i64; 2], masks: Option<[u16; 2]>) -> u16 {
+        match masks {
+            Some(masks) => {
+                let [du, dv] = planes.offset;
+                self.texture.masked_nearest(masks, t[0] + du, t[1] + dv)
+            }
+            None => {
+                let [u, v] = self.texel_position(planes, t);
+                self.texture.nearest(u, v)
+            }
+        }
+    }
+
     /// The texture's 8.8 channels at texel coordinates `t` (`2^-8` texel,
     /// from the polygon's offset), by its filter.
     #[inline(always)]
     pub(super) fn channels(&self, planes: &TexturedPlanes, t: [i64; 2]) -> [u32; 3] {
-        if self.texture.filter() == Filter::Nearest
-            && let Some(masks) = self.texture.repeat_masks()
-        {
-            let [du, dv] = planes.offset;
-            return texel_channels(self.texture.masked_nearest(masks, t[0] + du, t[1] + dv));
+        if self.texture.filter() == Filter::Nearest {
+            let masks = self.texture.repeat_masks();
+            return texel_channels(self.nearest_texel(planes, t, masks));
         }
         let [u, v] = self.texel_position(planes, t);
         self.texture.sample(u, v)
@@ -233,7 +248,7 @@ impl CornerValues {
                 base = [base[0].min(t[0]), base[1].min(t[1])];
             }
         }
-        let mut this = Self {
+        let this = Self {
             base,
             bits: 23,
             shifts: [0; 2],
@@ -245,13 +260,25 @@ impl CornerValues {
             let t = this.texels(texture, c);
             ranges = [ranges[0].max(t[0]), ranges[1].max(t[1])];
         }
+        Self::from_parts(this.base, this.w_min, ranges)
+    }
+
+    /// The scaling of a polygon whose smallest coordinates are `base` and
+    /// smallest `w` is `w_min`, its coordinates spanning `ranges` from
+    /// `base` (see the module's notes).
+    #[inline(always)]
+    fn from_parts(base: [i64; 2], w_min: ClipW, ranges: [u64; 2]) -> Self {
         let bits_of = |v: u64| 64 - v.leading_zeros();
-        this.bits = 23.min(46u32.saturating_sub(bits_of(ranges[0].max(ranges[1]))));
-        // Each `t·q` is below `2^(bits(range) + bits)` (`q <= 2^bits`): the
-        // shift that brings that bound below `2^24` (no division per corner
-        // to find the largest product itself).
-        this.shifts = ranges.map(|r| (bits_of(r) + this.bits).saturating_sub(24));
-        this
+        let bits = 23.min(46u32.saturating_sub(bits_of(ranges[0].max(ranges[1]))));
+        Self {
+            base,
+            bits,
+            // Each `t·q` is below `2^(bits(range) + bits)` (`q <= 2^bits`):
+            // the shift that brings that bound below `2^24` (no division
+            // per corner to find the largest product itself).
+            shifts: ranges.map(|r| (bits_of(r) + bits).saturating_sub(24)),
+            w_min,
+        }
     }
 
     /// A corner's coordinates from the smallest (`2^-8` texel, `< 2^36`).
@@ -262,8 +289,14 @@ impl CornerValues {
 
     /// A corner's plane values: `q`, `t_u·q >> s_u`, `t_v·q >> s_v`.
     fn values(&self, texture: &Texture<'_>, c: TexCoord) -> [u32; 3] {
-        let q = self.w_min.ratio(c.w, self.bits);
-        let t = self.texels(texture, c);
+        self.values_of(c.w, self.texels(texture, c))
+    }
+
+    /// The plane values of a corner whose `w` is `w` and whose coordinates
+    /// from the smallest are `t` ([`Self::texels`]).
+    #[inline(always)]
+    fn values_of(&self, w: ClipW, t: [u64; 2]) -> [u32; 3] {
+        let q = self.w_min.ratio(w, self.bits);
         [
             q,
             ((t[0] * u64::from(q)) >> self.shifts[0]) as u32,
@@ -326,13 +359,13 @@ impl<C: PaintColor> PaintMode for Textured<'_, C> {
         out: &mut [C],
     ) {
         if !self.dither && C::MAX == TEXEL_MAX && self.texture.filter() == Filter::Nearest {
-            // Texels copied as they are: the one decision made once a run,
-            // so that each pixel's closure is small enough to inline.
+            // Texels copied as they are: the decisions made once a run, so
+            // that each pixel's closure is small enough to inline (a test
+            // of `masks` a pixel cost Spot's frame 1 %).
             if let Some(masks) = self.texture.repeat_masks() {
-                let [du, dv] = planes.offset;
-                self.coordinates(planes, corners(), (x0, y), out.len(), |k, [u, v]| {
+                self.coordinates(planes, corners(), (x0, y), out.len(), |k, t| {
                     if let Some(pixel) = out.get_mut(k) {
-                        let texel = self.texture.masked_nearest(masks, u + du, v + dv);
+                        let texel = self.nearest_texel(planes, t, Some(masks));
                         *pixel = C::from_levels(texel_levels(texel));
                     }
                 });
@@ -340,8 +373,8 @@ impl<C: PaintColor> PaintMode for Textured<'_, C> {
             }
             self.coordinates(planes, corners(), (x0, y), out.len(), |k, t| {
                 if let Some(pixel) = out.get_mut(k) {
-                    let [u, v] = self.texel_position(planes, t);
-                    *pixel = C::from_levels(texel_levels(self.texture.nearest(u, v)));
+                    let texel = self.nearest_texel(planes, t, None);
+                    *pixel = C::from_levels(texel_levels(texel));
                 }
             });
             return;
@@ -374,23 +407,11 @@ impl<C: PaintColor> Textured<'_, C> {
         let texels = t.map(|t| [0, 1].map(|a| (t[a] - base[a]).max(0) as u64));
         let ranges: [u64; 2] =
             core::array::from_fn(|a| texels[0][a].max(texels[1][a]).max(texels[2][a]));
-        let bits_of = |v: u64| 64 - v.leading_zeros();
-        let bits = 23.min(46u32.saturating_sub(bits_of(ranges[0].max(ranges[1]))));
-        let shifts = ranges.map(|r| (bits_of(r) + bits).saturating_sub(24));
-        let corner = |k: usize| {
-            let (v, c) = corners[k];
-            let q = w_min.ratio(c.w, bits);
-            let [tu, tv] = texels[k];
-            let values = [
-                q,
-                ((tu * u64::from(q)) >> shifts[0]) as u32,
-                ((tv * u64::from(q)) >> shifts[1]) as u32,
-            ];
-            (v, values)
-        };
+        let scale = CornerValues::from_parts(base, w_min, ranges);
+        let corner = |k: usize| (corners[k].0, scale.values_of(corners[k].1.w, texels[k]));
         Some(TexturedPlanes {
             planes: triangle_planes(corner(0), corner(1), corner(2))?,
-            shifts: shifts.map(|s| s as u8),
+            shifts: scale.shifts.map(|s| s as u8),
             offset: self.offset(base),
         })
     }
