@@ -47,9 +47,9 @@ pub(crate) fn block<'r, C, V>(
 }
 
 /// Tests and writes the first `left.min(LANES)` pixels of a block as the
-/// scanline's span loop does (nearer, or as near and added first), the
-/// first with the accumulator `acc`, each next one step on; the other
-/// pixels stay as they were.
+/// scanline's span loop does (nearer, or as near and added first), pixel
+/// `k` with the accumulator `lanes[k]` (see [`Lanes`]); the other pixels
+/// stay as they were.
 ///
 /// The three rows come as three arguments, not one struct: the compiler
 /// knows that arguments do not overlap, and only then keeps the block in
@@ -62,14 +62,18 @@ pub(crate) fn fill_block<C: Copy, D: DepthFormat>(
     colors: &mut [C; LANES],
     left: usize,
     (key, color): (u32, C),
-    (acc, lane_steps): (D::Accum, &[D::Accum; LANES]),
+    lanes: &[D::Accum; LANES],
 ) {
     use core::hint::select_unpredictable as select;
+    // Which lanes the span reaches, as bits: one mask for the block, not a
+    // comparison of `left` per lane (on x86-64, eight scalar comparisons
+    // gathered into a vector).
+    let in_span: u32 = if left >= LANES { 0xff } else { (1 << left) - 1 };
     for k in 0..LANES {
-        let depth = D::value(D::advance(acc, lane_steps[k]));
+        let depth = D::value(lanes[k]);
         let stored = depths[k];
         // `&` and `|`, not `&&` and `||`: no branch.
-        let wins = (k < left)
+        let wins = (in_span & (1 << k) != 0)
             & ((depth < stored) | ((depth == stored) & (depth != D::CLEAR) & (key < keys[k])));
         depths[k] = select(wins, depth, stored);
         keys[k] = select(wins, key, keys[k]);
@@ -77,17 +81,45 @@ pub(crate) fn fill_block<C: Copy, D: DepthFormat>(
     }
 }
 
-/// `k · step` for each lane `k`, as the accumulator's wrapping steps
-/// make it: lane `k` of a block is the block's first accumulator advanced
-/// by `lane_steps[k]`, the same value as `k` advances one after another,
-/// and every lane's depth is computed at once.
-#[inline(always)]
-pub(crate) fn lane_steps<D: DepthFormat>(step: D::Accum) -> [D::Accum; LANES] {
-    let mut steps = [D::Accum::from(0); LANES];
-    for k in 1..LANES {
-        steps[k] = D::advance(steps[k - 1], step);
+/// A span's accumulators lane by lane: lane `k` of the block in hand
+/// holds the accumulator of its pixel `k`, the value `k` advances one
+/// after another would give (the advances wrap, so adding their sum once
+/// is the same), and [`Lanes::next_block`] moves every lane on by
+/// [`LANES`] pixels at once. Every lane's depth is then computed together,
+/// and nothing a lane needs is recomputed from the span's first pixel.
+pub(crate) struct Lanes<D: DepthFormat> {
+    /// Each lane's accumulator in the block in hand.
+    pub accumulators: [D::Accum; LANES],
+    /// `LANES · step`.
+    block_step: D::Accum,
+}
+
+impl<D: DepthFormat> Lanes<D> {
+    /// The lanes of a block whose first pixel has the accumulator `acc`,
+    /// stepping `step` a pixel.
+    #[inline(always)]
+    pub(crate) fn new(acc: D::Accum, step: D::Accum) -> Self {
+        let mut accumulators = [acc; LANES];
+        for k in 1..LANES {
+            accumulators[k] = D::advance(accumulators[k - 1], step);
+        }
+        let mut block_step = D::Accum::from(0);
+        for _ in 0..LANES {
+            block_step = D::advance(block_step, step);
+        }
+        Self {
+            accumulators,
+            block_step,
+        }
     }
-    steps
+
+    /// Moves every lane on to the next block.
+    #[inline(always)]
+    pub(crate) fn next_block(&mut self) {
+        for lane in &mut self.accumulators {
+            *lane = D::advance(*lane, self.block_step);
+        }
+    }
 }
 
 #[cfg(test)]
@@ -129,7 +161,7 @@ mod tests {
             &mut c,
             left,
             pixel,
-            (accumulator.0, &lane_steps::<D>(accumulator.1)),
+            &Lanes::<D>::new(accumulator.0, accumulator.1).accumulators,
         );
         let (mut want_d, mut want_k, mut want_c) = (stored, keys, colors);
         let n = left.min(LANES);
@@ -181,6 +213,44 @@ mod tests {
         }
     }
 
+    /// Lane `k` of block `n` holds the accumulator `LANES·n + k` advances
+    /// one after another give, wrapping included.
+    fn lanes_follow_the_scalar_steps<D: DepthFormat>(
+        acc: D::Accum,
+        step: D::Accum,
+        blocks: usize,
+    ) -> Result<(), TestCaseError>
+    where
+        D::Accum: PartialEq + core::fmt::Debug,
+    {
+        let mut lanes = Lanes::<D>::new(acc, step);
+        let mut scalar = acc;
+        for n in 0..blocks {
+            if n > 0 {
+                lanes.next_block();
+            }
+            for k in 0..LANES {
+                prop_assert_eq!(lanes.accumulators[k], scalar);
+                scalar = D::advance(scalar, step);
+            }
+        }
+        Ok(())
+    }
+
+    proptest! {
+        /// Any accumulator and step of 16-bit depth, past the ends.
+        #[test]
+        fn lanes_step_as_the_scalar_loop_z16(acc in any::<i32>(), step in any::<i32>(), blocks in 1usize..6) {
+            lanes_follow_the_scalar_steps::<Depth16>(acc, step, blocks)?;
+        }
+
+        /// Any accumulator and step of 24-bit depth, past the ends.
+        #[test]
+        fn lanes_step_as_the_scalar_loop_z24(acc in any::<i64>(), step in any::<i64>(), blocks in 1usize..6) {
+            lanes_follow_the_scalar_steps::<Depth24>(acc, step, blocks)?;
+        }
+    }
+
     #[test]
     fn a_block_of_a_short_span_writes_only_its_pixels() {
         let (mut d, mut k, mut c) = ([u16::MAX; LANES], [0u32; LANES], [0u16; LANES]);
@@ -190,7 +260,7 @@ mod tests {
             &mut c,
             3,
             (5, 9),
-            (10 << 16, &lane_steps::<Depth16>(1 << 16)),
+            &Lanes::<Depth16>::new(10 << 16, 1 << 16).accumulators,
         );
         assert_eq!(
             d,

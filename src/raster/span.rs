@@ -7,7 +7,7 @@ use crate::arith::ARMV6M;
 use crate::arith::wide::mul_i64_small;
 use crate::raster::BRANCH_FREE;
 use crate::raster::depth::DepthFormat;
-use crate::raster::lanes::{LANES, block, fill_block, lane_steps};
+use crate::raster::lanes::{LANES, Lanes, block, fill_block};
 use crate::raster::plane::Plane;
 use crate::raster::small::SmallCoverage;
 
@@ -61,7 +61,7 @@ impl<C: Copy, D: DepthFormat> RowBuffers<'_, C, D> {
         if BRANCH_FREE {
             // Blocks while the row holds one from `first` (see `lanes`);
             // the scalar loop below finishes a span near the row's end.
-            let lane_steps = lane_steps::<D>(step);
+            let mut lanes = Lanes::<D>::new(acc, step);
             while let Some((depths, keys, colors)) = block(self.depth, self.key, self.color, first)
             {
                 fill_block::<C, D>(
@@ -70,20 +70,15 @@ impl<C: Copy, D: DepthFormat> RowBuffers<'_, C, D> {
                     colors,
                     last - first,
                     (key, color),
-                    (acc, &lane_steps),
+                    &lanes.accumulators,
                 );
                 first += LANES;
                 if first >= last {
                     return true;
                 }
-                // Stepped here, not returned by the block: LLVM folds
-                // these into one `acc + LANES·step` apart from the lanes'
-                // chain, and a returned accumulator measured 10 % slower
-                // in the peers bench.
-                for _ in 0..LANES {
-                    acc = D::advance(acc, step);
-                }
+                lanes.next_block();
             }
+            acc = lanes.accumulators[0];
         }
         if ARMV6M {
             // Zipped iterators: on a Cortex-M0+ (the RP2040's firmware)
