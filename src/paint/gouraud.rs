@@ -9,10 +9,12 @@ use core::marker::PhantomData;
 pub use crate::front::rgb8p8::Rgb8p8;
 use crate::paint::PaintMode;
 use crate::paint::color::{PaintColor, bayer_index, level_units};
+use crate::raster::BRANCH_FREE;
 use crate::raster::attribute::{
     ATTRIBUTE_FRAC_BITS, AttributePlane, attribute_planes, box_corners_within, exact_value_at,
     modular_triangle_planes,
 };
+use crate::raster::lanes::LANES;
 use crate::raster::vertex::ScreenVertex;
 
 /// Gouraud shading into colours `C`.
@@ -153,22 +155,71 @@ impl<C: PaintColor> PaintMode for Gouraud<C> {
         if !planes.wraps {
             return self.paint_clamped(offsets, planes, corners(), x0, y, out);
         }
-        let start = |p: &AttributePlane| {
-            (p.at_origin as u32)
-                .wrapping_add((p.dx as u32).wrapping_mul(u32::from(x0)))
-                .wrapping_add((p.dy as u32).wrapping_mul(u32::from(y)))
-        };
-        let [r, g, b] = &planes.channels;
-        let (mut vr, mut vg, mut vb) = (start(r), start(g), start(b));
-        let (dr, dg, db) = (r.dx as u32, g.dx as u32, b.dx as u32);
-        for (x, pixel) in (x0..).zip(out) {
-            let t = offsets[usize::from(x & 3)];
-            let level = |v: u32| v.wrapping_add(t) >> LEVEL_SHIFT;
-            *pixel = C::from_levels([level(vr), level(vg), level(vb)]);
-            vr = vr.wrapping_add(dr);
-            vg = vg.wrapping_add(dg);
-            vb = vb.wrapping_add(db);
+        paint_wrapping::<C, BRANCH_FREE>(offsets, planes, x0, y, out);
+    }
+}
+
+/// Paints a run of a polygon whose planes wrap ([`GouraudPlanes::wraps`]):
+/// each channel's value stepped in wrapping 32-bit arithmetic, its level
+/// taken after adding the pixel's offset. With `BLOCKS` (hosts: see
+/// [`crate::raster::lanes`]) the run goes [`LANES`] pixels at a time, each
+/// lane's values carried from block to block (eight steps added at once,
+/// which wrap to the same values as eight single steps), so that the
+/// compiler keeps a block's channels in vector registers; the rest, and
+/// every pixel without `BLOCKS`, one at a time. Both give the same pixels.
+#[inline(always)]
+fn paint_wrapping<C: PaintColor, const BLOCKS: bool>(
+    offsets: &[u32; 4],
+    planes: &GouraudPlanes,
+    x0: u16,
+    y: u16,
+    out: &mut [C],
+) {
+    let start = |p: &AttributePlane| {
+        (p.at_origin as u32)
+            .wrapping_add((p.dx as u32).wrapping_mul(u32::from(x0)))
+            .wrapping_add((p.dy as u32).wrapping_mul(u32::from(y)))
+    };
+    let [r, g, b] = &planes.channels;
+    let mut values = [start(r), start(g), start(b)];
+    let steps = [r.dx as u32, g.dx as u32, b.dx as u32];
+    let level = |v: u32, t: u32| v.wrapping_add(t) >> LEVEL_SHIFT;
+    let mut out = out;
+    let mut x = x0;
+    if BLOCKS && out.len() >= LANES {
+        // Lane `k` holds pixel `k` of the block; a block starts at a
+        // multiple of LANES (itself a multiple of 4) from `x0`, so each
+        // lane keeps its dither offset.
+        let mut lanes: [[u32; LANES]; 3] = core::array::from_fn(|c| {
+            core::array::from_fn(|k| values[c].wrapping_add(steps[c].wrapping_mul(k as u32)))
+        });
+        let block_steps = steps.map(|d| d.wrapping_mul(LANES as u32));
+        let t: [u32; LANES] = core::array::from_fn(|k| offsets[(usize::from(x0) + k) & 3]);
+        let mut blocks = out.chunks_exact_mut(LANES);
+        for block in &mut blocks {
+            let [lr, lg, lb] = &lanes;
+            for (k, pixel) in block.iter_mut().enumerate() {
+                *pixel =
+                    C::from_levels([level(lr[k], t[k]), level(lg[k], t[k]), level(lb[k], t[k])]);
+            }
+            for (lane, step) in lanes.iter_mut().zip(block_steps) {
+                for v in lane {
+                    *v = v.wrapping_add(step);
+                }
+            }
+            x = x.wrapping_add(LANES as u16);
         }
+        values = lanes.map(|lane| lane[0]);
+        out = blocks.into_remainder();
+    }
+    let [mut vr, mut vg, mut vb] = values;
+    let [dr, dg, db] = steps;
+    for (x, pixel) in (x..).zip(out) {
+        let t = offsets[usize::from(x & 3)];
+        *pixel = C::from_levels([level(vr, t), level(vg, t), level(vb, t)]);
+        vr = vr.wrapping_add(dr);
+        vg = vg.wrapping_add(dg);
+        vb = vb.wrapping_add(db);
     }
 }
 
@@ -233,6 +284,53 @@ impl<C: PaintColor> Gouraud<C> {
                 ((value.clamp(0, top) + t) >> LEVEL_SHIFT).min(i64::from(C::MAX[k])) as u32
             });
             *pixel = C::from_levels(levels);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888};
+    use proptest::prelude::*;
+    use std::vec;
+
+    /// Both ways of painting a wrapping run, into colours `C`.
+    fn both<C: PaintColor + Default + PartialEq + core::fmt::Debug>(
+        planes: &GouraudPlanes,
+        dither: bool,
+        (x0, y, n): (u16, u16, usize),
+    ) {
+        let offsets = offsets(dither, y);
+        let (mut blocks, mut pixels) = (vec![C::default(); n], vec![C::default(); n]);
+        paint_wrapping::<C, true>(&offsets, planes, x0, y, &mut blocks);
+        paint_wrapping::<C, false>(&offsets, planes, x0, y, &mut pixels);
+        assert_eq!(blocks, pixels);
+    }
+
+    proptest! {
+        /// Blocks of lanes paint the pixels one at a time paints, for any
+        /// plane values (they wrap alike), run start, row and length.
+        #[test]
+        fn blocks_paint_as_pixels(
+            at_origin in any::<[u32; 3]>(),
+            dx in any::<[u32; 3]>(),
+            dy in any::<[u32; 3]>(),
+            x0 in 0u16..4096,
+            y in 0u16..4096,
+            n in 0usize..40,
+            dither in any::<bool>(),
+        ) {
+            let planes = GouraudPlanes {
+                channels: core::array::from_fn(|c| AttributePlane {
+                    at_origin: i64::from(at_origin[c]),
+                    dx: i64::from(dx[c]),
+                    dy: i64::from(dy[c]),
+                }),
+                wraps: true,
+            };
+            both::<Rgb565>(&planes, dither, (x0, y, n));
+            both::<Rgb888>(&planes, dither, (x0, y, n));
         }
     }
 }
