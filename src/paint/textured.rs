@@ -15,6 +15,13 @@
 //! ([`VALUE_MAX`](crate::raster::attribute::VALUE_MAX)). At a pixel,
 //! `t = floor((T << s) / Q)` with `T`, `Q` the planes' values there.
 //!
+//! A triangle thinner than a pixel whose values span most of that range
+//! across it has steep planes (the whole range within a pixel), which
+//! would be evaluated exactly at every pixel. Its `s_u`, `s_v` are raised
+//! instead until neither plane is steep, where the coarser values cost at
+//! most one more unit (`2^-8` texel) at any pixel, and only then: on
+//! Spot at 240x240 about one painted triangle in fifteen.
+//!
 //! # Spans (the division, bounded)
 //! A run of pixels is cut into spans of [`SPAN`] pixels or fewer (powers
 //! of two); the coordinates are divided out exactly at the ends of each and
@@ -407,10 +414,14 @@ impl<C: PaintColor> Textured<'_, C> {
         let texels = t.map(|t| [0, 1].map(|a| (t[a] - base[a]).max(0) as u64));
         let ranges: [u64; 2] =
             core::array::from_fn(|a| texels[0][a].max(texels[1][a]).max(texels[2][a]));
-        let scale = CornerValues::from_parts(base, w_min, ranges);
+        let mut scale = CornerValues::from_parts(base, w_min, ranges);
         let corner = |k: usize| (corners[k].0, scale.values_of(corners[k].1.w, texels[k]));
+        let planes = match triangle_planes(corner(0), corner(1), corner(2)) {
+            Some(planes) => planes,
+            None => coarser_planes(&mut scale, corners.map(|(v, c)| (v, c.w)), texels)?,
+        };
         Some(TexturedPlanes {
-            planes: triangle_planes(corner(0), corner(1), corner(2))?,
+            planes,
             shifts: scale.shifts.map(|s| s as u8),
             offset: self.offset(base),
         })
@@ -503,6 +514,75 @@ impl<C: PaintColor> Textured<'_, C> {
     }
 }
 
+/// The planes of a triangle the triangle set-up did not take at the
+/// shifts of `scale` (corners: position and `w`; coordinates from the
+/// smallest, `texels`): with coarser values where a thin triangle's
+/// planes were steep and that costs at most a unit ([`coarser_shifts`],
+/// whose shifts `scale` then takes); `None` otherwise. Out of line: few
+/// triangles come here, and the usual set-up stays as compiled without it.
+#[cold]
+#[inline(never)]
+fn coarser_planes(
+    scale: &mut CornerValues,
+    corners: [(ScreenVertex, ClipW); 3],
+    texels: [[u64; 2]; 3],
+) -> Option<[AttributePlane; 3]> {
+    let values = |scale: &CornerValues| [0, 1, 2].map(|k| scale.values_of(corners[k].1, texels[k]));
+    let positions = corners.map(|(v, _)| v);
+    let shifts = coarser_shifts(positions, &values(scale), scale.shifts)?;
+    scale.shifts = shifts;
+    let values = values(scale);
+    let corner = |k: usize| (positions[k], values[k]);
+    triangle_planes(corner(0), corner(1), corner(2))
+}
+
+/// The shifts of a triangle's `u·q` and `v·q` planes (`shifts`, the
+/// module's `s_u`, `s_v`) raised so that neither plane is steep, for a
+/// triangle whose corners are `positions` and whose corner values at
+/// those shifts are `values` (`q`, `u·q`, `v·q`); `None` where no raise
+/// is needed, or where it would cost more than a unit (`2^-8` texel).
+///
+/// A plane's gradient is `-(a, b)/c` per sub-pixel step, with `c` twice
+/// the triangle's area (sub-pixel units) and each of `|a|`, `|b|` at most
+/// `V·E`, where `V` bounds its corner values (all from 0) and `E` is the
+/// larger of `|p_x - o_x| + |q_x - o_x|` and the same in `y`. Raising a
+/// shift by `e` takes each value to `value >> e` (the floor of a floor),
+/// so below `2^(bits(V) - e)`; with `e >= bits(V) + bits(E) - 14 -
+/// bits(c)` each gradient is at most `2^15` values a sub-pixel step,
+/// `2^23` a pixel: half the whole range in one pixel (a steep plane's),
+/// with room for the gradient's rounding. A value step of `u·q` is
+/// `2^s / Q` of a coordinate unit at a pixel whose `1/w` value is `Q`
+/// (at least the smallest corner's `q`); the raise is taken only while
+/// `3 · 2^(s + e)` is at most that `q`, so the values' rounding costs at
+/// most a unit more than the module's bound.
+fn coarser_shifts(
+    positions: [ScreenVertex; 3],
+    values: &[[u32; 3]; 3],
+    shifts: [u32; 2],
+) -> Option<[u32; 2]> {
+    let bits = |v: u64| 64 - v.leading_zeros();
+    let [o, p, q] = positions.map(|v| (i64::from(v.x), i64::from(v.y)));
+    let (px, py, qx, qy) = (p.0 - o.0, p.1 - o.1, q.0 - o.0, q.1 - o.1);
+    // Corners within 2^16 sub-pixel steps of `o` (else the triangle set-up
+    // does not take it anyway): every product below 2^33.
+    let c = (px * qy - py * qx).unsigned_abs();
+    let extent = (px.unsigned_abs() + qx.unsigned_abs()).max(py.unsigned_abs() + qy.unsigned_abs());
+    if c == 0 || extent >= 1 << 17 {
+        return None;
+    }
+    let q_min = values.iter().map(|v| v[0]).min().unwrap_or(0);
+    let raised: [u32; 2] = core::array::from_fn(|a| {
+        let top = values.iter().map(|v| v[a + 1]).max().unwrap_or(0);
+        let e = (bits(u64::from(top)) + bits(extent)).saturating_sub(14 + bits(c));
+        shifts[a] + e
+    });
+    let raises = raised != shifts;
+    let costs_a_unit_at_most = raised
+        .iter()
+        .all(|&s| s < 32 && 3u64 << s <= u64::from(q_min));
+    (raises && costs_a_unit_at_most).then_some(raised)
+}
+
 /// Whether the coordinates stepped linearly from `a` to `b` stay within
 /// [`CHORD_TOLERANCE`] of their exact (divided) values: `|Δt| · |ΔQ| <=
 /// 4 · tolerance · min Q` (the module's notes).
@@ -577,7 +657,10 @@ mod tests {
             .map(|&(_, c)| scale.w_min.ratio(c.w, scale.bits))
             .min()
             .unwrap();
-        let bound = (CHORD_TOLERANCE + 2) as f64 + 3.0 * texel_range as f64 / f64::from(q_min);
+        // A unit more where a thin triangle's values were made coarser.
+        let coarser = planes.shifts != scale.shifts.map(|s| s as u8);
+        let bound = (CHORD_TOLERANCE + 2 + u64::from(coarser)) as f64
+            + 3.0 * texel_range as f64 / f64::from(q_min);
         let mut worst = 0.0f64;
         for y in 0..64u16 {
             // The row's samples inside the triangle.
@@ -630,8 +713,50 @@ mod tests {
         assert!(error <= bound, "{error} > {bound}");
     }
 
+    /// A sliver a tenth of a pixel thick whose coordinates span 16 texels
+    /// each way: its planes are stepped (with coarser values), not
+    /// evaluated exactly at each pixel, and within the bound; one whose
+    /// coordinates span the whole texture would lose more than a unit so,
+    /// and stays exact.
+    #[test]
+    fn a_sliver_is_stepped_within_the_bound() {
+        const S: i32 = SUBPIXEL_STEPS;
+        let sliver = |span: i32| {
+            [
+                corner(2 * S, 2 * S, [0, 0], 1.0),
+                corner(40 * S, 6 * S, [span, 0], 1.5),
+                corner(2 * S + S / 10, 2 * S + S / 10, [0, span], 1.2),
+            ]
+        };
+        let texels = vec![0u16; 256 * 256];
+        let texture = Texture::new(&texels, 256, 256).unwrap();
+        for (span, stepped) in [(UV_ONE / 16, true), (UV_ONE, false)] {
+            let corners = sliver(span);
+            let values = corners.map(|(v, c, _)| (v, c));
+            let planes = Textured::<Rgb565>::new(texture).planes(values.iter().copied(), 64, 64);
+            assert_eq!(!planes.planes.iter().any(AttributePlane::is_steep), stepped);
+            let (error, bound) = largest_error(corners, [256, 256]);
+            assert!(error <= bound, "{error} > {bound}");
+        }
+    }
+
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(400))]
+        /// Triangles of at most two pixels each way, coordinates over
+        /// many repeats: every covered pixel within the bound, the
+        /// thinnest stepped with coarser values.
+        #[test]
+        fn small_triangles_are_within_the_bound(
+            xy in prop::array::uniform3((30 * SUBPIXEL_STEPS..32 * SUBPIXEL_STEPS, 30 * SUBPIXEL_STEPS..32 * SUBPIXEL_STEPS)),
+            uv in prop::array::uniform3(prop::array::uniform2(-300 * UV_ONE..300 * UV_ONE)),
+            w in prop::array::uniform3(0.01f32..100.0),
+            size in (1u16..=1024, 1u16..=1024),
+        ) {
+            let corners = core::array::from_fn(|k| corner(xy[k].0, xy[k].1, uv[k], w[k]));
+            let (error, bound) = largest_error(corners, [size.0, size.1]);
+            prop_assert!(error <= bound, "{} > {}", error, bound);
+        }
+
         /// Random triangles with random coordinates (up to a few hundred
         /// repeats) and `w` over four decades: every covered pixel's
         /// coordinates within the module's bound of exact.
