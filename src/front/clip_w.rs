@@ -107,6 +107,7 @@ impl ClipW {
     /// `floor(2^bits · self / other)` for `self <= other` (`bits <= 31`),
     /// at least 1: the weight `w_min / w` of a corner whose `w` is
     /// `other`, in units of `2^-bits`. One 64-bit division.
+    #[inline]
     pub(crate) fn ratio(self, other: Self, bits: u32) -> u32 {
         // self / other = (m_s / m_o) · 2^(e_s - e_o), with m_s / m_o in
         // (1/2, 2): (m_s << 32) / m_o < 2^33.

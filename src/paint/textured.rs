@@ -230,6 +230,7 @@ struct CornerValues {
 
 /// A corner's coordinates in texel units (`2^-8`): below `2^35` in
 /// magnitude (`|uv| < 2^31`, sizes at most `2^12`).
+#[inline]
 fn texel_units(texture: &Texture<'_>, c: TexCoord) -> [i64; 2] {
     let sizes = [texture.width(), texture.height()];
     core::array::from_fn(|a| (i64::from(c.uv[a]) * i64::from(sizes[a])) >> (16 - TEXEL_FRAC_BITS))
