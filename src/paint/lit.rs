@@ -225,7 +225,7 @@ impl<'a, C: PaintColor> PaintMode for LitTextured<'a, C> {
             let mut light = [r, g, b];
             let step = planes.light.map(|p| p.dx as u32);
             self.textured
-                .coordinates(&planes.texture, tex_corners(), (x0, y), n, |k, t| {
+                .coordinates(&planes.texture, tex_corners, (x0, y), n, |k, t| {
                     put(
                         k,
                         t,
@@ -251,7 +251,7 @@ impl<'a, C: PaintColor> PaintMode for LitTextured<'a, C> {
         let step = planes.light.map(|p| if steep { 0 } else { p.dx });
         let lights = || corners().map(|(v, c)| (v, light_values(c.light)));
         self.textured
-            .coordinates(&planes.texture, tex_corners(), (x0, y), n, |k, t| {
+            .coordinates(&planes.texture, tex_corners, (x0, y), n, |k, t| {
                 let x = x0 + k as u16;
                 let l: [u32; 3] = if steep {
                     core::array::from_fn(|c| {

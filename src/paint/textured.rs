@@ -371,7 +371,7 @@ impl<C: PaintColor> PaintMode for Textured<'_, C> {
             // that each pixel's closure is small enough to inline (a test
             // of `masks` a pixel cost Spot's frame 1 %).
             if let Some(masks) = self.texture.repeat_masks() {
-                self.coordinates(planes, corners(), (x0, y), out.len(), |k, t| {
+                self.coordinates(planes, &corners, (x0, y), out.len(), |k, t| {
                     if let Some(pixel) = out.get_mut(k) {
                         let texel = self.nearest_texel(planes, t, Some(masks));
                         *pixel = C::from_levels(texel_levels(texel));
@@ -379,7 +379,7 @@ impl<C: PaintColor> PaintMode for Textured<'_, C> {
                 });
                 return;
             }
-            self.coordinates(planes, corners(), (x0, y), out.len(), |k, t| {
+            self.coordinates(planes, &corners, (x0, y), out.len(), |k, t| {
                 if let Some(pixel) = out.get_mut(k) {
                     let texel = self.nearest_texel(planes, t, None);
                     *pixel = C::from_levels(texel_levels(texel));
@@ -388,7 +388,7 @@ impl<C: PaintColor> PaintMode for Textured<'_, C> {
             return;
         }
         let threshold = |x: u16| self.dither.then(|| bayer_threshold(x, y));
-        self.coordinates(planes, corners(), (x0, y), out.len(), |k, t| {
+        self.coordinates(planes, &corners, (x0, y), out.len(), |k, t| {
             if let Some(pixel) = out.get_mut(k) {
                 *pixel = self.color(planes, t, threshold(x0 + k as u16));
             }
@@ -449,15 +449,17 @@ impl<C: PaintColor> Textured<'_, C> {
     /// each pixel's index in the run, in order: divided at the ends of
     /// spans and stepped between (the module's notes).
     #[inline(always)]
-    pub(super) fn coordinates(
+    pub(super) fn coordinates<I: Iterator<Item = (ScreenVertex, TexCoord)> + Clone>(
         &self,
         planes: &TexturedPlanes,
-        corners: impl Iterator<Item = (ScreenVertex, TexCoord)> + Clone,
+        corners: impl FnOnce() -> I,
         (x0, y): (u16, u16),
         n: usize,
         mut pixel: impl FnMut(usize, [i64; 2]),
     ) {
         if planes.planes.iter().any(AttributePlane::is_steep) {
+            // The corners are looked up only here: most runs never ask.
+            let corners = corners();
             let scale = CornerValues::new(&self.texture, corners.clone().map(|(_, c)| c));
             let values = corners.map(|(v, c)| (v, scale.values(&self.texture, c)));
             for k in 0..n {
@@ -672,18 +674,24 @@ mod tests {
                 continue;
             };
             let n = usize::from(last - first) + 1;
-            mode.coordinates(&planes, values.iter().copied(), (first, y), n, |k, t| {
-                let x = first + k as u16;
-                let want = exact(&corners, size, x, y);
-                for a in 0..2 {
-                    let got = (t[a] + planes.offset[a]) as f64;
-                    let moved = (want[a] - got).abs();
-                    // Compare modulo the base's whole repeats.
-                    let period = f64::from(size[a]) * 256.0;
-                    let err = moved - (moved / period).round() * period;
-                    worst = worst.max(err.abs());
-                }
-            });
+            mode.coordinates(
+                &planes,
+                || values.iter().copied(),
+                (first, y),
+                n,
+                |k, t| {
+                    let x = first + k as u16;
+                    let want = exact(&corners, size, x, y);
+                    for a in 0..2 {
+                        let got = (t[a] + planes.offset[a]) as f64;
+                        let moved = (want[a] - got).abs();
+                        // Compare modulo the base's whole repeats.
+                        let period = f64::from(size[a]) * 256.0;
+                        let err = moved - (moved / period).round() * period;
+                        worst = worst.max(err.abs());
+                    }
+                },
+            );
         }
         (worst, bound)
     }
