@@ -185,11 +185,11 @@ fn paint_wrapping<C: PaintColor, const BLOCKS: bool>(
     let steps = [r.dx as u32, g.dx as u32, b.dx as u32];
     let level = |v: u32, t: u32| v.wrapping_add(t) >> LEVEL_SHIFT;
     let mut out = out;
-    let mut x = x0;
     if BLOCKS && out.len() >= LANES {
         // Lane `k` holds pixel `k` of the block; a block starts at a
         // multiple of LANES (itself a multiple of 4) from `x0`, so each
-        // lane keeps its dither offset.
+        // lane keeps its dither offset, and the pixels after the blocks
+        // take theirs as if counted from `x0`.
         let mut lanes: [[u32; LANES]; 3] = core::array::from_fn(|c| {
             core::array::from_fn(|k| values[c].wrapping_add(steps[c].wrapping_mul(k as u32)))
         });
@@ -207,14 +207,13 @@ fn paint_wrapping<C: PaintColor, const BLOCKS: bool>(
                     *v = v.wrapping_add(step);
                 }
             }
-            x = x.wrapping_add(LANES as u16);
         }
         values = lanes.map(|lane| lane[0]);
         out = blocks.into_remainder();
     }
     let [mut vr, mut vg, mut vb] = values;
     let [dr, dg, db] = steps;
-    for (x, pixel) in (x..).zip(out) {
+    for (x, pixel) in (x0..).zip(out) {
         let t = offsets[usize::from(x & 3)];
         *pixel = C::from_levels([level(vr, t), level(vg, t), level(vb, t)]);
         vr = vr.wrapping_add(dr);

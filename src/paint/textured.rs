@@ -36,6 +36,7 @@
 
 use core::marker::PhantomData;
 
+use crate::arith::wide::cross;
 use crate::front::clip_w::ClipW;
 use crate::front::tex_coord::TexCoord;
 use crate::paint::PaintMode;
@@ -564,12 +565,15 @@ fn coarser_shifts(
     shifts: [u32; 2],
 ) -> Option<[u32; 2]> {
     let bits = |v: u64| 64 - v.leading_zeros();
-    let [o, p, q] = positions.map(|v| (i64::from(v.x), i64::from(v.y)));
-    let (px, py, qx, qy) = (p.0 - o.0, p.1 - o.1, q.0 - o.0, q.1 - o.1);
-    // Corners within 2^16 sub-pixel steps of `o` (else the triangle set-up
-    // does not take it anyway): every product below 2^33.
-    let c = (px * qy - py * qx).unsigned_abs();
-    let extent = (px.unsigned_abs() + qx.unsigned_abs()).max(py.unsigned_abs() + qy.unsigned_abs());
+    let [o, p, q] = positions;
+    // Inside the guard band each difference is below 2^23.
+    let (px, py, qx, qy) = (p.x - o.x, p.y - o.y, q.x - o.x, q.y - o.y);
+    let c = cross(px, py, qx, qy).unsigned_abs();
+    let extent = u64::from(
+        (px.unsigned_abs() + qx.unsigned_abs()).max(py.unsigned_abs() + qy.unsigned_abs()),
+    );
+    // Corners within 2^16 sub-pixel steps of `o`, or the triangle set-up
+    // does not take it anyway.
     if c == 0 || extent >= 1 << 17 {
         return None;
     }
@@ -749,6 +753,21 @@ mod tests {
         }
     }
 
+    /// The proptests' check: the triangle of these corners (sub-pixel
+    /// positions, coordinates, `w`) on a texture of `size` keeps every
+    /// covered pixel within the bound.
+    fn within_the_bound(
+        xy: [(i32, i32); 3],
+        uv: [[i32; 2]; 3],
+        w: [f32; 3],
+        size: (u16, u16),
+    ) -> Result<(), TestCaseError> {
+        let corners = core::array::from_fn(|k| corner(xy[k].0, xy[k].1, uv[k], w[k]));
+        let (error, bound) = largest_error(corners, [size.0, size.1]);
+        prop_assert!(error <= bound, "{} > {}", error, bound);
+        Ok(())
+    }
+
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(400))]
         /// Triangles of at most two pixels each way, coordinates over
@@ -761,9 +780,7 @@ mod tests {
             w in prop::array::uniform3(0.01f32..100.0),
             size in (1u16..=1024, 1u16..=1024),
         ) {
-            let corners = core::array::from_fn(|k| corner(xy[k].0, xy[k].1, uv[k], w[k]));
-            let (error, bound) = largest_error(corners, [size.0, size.1]);
-            prop_assert!(error <= bound, "{} > {}", error, bound);
+            within_the_bound(xy, uv, w, size)?;
         }
 
         /// Random triangles with random coordinates (up to a few hundred
@@ -776,9 +793,7 @@ mod tests {
             w in prop::array::uniform3(0.01f32..100.0),
             size in (1u16..=1024, 1u16..=1024),
         ) {
-            let corners = core::array::from_fn(|k| corner(xy[k].0, xy[k].1, uv[k], w[k]));
-            let (error, bound) = largest_error(corners, [size.0, size.1]);
-            prop_assert!(error <= bound, "{} > {}", error, bound);
+            within_the_bound(xy, uv, w, size)?;
         }
     }
 }
