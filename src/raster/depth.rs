@@ -49,6 +49,11 @@ pub trait DepthFormat: sealed::Sealed {
     /// The stored value for the current pixel.
     fn value(acc: Self::Accum) -> Self::Value;
     #[doc(hidden)]
+    /// A stored value as an `i32` of the same order (every value is below
+    /// `2^24`): what a host's blocks of pixels compare, with no unsigned
+    /// comparison to emulate ([`crate::raster::lanes`]).
+    fn ordered(value: Self::Value) -> i32;
+    #[doc(hidden)]
     /// Advances the accumulator by one pixel.
     fn advance(acc: Self::Accum, step: Self::Accum) -> Self::Accum;
     /// Rounds a plane value to the nearest stored value, clamped to the
@@ -209,6 +214,11 @@ impl DepthFormat for Depth16 {
     }
 
     #[inline(always)]
+    fn ordered(value: u16) -> i32 {
+        i32::from(value)
+    }
+
+    #[inline(always)]
     fn advance(acc: i32, step: i32) -> i32 {
         // The advance past a span's last pixel is never stored, and may
         // leave the range: it wraps rather than overflowing.
@@ -310,6 +320,12 @@ impl DepthFormat for Depth24 {
     #[inline(always)]
     fn value(acc: i64) -> u32 {
         (acc >> Z24_ACC_FRAC) as u32
+    }
+
+    #[inline(always)]
+    fn ordered(value: u32) -> i32 {
+        // Stored values are at most DEPTH_MAX < 2^24.
+        value as i32
     }
 
     #[inline(always)]

@@ -49,7 +49,9 @@ pub(crate) fn block<'r, C, V>(
 /// Tests and writes the first `left.min(LANES)` pixels of a block as the
 /// scanline's span loop does (nearer, or as near and added first), pixel
 /// `k` with the accumulator `lanes[k]` (see [`Lanes`]); the other pixels
-/// stay as they were.
+/// stay as they were. Keys are a polygon's (at most
+/// [`MAX_POLYGONS`](crate::limits::MAX_POLYGONS)) and the stored depths
+/// the format's (at most `DEPTH_MAX`).
 ///
 /// The three rows come as three arguments, not one struct: the compiler
 /// knows that arguments do not overlap, and only then keeps the block in
@@ -69,14 +71,21 @@ pub(crate) fn fill_block<C: Copy, D: DepthFormat>(
     // comparison of `left` per lane (on x86-64, eight scalar comparisons
     // gathered into a vector).
     let in_span: u32 = if left >= LANES { 0xff } else { (1 << left) - 1 };
+    // Signed 32-bit comparisons: stored depths are below 2^24 and keys
+    // below 2^21 ([`MAX_POLYGONS`](crate::limits::MAX_POLYGONS) plus one),
+    // so each orders as its unsigned self, and SSE2 compares signed words
+    // in one instruction (an unsigned comparison takes a bias each side).
+    let (key, clear) = (key as i32, D::ordered(D::CLEAR));
     for k in 0..LANES {
-        let depth = D::value(lanes[k]);
-        let stored = depths[k];
-        // `&` and `|`, not `&&` and `||`: no branch.
+        let value = D::value(lanes[k]);
+        let (depth, stored) = (D::ordered(value), D::ordered(depths[k]));
+        // `&` and `|`, not `&&` and `||`: no branch. (Where the two are
+        // equal, the stored depth is tested against the clear value: a
+        // word of the row, not a lane's accumulator narrowed again.)
         let wins = (in_span & (1 << k) != 0)
-            & ((depth < stored) | ((depth == stored) & (depth != D::CLEAR) & (key < keys[k])));
-        depths[k] = select(wins, depth, stored);
-        keys[k] = select(wins, key, keys[k]);
+            & ((depth < stored) | ((depth == stored) & (stored != clear) & (key < keys[k] as i32)));
+        depths[k] = select(wins, value, depths[k]);
+        keys[k] = select(wins, key as u32, keys[k]);
         colors[k] = select(wins, color, colors[k]);
     }
 }
@@ -125,6 +134,7 @@ impl<D: DepthFormat> Lanes<D> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::limits::MAX_POLYGONS;
     use crate::raster::depth::{Depth16, Depth24};
     use proptest::prelude::*;
 
@@ -174,16 +184,25 @@ mod tests {
         Ok(())
     }
 
+    /// Where the keys of a case start: at 0, or near the largest key (a
+    /// table's last polygon, `MAX_POLYGONS`), which the block compares as
+    /// a signed word.
+    fn base(high: bool) -> u32 {
+        if high { MAX_POLYGONS as u32 - 5 } else { 0 }
+    }
+
     proptest! {
         /// 16-bit depth: stored depths near the span's own (ties, the
-        /// clear value), keys either side of the polygon's, every length.
+        /// clear value, often a span at the clear value itself), keys
+        /// either side of the polygon's (small, or near the largest), every
+        /// length.
         #[test]
         fn blocks_equal_the_scalar_loop_z16(
             near in proptest::array::uniform8(0u16..4),
             far in proptest::array::uniform8(proptest::bool::ANY),
             keys in proptest::array::uniform8(0u32..6),
-            left in 0usize..12, key in 0u32..6,
-            top in 0u16..=u16::MAX, step in -3i32..=3,
+            left in 0usize..12, key in 0u32..6, high in proptest::bool::ANY,
+            top in prop_oneof![0u16..=u16::MAX, u16::MAX - 3..=u16::MAX], step in -3i32..=3,
         ) {
             // The accumulator at the first pixel gives depth `top`; each
             // pixel moves by `step` units of depth (plus a fraction).
@@ -192,6 +211,7 @@ mod tests {
             let stored = core::array::from_fn(|k| {
                 if far[k] { u16::MAX } else { top.saturating_add(near[k]).saturating_sub(2) }
             });
+            let (keys, key) = (keys.map(|k| k + base(high)), key + base(high));
             check::<Depth16>(stored, keys, left, (key, 7), (acc, step))?;
         }
 
@@ -201,14 +221,15 @@ mod tests {
             near in proptest::array::uniform8(0u32..4),
             far in proptest::array::uniform8(proptest::bool::ANY),
             keys in proptest::array::uniform8(0u32..6),
-            left in 0usize..12, key in 0u32..6,
-            top in 0u32..1 << 24, step in -3i64..=3,
+            left in 0usize..12, key in 0u32..6, high in proptest::bool::ANY,
+            top in prop_oneof![0u32..1 << 24, (1u32 << 24) - 4..1 << 24], step in -3i64..=3,
         ) {
             let acc = i64::from(top) << 32;
             let step = (step << 32) + 0x1234_5678;
             let stored = core::array::from_fn(|k| {
                 if far[k] { Depth24::CLEAR } else { (top + near[k]).saturating_sub(2) }
             });
+            let (keys, key) = (keys.map(|k| k + base(high)), key + base(high));
             check::<Depth24>(stored, keys, left, (key, 7), (acc, step))?;
         }
     }
