@@ -84,6 +84,13 @@ pub trait DepthFormat: sealed::Sealed {
     ) -> (Self::Accum, Self::Accum);
 
     #[doc(hidden)]
+    /// Whether [`DepthFormat::span`]'s accumulator gives at every pixel
+    /// exactly [`DepthFormat::quantize`] of that pixel's plane value: its
+    /// step is the plane's, unrounded, so a span it accepts stores what
+    /// rounding each pixel on its own stores.
+    const EXACT_SPAN: bool = false;
+
+    #[doc(hidden)]
     /// Whether an in-range triangle steps a 32-bit row accumulator
     /// ([`NarrowRow`], from [`DepthFormat::narrow_row`]) rather than its
     /// plane value in plane units: a format whose accumulator is an `i32`.
@@ -294,6 +301,11 @@ impl DepthFormat for Depth24 {
     const CLEAR: u32 = crate::limits::DEPTH_MAX;
     const NAME: &'static str = "z24";
     const BITS: u32 = 24;
+
+    /// The accumulator is `plane·2^16 + 2^31` and its step the plane's
+    /// times `2^16`, both exact, so its top word `floor((plane + 2^15) /
+    /// 2^16)` is `quantize`'s rounding, and in range no clamp applies.
+    const EXACT_SPAN: bool = true;
 
     #[inline]
     fn span(start: i64, step: i64, len: u32) -> Option<(i64, i64)> {

@@ -187,14 +187,23 @@ impl<C: Copy, D: DepthFormat> RowBuffers<'_, C, D> {
         if start >= end {
             return false;
         }
+        // |dz_dx| < 2^40, start < 2^12, |row_value| < 2^57: no overflow.
+        let value = row_value + mul_i64_small(dz_dx, start);
+        if BRANCH_FREE
+            && D::EXACT_SPAN
+            && self.write.in_effect() == PixelWrite::NearerOrFirstAdded
+            && let Some(accumulator) = D::span(value, dz_dx, (end - start) as u32)
+        {
+            // Every pixel's rounding, stepped exactly: the blocks of the
+            // scanline's span loop, with the same depths.
+            return self.fill_in_range::<true>(start, end, key, color, |_| accumulator);
+        }
         let range = start as usize..end as usize;
         let slices = (
             &mut self.depth[range.clone()],
             &mut self.color[range.clone()],
             &mut self.key[range],
         );
-        // |dz_dx| < 2^40, start < 2^12, |row_value| < 2^57: no overflow.
-        let value = row_value + mul_i64_small(dz_dx, start);
         let pixel = (key, color);
         match self.write.in_effect() {
             PixelWrite::NearerOrFirstAdded => {
@@ -470,6 +479,147 @@ fn fill_span<C: Copy, D: DepthFormat, const MODE: u8>(
                 let value = plane.value_at_pixel(x0 + k as i32, i32::from(row));
                 write(D::quantize(value), stored, stored_key, pixel);
             }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::limits::{DEPTH_MAX, MAX_POLYGONS};
+    use crate::raster::depth::{Depth16, Depth24};
+    use proptest::prelude::*;
+    use std::vec::Vec;
+
+    /// A row of 40 pixels after `fill_shared` of the span `[start, end)`
+    /// with the plane values `row_value + dz_dx·x`, and after the
+    /// reference (each pixel's value rounded on its own, the scanline's
+    /// rule): they are the same.
+    fn shared_span_is_each_pixel_rounded<D: DepthFormat>(
+        stored: Vec<D::Value>,
+        keys: Vec<u32>,
+        (start, end): (i32, i32),
+        (row_value, dz_dx): (i64, i64),
+        key: u32,
+    ) -> Result<(), TestCaseError> {
+        let width = stored.len() as i32;
+        let colors: Vec<u16> = (0..width as u16).collect();
+        let (mut depth, mut key_row, mut color) = (stored.clone(), keys.clone(), colors.clone());
+        let mut rows = RowBuffers::<u16, D> {
+            depth: &mut depth,
+            color: &mut color,
+            key: &mut key_row,
+            write: PixelWrite::NearerOrFirstAdded,
+        };
+        rows.fill_shared(start, end, key, 999, row_value, dz_dx);
+        let (mut want_depth, mut want_keys, mut want_colors) = (stored, keys, colors);
+        let (first, last) = (start.clamp(0, width), end.clamp(0, width));
+        if first < last {
+            let range = first as usize..last as usize;
+            round_each_pixel::<u16, D, NEARER_OR_FIRST_ADDED>(
+                (
+                    &mut want_depth[range.clone()],
+                    &mut want_colors[range.clone()],
+                    &mut want_keys[range],
+                ),
+                row_value + dz_dx * i64::from(first),
+                dz_dx,
+                (key, 999),
+            );
+        }
+        prop_assert_eq!(
+            (depth, key_row, color),
+            (want_depth, want_keys, want_colors)
+        );
+        Ok(())
+    }
+
+    /// A case: plane values around depth `top` at column `at` (often at
+    /// either end of the range, where a span may leave it), gradients of
+    /// up to 16 depth steps a pixel, stored depths at or next to the
+    /// span's own or clear, keys either side of the span's (small, or
+    /// near the largest), spans that start and end outside the row.
+    #[allow(clippy::type_complexity)]
+    fn case() -> impl Strategy<
+        Value = (
+            [i64; 2],
+            i32,
+            [i8; 40],
+            [bool; 40],
+            [u32; 40],
+            u32,
+            (i32, i32),
+        ),
+    > {
+        let top = prop_oneof![
+            0i64..1 << 24,
+            0i64..4,
+            i64::from(DEPTH_MAX) - 3..=i64::from(DEPTH_MAX)
+        ];
+        (
+            (top, 0i64..1 << 16, -(1i64 << 20)..1 << 20),
+            0i32..40,
+            proptest::array::uniform32(-1i8..=1).prop_flat_map(|a| {
+                proptest::array::uniform8(-1i8..=1).prop_map(move |b| {
+                    core::array::from_fn(|k| if k < 32 { a[k] } else { b[k - 32] })
+                })
+            }),
+            proptest::array::uniform32(proptest::bool::weighted(0.2)).prop_flat_map(|a| {
+                proptest::array::uniform8(proptest::bool::weighted(0.2)).prop_map(move |b| {
+                    core::array::from_fn(|k| if k < 32 { a[k] } else { b[k - 32] })
+                })
+            }),
+            proptest::array::uniform32(0u32..4).prop_flat_map(|a| {
+                proptest::array::uniform8(0u32..4).prop_map(move |b| {
+                    core::array::from_fn(|k| if k < 32 { a[k] } else { b[k - 32] })
+                })
+            }),
+            (0u32..4, proptest::bool::ANY),
+            (-3i32..43, 0i32..30),
+        )
+            .prop_map(
+                |((top, fraction, dz_dx), at, near, clear, keys, (key, high), (start, len))| {
+                    let row_value = (top << 16) + fraction - dz_dx * i64::from(at);
+                    let base = if high { MAX_POLYGONS as u32 - 4 } else { 0 };
+                    (
+                        [row_value, dz_dx],
+                        at,
+                        near,
+                        clear,
+                        keys.map(|k| k + base),
+                        key + base,
+                        (start, start + len),
+                    )
+                },
+            )
+    }
+
+    proptest! {
+        /// Shared planes' spans store each pixel's own rounding, in both
+        /// formats (24-bit depth steps them in blocks where the span is in
+        /// range).
+        #[test]
+        fn shared_spans_round_each_pixel(
+            ([row_value, dz_dx], _at, near, clear, keys, key, span) in case()
+        ) {
+            let stored16 = (0..40)
+                .map(|x| {
+                    let own = i64::from(Depth16::quantize(row_value + dz_dx * x as i64));
+                    if clear[x] { u16::MAX } else { (own + i64::from(near[x])).clamp(0, 0xffff) as u16 }
+                })
+                .collect();
+            shared_span_is_each_pixel_rounded::<Depth16>(stored16, keys.to_vec(), span, (row_value, dz_dx), key)?;
+            let stored24 = (0..40)
+                .map(|x| {
+                    let own = i64::from(Depth24::quantize(row_value + dz_dx * x as i64));
+                    if clear[x] {
+                        DEPTH_MAX
+                    } else {
+                        (own + i64::from(near[x])).clamp(0, i64::from(DEPTH_MAX)) as u32
+                    }
+                })
+                .collect();
+            shared_span_is_each_pixel_rounded::<Depth24>(stored24, keys.to_vec(), span, (row_value, dz_dx), key)?;
         }
     }
 }
