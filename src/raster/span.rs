@@ -30,7 +30,9 @@ impl<C: Copy, D: DepthFormat> RowBuffers<'_, C, D> {
     /// ([`crate::raster::lanes`]); whether any pixel was in the row. (With
     /// the `profile` feature it is kept out of line: the profile's "spans"
     /// stage.) With `SCANLINE` the caller knows the row is written by the
-    /// scanline's rule, and the row's rule is not looked at.
+    /// scanline's rule, and the row's rule is not looked at. A shared
+    /// plane's span at z24 comes here too, its accumulator from
+    /// [`DepthFormat::span`] ([`Self::fill_shared`]).
     ///
     /// [`IN_RANGE`]: crate::raster::depth::IN_RANGE
     #[cfg_attr(feature = "profile", inline(never))]
