@@ -536,23 +536,14 @@ mod tests {
         Ok(())
     }
 
-    /// A case: plane values around depth `top` at column `at` (often at
+    /// A case: plane values around depth `top` at some column (often at
     /// either end of the range, where a span may leave it), gradients of
-    /// up to 16 depth steps a pixel, stored depths at or next to the
-    /// span's own or clear, keys either side of the span's (small, or
-    /// near the largest), spans that start and end outside the row.
+    /// up to 16 depth steps a pixel, and for each of the row's 40 pixels a
+    /// stored depth at or next to the span's own (`-1..=1` from it) or
+    /// clear, and a key either side of the span's (small, or near the
+    /// largest); spans that start and end outside the row.
     #[allow(clippy::type_complexity)]
-    fn case() -> impl Strategy<
-        Value = (
-            [i64; 2],
-            i32,
-            [i8; 40],
-            [bool; 40],
-            [u32; 40],
-            u32,
-            (i32, i32),
-        ),
-    > {
+    fn case() -> impl Strategy<Value = ([i64; 2], Vec<i8>, Vec<bool>, Vec<u32>, u32, (i32, i32))> {
         let top = prop_oneof![
             0i64..1 << 24,
             0i64..4,
@@ -561,21 +552,9 @@ mod tests {
         (
             (top, 0i64..1 << 16, -(1i64 << 20)..1 << 20),
             0i32..40,
-            proptest::array::uniform32(-1i8..=1).prop_flat_map(|a| {
-                proptest::array::uniform8(-1i8..=1).prop_map(move |b| {
-                    core::array::from_fn(|k| if k < 32 { a[k] } else { b[k - 32] })
-                })
-            }),
-            proptest::array::uniform32(proptest::bool::weighted(0.2)).prop_flat_map(|a| {
-                proptest::array::uniform8(proptest::bool::weighted(0.2)).prop_map(move |b| {
-                    core::array::from_fn(|k| if k < 32 { a[k] } else { b[k - 32] })
-                })
-            }),
-            proptest::array::uniform32(0u32..4).prop_flat_map(|a| {
-                proptest::array::uniform8(0u32..4).prop_map(move |b| {
-                    core::array::from_fn(|k| if k < 32 { a[k] } else { b[k - 32] })
-                })
-            }),
+            prop::collection::vec(-1i8..=1, 40),
+            prop::collection::vec(proptest::bool::weighted(0.2), 40),
+            prop::collection::vec(0u32..4, 40),
             (0u32..4, proptest::bool::ANY),
             (-3i32..43, 0i32..30),
         )
@@ -585,10 +564,9 @@ mod tests {
                     let base = if high { MAX_POLYGONS as u32 - 4 } else { 0 };
                     (
                         [row_value, dz_dx],
-                        at,
                         near,
                         clear,
-                        keys.map(|k| k + base),
+                        keys.iter().map(|k| k + base).collect(),
                         key + base,
                         (start, start + len),
                     )
@@ -602,7 +580,7 @@ mod tests {
         /// range).
         #[test]
         fn shared_spans_round_each_pixel(
-            ([row_value, dz_dx], _at, near, clear, keys, key, span) in case()
+            ([row_value, dz_dx], near, clear, keys, key, span) in case()
         ) {
             let stored16 = (0..40)
                 .map(|x| {
@@ -610,7 +588,7 @@ mod tests {
                     if clear[x] { u16::MAX } else { (own + i64::from(near[x])).clamp(0, 0xffff) as u16 }
                 })
                 .collect();
-            shared_span_is_each_pixel_rounded::<Depth16>(stored16, keys.to_vec(), span, (row_value, dz_dx), key)?;
+            shared_span_is_each_pixel_rounded::<Depth16>(stored16, keys.clone(), span, (row_value, dz_dx), key)?;
             let stored24 = (0..40)
                 .map(|x| {
                     let own = i64::from(Depth24::quantize(row_value + dz_dx * x as i64));
@@ -621,7 +599,7 @@ mod tests {
                     }
                 })
                 .collect();
-            shared_span_is_each_pixel_rounded::<Depth24>(stored24, keys.to_vec(), span, (row_value, dz_dx), key)?;
+            shared_span_is_each_pixel_rounded::<Depth24>(stored24, keys, span, (row_value, dz_dx), key)?;
         }
     }
 }
