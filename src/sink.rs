@@ -196,9 +196,18 @@ impl<'a, T: DrawTarget> DrawTargetSink<'a, T> {
         if part.is_empty() {
             return Ok(());
         }
-        let at = |k: usize| i32::try_from(k).unwrap_or(i32::MAX);
+        // Beyond `i32` (an origin near its end) no display has a pixel:
+        // nothing to send.
+        let (Some(x), Some(y)) = (
+            i32::try_from(start)
+                .ok()
+                .and_then(|x| self.origin.x.checked_add(x)),
+            self.origin.y.checked_add(i32::from(y)),
+        ) else {
+            return Ok(());
+        };
         let area = Rectangle::new(
-            self.origin + Point::new(at(start), i32::from(y)),
+            Point::new(x, y),
             Size::new(u32::try_from(part.len()).unwrap_or(u32::MAX), 1),
         );
         self.target.fill_contiguous(&area, part.iter().copied())

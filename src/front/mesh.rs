@@ -384,13 +384,33 @@ pub(crate) const fn check_shared_planes(
     Ok(())
 }
 
-/// Face `index` of a mesh in the shared layout.
-pub(crate) fn face_of<'c>(corners: &'c [u16], face_starts: &[u32], index: usize) -> &'c [u16] {
+/// Face `index` of a mesh in the shared layout whose arrays were checked
+/// when it was made ([`StaticMesh::new`], `QuantizedMesh::new`): `index`
+/// below the face count.
+pub(crate) fn checked_face_of<'c>(
+    corners: &'c [u16],
+    face_starts: &[u32],
+    index: usize,
+) -> &'c [u16] {
     let start = face_starts[index] as usize;
     let end = face_starts
         .get(index + 1)
         .map_or(corners.len(), |&e| e as usize);
     &corners[start..end]
+}
+
+/// Face `index` of a mesh in the shared layout; empty when `index` or the
+/// arrays are out of range (a mesh whose arrays were never checked, such
+/// as a `HostMesh` built field by field: drawing it is then an error,
+/// not a panic).
+pub(crate) fn face_of<'c>(corners: &'c [u16], face_starts: &[u32], index: usize) -> &'c [u16] {
+    let Some(&start) = face_starts.get(index) else {
+        return &[];
+    };
+    let end = face_starts
+        .get(index + 1)
+        .map_or(corners.len(), |&e| e as usize);
+    corners.get(start as usize..end).unwrap_or(&[])
 }
 
 /// A mesh in the one array layout every zline mesh keeps: positions,
@@ -457,7 +477,13 @@ impl<T: MeshArrays + ?Sized> Mesh for T {
     }
 
     fn position(&self, index: usize) -> [f32; 3] {
-        self.positions()[index]
+        // NaN beyond the positions (a mesh whose arrays were never
+        // checked): the front end finds such a corner out of range first,
+        // and anything else sees a non-finite position, not a panic.
+        self.positions()
+            .get(index)
+            .copied()
+            .unwrap_or([f32::NAN; 3])
     }
 
     fn face_count(&self) -> usize {

@@ -16,7 +16,7 @@
 
 use crate::front::backface::exact_normal;
 use crate::front::mesh::{
-    Mesh, MeshError, QuantizedView, SharedPlane, check_shared_planes, face_of, is_planar,
+    Mesh, MeshError, QuantizedView, SharedPlane, check_shared_planes, checked_face_of, is_planar,
 };
 use crate::limits::MAX_FACE_CORNERS;
 use crate::limits::NORMAL_SCALE;
@@ -256,7 +256,7 @@ impl Mesh for QuantizedMesh<'_> {
     }
 
     fn face(&self, index: usize) -> &[u16] {
-        face_of(self.corners, self.face_starts, index)
+        checked_face_of(self.corners, self.face_starts, index)
     }
 
     fn face_is_planar(&self, index: usize) -> bool {

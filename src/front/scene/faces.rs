@@ -516,6 +516,12 @@ where
             return Err(Error::TooManyCorners);
         }
         if corners.len() < 3 {
+            if corners.is_empty() {
+                // Out-of-range face starts (a mesh that was never checked,
+                // e.g. a `HostMesh` built field by field): a valid mesh
+                // has at least three corners a face.
+                return Err(Error::MeshIndexOutOfRange);
+            }
             self.stats.degenerate += 1;
             return Ok(());
         }
@@ -549,7 +555,7 @@ where
                 return Ok(());
             }
         }
-        if !self.mesh.triangles_only() && corners.len() > 3 && !self.mesh.face_is_planar(face) {
+        if !self.mesh.triangles_only() && corners.len() > 3 && !self.planar(face, corners)? {
             self.stats.split += 1;
             for k in 1..corners.len() - 1 {
                 // (`k` is below `MAX_FACE_CORNERS`, checked above.)
@@ -565,6 +571,19 @@ where
         } else {
             self.part(face, corners, side)
         }
+    }
+
+    /// Whether face `face` (of more than three corners) is planar; an
+    /// error when a corner lies beyond the mesh's vertices (a mesh whose
+    /// arrays were never checked), before the test reads its position.
+    /// Out of line: faces of triangles never come here.
+    #[inline(never)]
+    fn planar(&self, face: usize, corners: &[u16]) -> Result<bool, Error> {
+        let count = self.mesh.vertex_count();
+        if corners.iter().any(|&i| usize::from(i) >= count) {
+            return Err(Error::MeshIndexOutOfRange);
+        }
+        Ok(self.mesh.face_is_planar(face))
     }
 
     /// Draws one polygon of a face: the face itself, or one triangle of

@@ -656,18 +656,15 @@ pub fn project_vertices<M: Mesh>(
     first: usize,
     out: &mut [ProjectedVertex],
 ) -> Result<(), Error> {
+    let end = first
+        .checked_add(out.len())
+        .ok_or(Error::MeshIndexOutOfRange)?;
     let mut out = out.iter_mut();
-    project_vertices_with(
-        mesh,
-        model,
-        camera,
-        first..first + out.len(),
-        |_, vertex| {
-            if let Some(slot) = out.next() {
-                *slot = vertex;
-            }
-        },
-    )
+    project_vertices_with(mesh, model, camera, first..end, |_, vertex| {
+        if let Some(slot) = out.next() {
+            *slot = vertex;
+        }
+    })
 }
 
 /// [`project_vertices`] for the vertices in `indices`, each handed to
