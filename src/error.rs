@@ -97,6 +97,10 @@ pub enum Error {
     /// A polygon of more than three corners was offered to the tables,
     /// but zline was built without its `polygons` feature.
     NeedsPolygons,
+    /// The host's `Vec` storage for the capacities given (`host_renderer`
+    /// and the storage types beside it, `std` only) could not be
+    /// allocated.
+    StorageTooLarge,
 }
 
 impl fmt::Display for Error {
@@ -120,6 +124,9 @@ impl fmt::Display for Error {
             Error::OutsideGuardBand => f.write_str("vertex outside the guard band or not finite"),
             Error::DepthOutOfRange => f.write_str("vertex depth outside [0, 1] or not finite"),
             Error::MeshIndexOutOfRange => f.write_str("mesh face names a vertex beyond the mesh"),
+            Error::StorageTooLarge => {
+                f.write_str("storage for the capacities given cannot be allocated")
+            }
             Error::VertexCacheTooSmall => {
                 f.write_str("the vertex cache holds fewer vertices than the mesh has")
             }

@@ -61,7 +61,7 @@ where
 {
     let mut tables = common::scene_tables(scene, &CAPS, W, H);
     let prepared = tables.prepare();
-    let mut whole = Scanner::new(ScanVecs::<u32, D>::new(&CAPS, 0), 0);
+    let mut whole = Scanner::new(ScanVecs::<u32, D>::new(&CAPS, 0).unwrap(), 0);
     let one = scan_band(&prepared, &mut whole, 0..H);
     // Bands on threads: each thread its own scanner, all sharing the
     // prepared tables.
@@ -74,7 +74,7 @@ where
             .map(|w| {
                 let (band, prepared) = (w[0]..w[1], &prepared);
                 s.spawn(move || {
-                    let mut scanner = Scanner::new(ScanVecs::<u32, D>::new(&CAPS, 0), 0);
+                    let mut scanner = Scanner::new(ScanVecs::<u32, D>::new(&CAPS, 0).unwrap(), 0);
                     scan_band(prepared, &mut scanner, band)
                 })
             })
@@ -229,7 +229,7 @@ fn bands_fit_the_whole_frames_capacities(
     let caps = common::small_caps(width);
     let mut tables = common::scene_tables(scene, &caps, width, height);
     let prepared = tables.prepare();
-    let mut whole = Scanner::new(ScanVecs::<u32, Depth16>::new(&caps, 0), 0);
+    let mut whole = Scanner::new(ScanVecs::<u32, Depth16>::new(&caps, 0).unwrap(), 0);
     let mut one = Rows::new();
     let stats = scan(
         &prepared,
@@ -247,7 +247,7 @@ fn bands_fit_the_whole_frames_capacities(
     bounds.sort_unstable();
     let mut joined = Rows::new();
     for band in bounds.windows(2) {
-        let mut scanner = Scanner::new(ScanVecs::<u32, Depth16>::new(&exact, 0), 0);
+        let mut scanner = Scanner::new(ScanVecs::<u32, Depth16>::new(&exact, 0).unwrap(), 0);
         let band_stats = scan(
             &prepared,
             &mut scanner,

@@ -96,7 +96,7 @@ where
     let prepared = tables.prepare();
     let mut copied = Vec::new();
     let mut scanner = Scanner::new(
-        ScanVecs::<u32, D>::new(&common::small_caps(W), 0),
+        ScanVecs::<u32, D>::new(&common::small_caps(W), 0).unwrap(),
         BACKGROUND,
     );
     scan(
@@ -112,7 +112,7 @@ where
     // A buffer longer than the row: only the row's part is used.
     let mut lender = Lender::new(usize::from(W) + 3, filled);
     let mut scanner = Scanner::new(
-        ScanVecs::<u32, D>::new(&common::small_caps(W), 0),
+        ScanVecs::<u32, D>::new(&common::small_caps(W), 0).unwrap(),
         BACKGROUND,
     );
     scan(&prepared, &mut scanner, band, &mut lender).unwrap();
@@ -181,7 +181,7 @@ fn one_triangle() -> Vec<Vec<ScreenVertex>> {
 /// A z16 scanner for the frame, on `Vec`s.
 fn z16_scanner() -> Scanner<ScanVecs<u32, Depth16>> {
     Scanner::new(
-        ScanVecs::<u32, Depth16>::new(&common::small_caps(W), 0),
+        ScanVecs::<u32, Depth16>::new(&common::small_caps(W), 0).unwrap(),
         BACKGROUND,
     )
 }

@@ -78,7 +78,7 @@ fn tables(
     triple: [(i32, i32); 3],
     share: bool,
 ) -> (Tables<TableVecs<u32>>, Vec<Offered>) {
-    let mut t = Tables::new(TableVecs::new(&CAPS, 0), W, H).unwrap();
+    let mut t = Tables::new(TableVecs::new(&CAPS, 0).unwrap(), W, H).unwrap();
     let plane = triple.map(|(x, y)| spec.vertex(x, y));
     let ids = plane.map(|v| t.push_vertex(v).unwrap());
     let mut offered = Vec::new();

@@ -512,7 +512,10 @@ fn core_check<D: DepthFormat>(
     bounds.extend([0, height]);
     bounds.sort_unstable();
     for band in bounds.windows(2) {
-        let mut scanner = Scanner::new(ScanVecs::<u32, D>::new(&exact, 0), 0);
+        let mut scanner = Scanner::new(
+            ScanVecs::<u32, D>::new(&exact, 0).expect("a frame's own counts fit"),
+            0,
+        );
         let mut next = band[0];
         scan(
             &prepared,

@@ -75,6 +75,11 @@ pub fn capped_hull<M: Mesh + ?Sized>(mesh: &M) -> Option<(ClosedHull, Vec<[[f32;
     for f in 0..mesh.face_count() {
         let corners = mesh.face(f);
         let n = corners.len();
+        // A face of fewer than three corners, or one naming a vertex
+        // beyond the mesh, is not part of any surface.
+        if n < 3 || corners.iter().any(|&c| usize::from(c) >= id_of.len()) {
+            return None;
+        }
         for k in 0..n {
             let (a, b) = (corners[k], corners[(k + 1) % n]);
             let (a, b) = (id_of[usize::from(a)], id_of[usize::from(b)]);

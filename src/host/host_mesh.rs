@@ -7,10 +7,10 @@ use crate::front::closed_hull::ClosedHull;
 use crate::front::face_plane::FacePlane;
 use crate::front::geometry::{Vec3, newell_normal, unit};
 use crate::front::mesh::{
-    Mesh, MeshArrays, SharedPlane, StaticMesh, check_shared_planes, face_normals, face_planes,
-    fan_normals, planar_face_bits,
+    Mesh, MeshArrays, MeshError, SharedPlane, StaticMesh, check_shared_planes, face_normals,
+    face_planes, fan_normals, planar_face_bits,
 };
-use crate::front::obj::{ObjCorner, ObjError, ObjErrorKind, ObjReader, Statement};
+use crate::front::obj::{Element, ObjCorner, ObjError, ObjErrorKind, ObjReader, Statement};
 use crate::limits::MAX_FACE_CORNERS;
 use crate::limits::{MAX_POLYGON_CORNERS, MAX_POLYGONS};
 use crate::raster::Capacities;
@@ -80,6 +80,28 @@ pub struct HostMesh {
 pub const DEFAULT_CREASE_DEGREES: f32 = 60.0;
 
 impl HostMesh {
+    /// Whether the mesh's arrays hold together, as a mesh built field by
+    /// field may not: the rules of [`StaticMesh::new`] (every corner names
+    /// one of the positions, face starts rise through the corners with at
+    /// least three corners a face and at most
+    /// [`MAX_FACE_CORNERS`]), vertex normals and texture coordinates each
+    /// empty or one per position
+    /// ([`MeshError::BadVertexAttributes`]), and the shared planes as
+    /// [`StaticMesh::with_shared_planes`] checks them. The analyses return
+    /// a mesh that fails it as it is, and a draw of it is
+    /// [`Error::MeshIndexOutOfRange`](crate::Error::MeshIndexOutOfRange).
+    pub fn check(&self) -> Result<(), MeshError> {
+        self.faces_hold()?;
+        let count = self.positions.len();
+        if ![self.vertex_normals.len(), self.uvs.len()]
+            .iter()
+            .all(|&len| len == 0 || len == count)
+        {
+            return Err(MeshError::BadVertexAttributes);
+        }
+        check_shared_planes(&self.shared_planes, self.face_starts.len(), count)
+    }
+
     /// Capacities for drawing this mesh whole into frames `width` pixels
     /// wide, from any view, culled or not: every face counted at its
     /// worst, clipped by all six of the front end's planes (what the host
@@ -214,8 +236,16 @@ impl HostMesh {
     /// crease angle stays hard: a position whose corners get different
     /// normals becomes one vertex per normal. Texture coordinates are
     /// kept. Fails as [`Self::from_obj_smooth`] does when the vertices
-    /// pass 65,536.
+    /// pass 65,536, and at line 0 when the faces break
+    /// [`StaticMesh::new`]'s rules (a corner past the positions is
+    /// [`ObjErrorKind::IndexOutOfRange`], counted from 1 as in a file).
     pub fn with_vertex_normals(self, crease_degrees: f32) -> Result<Self, ObjError> {
+        if let Err(e) = self.faces_hold() {
+            return Err(ObjError {
+                line: 0,
+                kind: self.mesh_error_kind(e),
+            });
+        }
         let has_uvs = !self.uvs.is_empty();
         let file = AttributedFaces {
             corners: self
@@ -248,18 +278,12 @@ impl HostMesh {
     /// vertices this way as it makes them. A mesh that is not valid
     /// ([`StaticMesh::new`], its shared planes as a mesh checks them), or
     /// whose per-vertex arrays are neither empty nor as long as its
-    /// positions, is returned as it is.
+    /// positions ([`Self::check`]), is returned as it is.
     pub fn with_vertices_in_first_use_order(mut self) -> Self {
-        let count = self.positions.len();
-        let per_vertex_ok = |len: usize| len == 0 || len == count;
-        let faces = self.face_starts.len();
-        if !per_vertex_ok(self.vertex_normals.len())
-            || !per_vertex_ok(self.uvs.len())
-            || StaticMesh::new(&self.positions, &self.corners, &self.face_starts).is_err()
-            || check_shared_planes(&self.shared_planes, faces, count).is_err()
-        {
+        if self.check().is_err() {
             return self;
         }
+        let count = self.positions.len();
         // New number of each old vertex; then the old vertex of each new
         // number. (`count` is at most 65,536: corners are `u16`.)
         const UNSEEN: u32 = u32::MAX;
@@ -304,7 +328,12 @@ impl HostMesh {
     /// ([`Self::closed_hull`]). Call it after changing
     /// positions or faces: stale planarity bits would draw a face that is
     /// no longer planar as one polygon, stale normals would shade it wrong.
+    /// A mesh whose faces break [`StaticMesh::new`]'s rules is returned as
+    /// it is.
     pub fn with_face_analysis(mut self) -> Self {
+        if self.faces_hold().is_err() {
+            return self;
+        }
         self.planar_faces = planar_face_bits(&self).collect();
         self.face_normals = face_normals(&self).collect();
         self.face_planes = face_planes(&self).collect();
@@ -320,6 +349,29 @@ impl HostMesh {
             None => (None, Vec::new()),
         };
         self
+    }
+}
+
+impl HostMesh {
+    /// Whether the positions, corners and face starts keep
+    /// [`StaticMesh::new`]'s rules.
+    pub(crate) fn faces_hold(&self) -> Result<(), MeshError> {
+        StaticMesh::new(&self.positions, &self.corners, &self.face_starts).map(|_| ())
+    }
+
+    /// What [`Self::with_vertex_normals`] reports for a mesh whose arrays
+    /// break `e`'s rule, in the terms of an OBJ file's faces.
+    fn mesh_error_kind(&self, e: MeshError) -> ObjErrorKind {
+        match e {
+            MeshError::IndexOutOfRange { corner } => ObjErrorKind::IndexOutOfRange {
+                element: Element::Vertex,
+                index: self.corners.get(corner).map_or(0, |&c| i64::from(c) + 1),
+                available: u32::try_from(self.positions.len()).unwrap_or(u32::MAX),
+            },
+            MeshError::FaceTooLarge { .. } => ObjErrorKind::TooManyCorners,
+            MeshError::TooManyVertices => ObjErrorKind::TooManyVertices,
+            _ => ObjErrorKind::TooFewCorners,
+        }
     }
 }
 

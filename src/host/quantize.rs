@@ -46,8 +46,13 @@ impl QuantizedHostMesh {
     /// Quantizes `mesh` in its [`bounding_sphere`]; each face's normal
     /// comes from its original corners, in `f64`; texture coordinates are
     /// rounded to `1/UV_SCALE`, `Err(`[`Error::TexCoordRange`]`)` when one
-    /// is outside `-8..8` (or not finite).
+    /// is outside `-8..8` (or not finite); `Err(`[`Error::MeshIndexOutOfRange`]`)`
+    /// when its faces break [`StaticMesh::new`](crate::StaticMesh::new)'s
+    /// rules.
     pub fn new(mesh: &HostMesh) -> Result<Self, Error> {
+        if mesh.faces_hold().is_err() {
+            return Err(Error::MeshIndexOutOfRange);
+        }
         let (centre, radius) = bounding_sphere(mesh)?;
         let radius = if radius > 0.0 { radius } else { 1.0 };
         let c = [

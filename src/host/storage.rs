@@ -2,11 +2,11 @@
 //! [`Capacities`] value: the same capacity-erased tables and scanner as on
 //! a microcontroller, with no large value on the stack.
 
-use std::vec;
 use std::vec::Vec;
 
 use crate::error::Error;
 use crate::host::HostMesh;
+use crate::limits::{MAX_FRAME_SIZE, MAX_POLYGONS};
 use crate::paint::{PaintMode, PaintParts, PaintStorage, PaintedRenderer, SlotPlanes};
 use crate::raster::depth::DepthFormat;
 use crate::raster::paint::NO_SLOT;
@@ -15,6 +15,17 @@ use crate::raster::tables::{PolygonEntry, TableParts, TablePartsRef, TableStorag
 use crate::raster::vertex::ScreenVertex;
 use crate::raster::{ActiveEdge, ActivePolygon, Capacities, EdgeEntry, SmallActive};
 use crate::renderer::Renderer;
+
+/// `count` copies of `value`, or `Err(`[`Error::StorageTooLarge`]`)` when
+/// they cannot be allocated (instead of aborting).
+fn filled<T: Clone>(count: usize, value: T) -> Result<Vec<T>, Error> {
+    let mut values = Vec::new();
+    values
+        .try_reserve_exact(count)
+        .map_err(|_| Error::StorageTooLarge)?;
+    values.resize(count, value);
+    Ok(values)
+}
 
 /// Table storage in `Vec`s.
 #[derive(Debug, Clone)]
@@ -28,13 +39,20 @@ pub struct TableVecs<C> {
 impl<C: Copy> TableVecs<C> {
     /// Storage for `caps.vertices` vertices, `caps.polygons` polygons and
     /// `caps.corners` corners; `filler` fills the unused polygon slots.
-    pub fn new(caps: &Capacities, filler: C) -> Self {
-        Self {
-            vertices: vec![ScreenVertex::default(); caps.vertices.min(1 << 16)],
-            polygons: vec![PolygonEntry::filler(filler); caps.polygons],
-            corners: vec![0; caps.corners],
-            edges: vec![EdgeEntry::ZERO; caps.corners],
-        }
+    /// Counts beyond what the core uses (65,536 vertices,
+    /// [`MAX_POLYGONS`] polygons) are cut to it;
+    /// `Err(`[`Error::StorageTooLarge`]`)` when the rest cannot be
+    /// allocated.
+    pub fn new(caps: &Capacities, filler: C) -> Result<Self, Error> {
+        Ok(Self {
+            vertices: filled(caps.vertices.min(1 << 16), ScreenVertex::default())?,
+            polygons: filled(
+                caps.polygons.min(MAX_POLYGONS),
+                PolygonEntry::filler(filler),
+            )?,
+            corners: filled(caps.corners, 0)?,
+            edges: filled(caps.corners, EdgeEntry::ZERO)?,
+        })
     }
 }
 
@@ -87,20 +105,23 @@ impl<C: Copy, D: DepthFormat> ScanVecs<C, D> {
     /// triangles' table takes at most [`SMALL_TABLE_ENTRIES_PER_COLUMN`]
     /// entries a pixel of the row (`Capacities::worst_case` gives a mesh
     /// of many faces 65,536 active polygons, which this table need not
-    /// match: 3 MB for the bunny).
-    pub fn new(caps: &Capacities, filler: C) -> Self {
-        let small = caps
-            .active_polygons
-            .min(SMALL_TABLE_ENTRIES_PER_COLUMN.saturating_mul(caps.width));
-        Self {
-            active: vec![ActivePolygon::filler(filler); caps.active_polygons],
-            order: vec![0; caps.active_polygons],
-            pool: vec![ActiveEdge::EMPTY; caps.pooled_edges],
-            small: vec![SmallActive::filler(filler); small],
-            depth_row: vec![D::CLEAR; caps.width],
-            color_row: vec![filler; caps.width],
-            key_row: vec![0; caps.width],
-        }
+    /// match: 3 MB for the bunny). Counts beyond what the core uses
+    /// (65,536 active polygons, rows of [`MAX_FRAME_SIZE`] pixels) are cut
+    /// to it; `Err(`[`Error::StorageTooLarge`]`)` when the rest cannot be
+    /// allocated.
+    pub fn new(caps: &Capacities, filler: C) -> Result<Self, Error> {
+        let active = caps.active_polygons.min(1 << 16);
+        let width = caps.width.min(MAX_FRAME_SIZE);
+        let small = active.min(SMALL_TABLE_ENTRIES_PER_COLUMN * width);
+        Ok(Self {
+            active: filled(active, ActivePolygon::filler(filler))?,
+            order: filled(active, 0)?,
+            pool: filled(caps.pooled_edges, ActiveEdge::EMPTY)?,
+            small: filled(small, SmallActive::filler(filler))?,
+            depth_row: filled(width, D::CLEAR)?,
+            color_row: filled(width, filler)?,
+            key_row: filled(width, 0)?,
+        })
     }
 }
 
@@ -135,9 +156,9 @@ pub fn host_renderer<C: Copy, D: DepthFormat>(
 ) -> Result<HostRenderer<C, D>, Error> {
     Renderer::from_storage(
         (
-            TableVecs::new(caps, background),
-            ScanVecs::new(caps, background),
-            vec![0; caps.mesh_vertices],
+            TableVecs::new(caps, background)?,
+            ScanVecs::new(caps, background)?,
+            filled(caps.mesh_vertices.min(1 << 16), 0)?,
         ),
         width,
         height,
@@ -191,12 +212,16 @@ pub struct PaintVecs<M: PaintMode> {
 impl<M: PaintMode> PaintVecs<M> {
     /// Storage for `caps.vertices` vertices, `caps.active_polygons` active
     /// polygons and rows of `caps.width` pixels; `color` fills the row.
-    pub fn new(caps: &Capacities, color: M::Color) -> Self {
-        Self {
-            vertices: vec![M::VERTEX_FILLER; caps.vertices.min(1 << 16)],
-            slots: vec![SlotPlanes::filler(M::PLANES_FILLER); caps.active_polygons],
-            row: vec![color; caps.width],
-        }
+    /// Counts are cut and storage refused as [`ScanVecs::new`] does.
+    pub fn new(caps: &Capacities, color: M::Color) -> Result<Self, Error> {
+        Ok(Self {
+            vertices: filled(caps.vertices.min(1 << 16), M::VERTEX_FILLER)?,
+            slots: filled(
+                caps.active_polygons.min(1 << 16),
+                SlotPlanes::filler(M::PLANES_FILLER),
+            )?,
+            row: filled(caps.width.min(MAX_FRAME_SIZE), color)?,
+        })
     }
 }
 
@@ -229,10 +254,10 @@ impl<M: PaintMode, D: DepthFormat> HostPaintedRenderer<M, D> {
     ) -> Result<Self, Error> {
         PaintedRenderer::from_storage(
             (
-                TableVecs::new(caps, 0),
-                ScanVecs::new(caps, NO_SLOT),
-                vec![0; caps.mesh_vertices],
-                PaintVecs::new(caps, background),
+                TableVecs::new(caps, 0)?,
+                ScanVecs::new(caps, NO_SLOT)?,
+                filled(caps.mesh_vertices.min(1 << 16), 0)?,
+                PaintVecs::new(caps, background)?,
             ),
             (width, height),
             mode,
@@ -296,7 +321,7 @@ mod tests {
             mesh_vertices: 0,
         };
         for (width, active, want) in [(800, 1 << 16, 6400), (800, 637, 637), (240, 1 << 16, 1920)] {
-            let mut vecs = ScanVecs::<u16, Depth24>::new(&caps(width, active), 0);
+            let mut vecs = ScanVecs::<u16, Depth24>::new(&caps(width, active), 0).unwrap();
             let parts = vecs.parts_mut();
             assert_eq!((parts.small.len(), parts.active.len()), (want, active));
         }

@@ -35,7 +35,8 @@ pub trait PaintColor: Copy {
     /// values are taken as [`CHANNEL_MAX`]), each rounded to the nearest
     /// level when `threshold` is `None`, else raised to the next level
     /// where its fraction of a level exceeds `threshold / 65,280`
-    /// ([`bayer_threshold`]).
+    /// ([`bayer_threshold`]; a threshold of 2^16 or more gives some
+    /// level, unspecified).
     #[inline(always)]
     fn from_channels(rgb: [u32; 3], threshold: Option<u32>) -> Self {
         let t = threshold.unwrap_or(NEAREST);
@@ -77,7 +78,9 @@ pub(crate) fn level_units(v: u32, max: u32) -> u32 {
 /// and `257·y + 257 < 2^25`.
 #[inline(always)]
 fn level(v: u32, max: u32, t: u32) -> u32 {
-    let y = (v.min(CHANNEL_MAX) * max + t) >> 8;
+    // A threshold beyond the documented 16 bits wraps (a wrong level, no
+    // panic); `v·max` is at most 65,280 · 255.
+    let y = (v.min(CHANNEL_MAX) * max).wrapping_add(t) >> 8;
     (257 * y + 257) >> 16
 }
 

@@ -211,7 +211,7 @@ impl<'a, C: PaintColor> PaintMode for LitTextured<'a, C> {
         let mut put = |k: usize, t: [i64; 2], l: [u32; 3]| {
             let s = self.textured.channels(&planes.texture, t);
             let rgb = [scaled(s[0], l[0]), scaled(s[1], l[1]), scaled(s[2], l[2])];
-            let threshold = dither.then(|| bayer_threshold(x0 + k as u16, y));
+            let threshold = dither.then(|| bayer_threshold(x0.wrapping_add(k as u16), y));
             if let Some(pixel) = out.get_mut(k) {
                 *pixel = C::from_channels(rgb, threshold);
             }
@@ -252,7 +252,7 @@ impl<'a, C: PaintColor> PaintMode for LitTextured<'a, C> {
         let lights = || corners().map(|(v, c)| (v, light_values(c.light)));
         self.textured
             .coordinates(&planes.texture, tex_corners, (x0, y), n, |k, t| {
-                let x = x0 + k as u16;
+                let x = x0.wrapping_add(k as u16);
                 let l: [u32; 3] = if steep {
                     core::array::from_fn(|c| {
                         let plane = &planes.light[c];

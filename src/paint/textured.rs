@@ -391,7 +391,7 @@ impl<C: PaintColor> PaintMode for Textured<'_, C> {
         let threshold = |x: u16| self.dither.then(|| bayer_threshold(x, y));
         self.coordinates(planes, &corners, (x0, y), out.len(), |k, t| {
             if let Some(pixel) = out.get_mut(k) {
-                *pixel = self.color(planes, t, threshold(x0 + k as u16));
+                *pixel = self.color(planes, t, threshold(x0.wrapping_add(k as u16)));
             }
         });
     }
@@ -464,7 +464,7 @@ impl<C: PaintColor> Textured<'_, C> {
             let scale = CornerValues::new(&self.texture, corners.clone().map(|(_, c)| c));
             let values = corners.map(|(v, c)| (v, scale.values(&self.texture, c)));
             for k in 0..n {
-                let x = x0 + k as u16;
+                let x = x0.wrapping_add(k as u16);
                 pixel(
                     k,
                     Self::point(planes, Self::values_at(planes, values.clone(), x, y)).t,
@@ -474,7 +474,7 @@ impl<C: PaintColor> Textured<'_, C> {
         }
         let [pq, pu, pv] = planes.planes;
         let at = |i: usize| {
-            let x = x0 + i as u16;
+            let x = x0.wrapping_add(i as u16);
             Self::point(planes, [pq, pu, pv].map(|p| p.value_at(x, y)))
         };
         let Some(last) = n.checked_sub(1) else {

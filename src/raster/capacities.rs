@@ -105,26 +105,27 @@ impl Capacities {
     /// active polygons).
     pub const fn worst_case(mesh: &MeshCounts, width: usize) -> Self {
         let (faces, corners) = (mesh.faces, mesh.corners);
-        let triangles_only = corners == 3 * faces;
+        let triangles_only = matches!(faces.checked_mul(3), Some(c) if c == corners);
+        // Counts past usize saturate (the storage then refuses them).
         let clipped = if triangles_only {
-            9 * faces
+            faces.saturating_mul(9)
         } else {
-            12 * corners
+            corners.saturating_mul(12)
         };
         // A face of n corners: at most n - 2 triangles (its fan, or a
         // convex quad's two), or one polygon.
-        let fan = corners.saturating_sub(2 * faces);
+        let fan = corners.saturating_sub(faces.saturating_mul(2));
         let polygons = min(if fan > faces { fan } else { faces }, MAX_POLYGONS);
         let shared = if mesh.shared_plane_faces > 0 {
-            3 * polygons
+            polygons.saturating_mul(3)
         } else {
             0
         };
         Self {
             width,
-            vertices: min(mesh.vertices + clipped, 1 << 16),
+            vertices: min(mesh.vertices.saturating_add(clipped), 1 << 16),
             polygons,
-            corners: clipped + shared,
+            corners: clipped.saturating_add(shared),
             active_polygons: min(polygons, 1 << 16),
             pooled_edges: if triangles_only { 0 } else { clipped },
             mesh_vertices: mesh.vertices,
@@ -140,15 +141,27 @@ impl Capacities {
     /// to `active_polygons` entries of [`SmallActive`] (48 bytes each on
     /// a 64-bit host; the host's `ScanVecs` bounds it by the row's
     /// width), not counted here, so that a firmware sized on a desktop
-    /// gets its own figure.
+    /// gets its own figure. Saturates at `usize::MAX`.
     pub fn ram_bytes<C, D: DepthFormat>(&self) -> usize {
-        self.width * (size_of::<C>() + size_of::<D::Value>() + size_of::<u32>())
-            + self.vertices * size_of::<ScreenVertex>()
-            + self.polygons * size_of::<PolygonEntry<C>>()
-            + self.corners * (size_of::<u16>() + size_of::<EdgeEntry>())
-            + self.active_polygons * (size_of::<ActivePolygon<C>>() + size_of::<u16>())
-            + self.pooled_edges * size_of::<ActiveEdge>()
-            + self.mesh_vertices * size_of::<u16>()
+        [
+            (
+                self.width,
+                size_of::<C>() + size_of::<D::Value>() + size_of::<u32>(),
+            ),
+            (self.vertices, size_of::<ScreenVertex>()),
+            (self.polygons, size_of::<PolygonEntry<C>>()),
+            (self.corners, size_of::<u16>() + size_of::<EdgeEntry>()),
+            (
+                self.active_polygons,
+                size_of::<ActivePolygon<C>>() + size_of::<u16>(),
+            ),
+            (self.pooled_edges, size_of::<ActiveEdge>()),
+            (self.mesh_vertices, size_of::<u16>()),
+        ]
+        .iter()
+        .fold(0usize, |sum, &(count, size)| {
+            sum.saturating_add(count.saturating_mul(size))
+        })
     }
 }
 

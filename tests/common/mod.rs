@@ -302,7 +302,7 @@ pub fn scene_tables(
     height: u16,
 ) -> zline::Tables<zline::host::TableVecs<u32>> {
     let mut tables =
-        zline::Tables::new(zline::host::TableVecs::new(caps, 0), width, height).unwrap();
+        zline::Tables::new(zline::host::TableVecs::new(caps, 0).unwrap(), width, height).unwrap();
     for (k, poly) in scene.iter().enumerate() {
         tables.push_polygon_vertices(poly, k as u32 + 1).unwrap();
     }

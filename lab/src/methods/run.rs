@@ -172,9 +172,16 @@ where
     /// Buffers for `width` x `height` frames, tables of `caps` (smaller
     /// ones set up faster: the fuzzer makes one per input).
     pub fn with_capacities(width: u16, height: u16, caps: &Capacities) -> Result<Self, String> {
-        let tables =
-            Tables::new(TableVecs::new(caps, EMPTY), width, height).map_err(|e| e.to_string())?;
-        let scanner = Scanner::new(ScanVecs::<HostPixel, D>::new(caps, EMPTY), EMPTY);
+        let tables = Tables::new(
+            TableVecs::new(caps, EMPTY).map_err(|e| e.to_string())?,
+            width,
+            height,
+        )
+        .map_err(|e| e.to_string())?;
+        let scanner = Scanner::new(
+            ScanVecs::<HostPixel, D>::new(caps, EMPTY).map_err(|e| e.to_string())?,
+            EMPTY,
+        );
         let frame = usize::from(width) * usize::from(height);
         Ok(Self {
             width,
