@@ -101,6 +101,12 @@ pub enum Error {
     /// and the storage types beside it, `std` only) could not be
     /// allocated.
     StorageTooLarge,
+    /// A scan ([`scan`](crate::scan), [`scan_painted`](crate::scan_painted))
+    /// was given the tables in drawing order
+    /// ([`Tables::in_drawing_order`](crate::Tables::in_drawing_order), for
+    /// the z-buffer methods), not sorted with their edge table by
+    /// [`Tables::prepare`](crate::Tables::prepare).
+    NotPrepared,
 }
 
 impl fmt::Display for Error {
@@ -124,6 +130,9 @@ impl fmt::Display for Error {
             Error::OutsideGuardBand => f.write_str("vertex outside the guard band or not finite"),
             Error::DepthOutOfRange => f.write_str("vertex depth outside [0, 1] or not finite"),
             Error::MeshIndexOutOfRange => f.write_str("mesh face names a vertex beyond the mesh"),
+            Error::NotPrepared => {
+                f.write_str("tables in drawing order were scanned; scans need Tables::prepare's")
+            }
             Error::StorageTooLarge => {
                 f.write_str("storage for the capacities given cannot be allocated")
             }

@@ -101,6 +101,34 @@ proptest! {
     }
 }
 
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// The tables in drawing order (for the z-buffer methods: not sorted,
+    /// no edge table) are refused by a scan of any band, never scanned as
+    /// if sorted (which started edges below the rows they begin on).
+    #[test]
+    fn a_scan_of_tables_in_drawing_order_is_an_error(
+        scene in prop::collection::vec(common::random_polygon(W, H, 10, 7), 1..=10),
+        start in 0..H,
+    ) {
+        let mut tables = common::scene_tables(&scene, &CAPS, W, H);
+        let in_order = tables.in_drawing_order();
+        let mut scanner = Scanner::new(ScanVecs::<u32, Depth16>::new(&CAPS, 0).unwrap(), 0);
+        let result = scan(
+            &in_order,
+            &mut scanner,
+            start..H,
+            &mut FnSink(|_: u16, _: &[u32], _: &[u16]| Ok::<(), ()>(())),
+        );
+        prop_assert!(
+            matches!(result, Err(zline::RenderError::Table(zline::Error::NotPrepared))),
+            "{:?}",
+            result
+        );
+    }
+}
+
 /// A small triangle two or three rows tall (at most 4 columns wide), with
 /// depths far apart, anywhere in the frame.
 fn small_triangle() -> impl Strategy<Value = Vec<ScreenVertex>> {

@@ -143,6 +143,9 @@ fn painted_rows<D: DepthFormat, P: RowPainter, K: RowSink<P::Color, D::Value>>(
     rows: Range<u16>,
     sink: &mut K,
 ) -> Result<FrameStats, RenderError<K::Error>> {
+    if !tables.scannable {
+        return Err(RenderError::Table(Error::NotPrepared));
+    }
     let width = usize::from(tables.width);
     let too_narrow = [
         parts.depth_row.len(),

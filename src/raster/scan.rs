@@ -233,6 +233,9 @@ fn scan_rows<C: Copy, D: DepthFormat, K: RowSink<C, D::Value>>(
     (rows, small_triangles): (Range<u16>, bool),
     sink: &mut K,
 ) -> Result<FrameStats, RenderError<K::Error>> {
+    if !tables.scannable {
+        return Err(RenderError::Table(Error::NotPrepared));
+    }
     let width = usize::from(tables.width);
     if width > parts.depth_row.len() || width > parts.color_row.len() || width > parts.key_row.len()
     {

@@ -12,7 +12,9 @@ use crate::raster::vertex::ScreenVertex;
 
 /// Prepared tables: sorted, with their edge table, ready to scan. Many
 /// scanners may share one (on several threads, on the host), each over its
-/// own band of rows.
+/// own band of rows. (The same view of the tables in drawing order,
+/// [`Tables::in_drawing_order`], is for the polygon-after-polygon methods
+/// only: a scan of it is [`Error::NotPrepared`](crate::Error::NotPrepared).)
 #[derive(Debug, Clone, Copy)]
 pub struct Prepared<'a, C> {
     pub(crate) vertices: &'a [ScreenVertex],
@@ -23,6 +25,9 @@ pub struct Prepared<'a, C> {
     pub(crate) height: u16,
     pub(crate) off_screen: u32,
     pub(crate) degenerate: u32,
+    /// Whether [`Tables::prepare`] made it (sorted, with its edge table),
+    /// so that the scanline methods may scan it.
+    pub(crate) scannable: bool,
 }
 
 impl<C> Prepared<'_, C> {
@@ -68,6 +73,7 @@ impl<S: TableStorage> Tables<S> {
             height: st.counts.height,
             off_screen: st.counts.off_screen,
             degenerate: st.counts.degenerate,
+            scannable: true,
         }
     }
 
@@ -88,6 +94,7 @@ impl<S: TableStorage> Tables<S> {
             height: st.counts.height,
             off_screen: st.counts.off_screen,
             degenerate: st.counts.degenerate,
+            scannable: false,
         }
     }
 
