@@ -324,6 +324,11 @@ impl<C: Copy> ScanState<'_, '_, C> {
         let rows_below = i32::from(row) - i32::from(polygon.first_row);
         let first = plane.row_start(polygon.first_row);
         let depth = stepped_depth::<D>((plane.dz_dx, plane.dz_dy, first), true, rows_below);
+        // Only the set-ups whose spans the stepped path draws from the same
+        // accumulator: a narrow row, or (in a format with no narrow rows)
+        // the stepped plane's accumulator. A `NARROW` format's triangle
+        // whose row step does not fit a narrow row takes the general
+        // path, which rounds each span's first value on its own.
         if !matches!(
             depth,
             (SpanDepth::Narrow, Some(_))
@@ -334,7 +339,8 @@ impl<C: Copy> ScanState<'_, '_, C> {
                     },
                     None
                 )
-        ) {
+        ) || (D::NARROW && depth.1.is_none())
+        {
             return None;
         }
         // One that covers a later row waits in the small triangles' own
