@@ -350,9 +350,7 @@ impl HostMesh {
         };
         self
     }
-}
 
-impl HostMesh {
     /// Whether the positions, corners and face starts keep
     /// [`StaticMesh::new`]'s rules.
     pub(crate) fn faces_hold(&self) -> Result<(), MeshError> {

@@ -27,6 +27,21 @@ fn filled<T: Clone>(count: usize, value: T) -> Result<Vec<T>, Error> {
     Ok(values)
 }
 
+/// `caps` with each count cut to what the core can use: 65,536 vertices
+/// (in the table and the vertex cache) and active polygons,
+/// [`MAX_POLYGONS`] polygons, rows of [`MAX_FRAME_SIZE`] pixels.
+fn within_core(caps: &Capacities) -> Capacities {
+    const INDICES: usize = 1 << 16;
+    Capacities {
+        width: caps.width.min(MAX_FRAME_SIZE),
+        vertices: caps.vertices.min(INDICES),
+        polygons: caps.polygons.min(MAX_POLYGONS),
+        active_polygons: caps.active_polygons.min(INDICES),
+        mesh_vertices: caps.mesh_vertices.min(INDICES),
+        ..*caps
+    }
+}
+
 /// Table storage in `Vec`s.
 #[derive(Debug, Clone)]
 pub struct TableVecs<C> {
@@ -44,12 +59,10 @@ impl<C: Copy> TableVecs<C> {
     /// `Err(`[`Error::StorageTooLarge`]`)` when the rest cannot be
     /// allocated.
     pub fn new(caps: &Capacities, filler: C) -> Result<Self, Error> {
+        let caps = within_core(caps);
         Ok(Self {
-            vertices: filled(caps.vertices.min(1 << 16), ScreenVertex::default())?,
-            polygons: filled(
-                caps.polygons.min(MAX_POLYGONS),
-                PolygonEntry::filler(filler),
-            )?,
+            vertices: filled(caps.vertices, ScreenVertex::default())?,
+            polygons: filled(caps.polygons, PolygonEntry::filler(filler))?,
             corners: filled(caps.corners, 0)?,
             edges: filled(caps.corners, EdgeEntry::ZERO)?,
         })
@@ -110,8 +123,8 @@ impl<C: Copy, D: DepthFormat> ScanVecs<C, D> {
     /// to it; `Err(`[`Error::StorageTooLarge`]`)` when the rest cannot be
     /// allocated.
     pub fn new(caps: &Capacities, filler: C) -> Result<Self, Error> {
-        let active = caps.active_polygons.min(1 << 16);
-        let width = caps.width.min(MAX_FRAME_SIZE);
+        let caps = within_core(caps);
+        let (active, width) = (caps.active_polygons, caps.width);
         let small = active.min(SMALL_TABLE_ENTRIES_PER_COLUMN * width);
         Ok(Self {
             active: filled(active, ActivePolygon::filler(filler))?,
@@ -158,7 +171,7 @@ pub fn host_renderer<C: Copy, D: DepthFormat>(
         (
             TableVecs::new(caps, background)?,
             ScanVecs::new(caps, background)?,
-            filled(caps.mesh_vertices.min(1 << 16), 0)?,
+            filled(within_core(caps).mesh_vertices, 0)?,
         ),
         width,
         height,
@@ -214,13 +227,11 @@ impl<M: PaintMode> PaintVecs<M> {
     /// polygons and rows of `caps.width` pixels; `color` fills the row.
     /// Counts are cut and storage refused as [`ScanVecs::new`] does.
     pub fn new(caps: &Capacities, color: M::Color) -> Result<Self, Error> {
+        let caps = within_core(caps);
         Ok(Self {
-            vertices: filled(caps.vertices.min(1 << 16), M::VERTEX_FILLER)?,
-            slots: filled(
-                caps.active_polygons.min(1 << 16),
-                SlotPlanes::filler(M::PLANES_FILLER),
-            )?,
-            row: filled(caps.width.min(MAX_FRAME_SIZE), color)?,
+            vertices: filled(caps.vertices, M::VERTEX_FILLER)?,
+            slots: filled(caps.active_polygons, SlotPlanes::filler(M::PLANES_FILLER))?,
+            row: filled(caps.width, color)?,
         })
     }
 }
@@ -256,7 +267,7 @@ impl<M: PaintMode, D: DepthFormat> HostPaintedRenderer<M, D> {
             (
                 TableVecs::new(caps, 0)?,
                 ScanVecs::new(caps, NO_SLOT)?,
-                filled(caps.mesh_vertices.min(1 << 16), 0)?,
+                filled(within_core(caps).mesh_vertices, 0)?,
                 PaintVecs::new(caps, background)?,
             ),
             (width, height),

@@ -329,18 +329,18 @@ impl<C: Copy> ScanState<'_, '_, C> {
         // the stepped plane's accumulator. A `NARROW` format's triangle
         // whose row step does not fit a narrow row takes the general
         // path, which rounds each span's first value on its own.
-        if !matches!(
-            depth,
-            (SpanDepth::Narrow, Some(_))
-                | (
-                    SpanDepth::Stepped {
-                        accumulator: Some(_),
-                        ..
-                    },
-                    None
-                )
-        ) || (D::NARROW && depth.1.is_none())
-        {
+        let masked = match depth {
+            (SpanDepth::Narrow, Some(_)) => true,
+            (
+                SpanDepth::Stepped {
+                    accumulator: Some(_),
+                    ..
+                },
+                None,
+            ) => !D::NARROW,
+            _ => false,
+        };
+        if !masked {
             return None;
         }
         // One that covers a later row waits in the small triangles' own
