@@ -7,7 +7,8 @@ use crate::machine::Interleave;
 /// The usage message.
 pub const USAGE: &str = "\
 usage: dual-core-check --single ELF [--dual ELF] [--frames N] [--budget-ratio R]
-                       [--budget-period N] [--bootrom PATH] [--quantum Q]
+                       [--budget-period N] [--budget-frame N] [--bootrom PATH]
+                       [--quantum Q]
                        [--interleave MODE] [--max-cycles N]
 
 Runs each RP2040 firmware ELF on the emulated RP2040 (rp2040-emu), decodes
@@ -22,6 +23,8 @@ last line compares the median frame periods of the two builds.
   --budget-ratio R    fail if the dual/single period ratio exceeds R (needs --dual)
   --budget-period N   fail if the median frame period (the dual build's, with
                       --dual) exceeds N cycles (at 125 MHz, 5,000,000 is 25 fps)
+  --budget-frame N    fail if any checked frame's period (the dual build's, with
+                      --dual) exceeds N cycles: the slowest frame, not the median
   --bootrom PATH      the boot ROM module, rp2040js's bootrom.mjs (default:
                       $ZLINE_RP2040_BOOTROM, else ../shared/rp2040-emu/bootrom.mjs
                       beside the repository)
@@ -61,6 +64,9 @@ pub struct Options {
     /// Largest median frame period accepted, in cycles (the dual build's
     /// when there is one).
     pub budget_period: Option<u64>,
+    /// Largest period accepted of any checked frame, in cycles (the dual
+    /// build's when there is one).
+    pub budget_frame: Option<u64>,
     /// The boot ROM module, if given.
     pub bootrom: Option<PathBuf>,
     /// Cycles per quantum.
@@ -96,6 +102,7 @@ pub fn parse(args: impl IntoIterator<Item = String>) -> Result<Command, String> 
     let mut frames = None;
     let mut budget_ratio = None;
     let mut budget_period = None;
+    let mut budget_frame = None;
     let mut bootrom = None;
     let mut quantum = None;
     let mut max_cycles = None;
@@ -126,6 +133,7 @@ pub fn parse(args: impl IntoIterator<Item = String>) -> Result<Command, String> 
             "--max-cycles" => set(&mut max_cycles, &flag, number::<u64>(&flag, &value()?)?)?,
             "--budget-ratio" => set(&mut budget_ratio, &flag, ratio(&value()?)?)?,
             "--budget-period" => set(&mut budget_period, &flag, number::<u64>(&flag, &value()?)?)?,
+            "--budget-frame" => set(&mut budget_frame, &flag, number::<u64>(&flag, &value()?)?)?,
             "--interleave" => set(&mut interleave, &flag, interleave_mode(&value()?)?)?,
             other => return Err(format!("unknown argument {other:?}")),
         }
@@ -148,6 +156,7 @@ pub fn parse(args: impl IntoIterator<Item = String>) -> Result<Command, String> 
         frames,
         budget_ratio,
         budget_period,
+        budget_frame,
         bootrom,
         quantum,
         interleave: interleave.unwrap_or(Interleave::Lockstep),
@@ -212,7 +221,7 @@ mod tests {
             (o.budget_ratio, o.bootrom, o.max_cycles),
             (None, None, None)
         );
-        assert_eq!(o.budget_period, None);
+        assert_eq!((o.budget_period, o.budget_frame), (None, None));
         assert_eq!(o.interleave, Interleave::Lockstep);
     }
 
@@ -227,6 +236,8 @@ mod tests {
             "--budget-ratio",
             "0.6",
             "--budget-period=5_000_000",
+            "--budget-frame",
+            "5_100_000",
             "--bootrom",
             "rom.mjs",
             "--quantum=2",
@@ -242,6 +253,7 @@ mod tests {
         assert_eq!((o.frames, o.quantum, o.max_cycles), (5, 2, Some(1_000_000)));
         assert_eq!(o.budget_ratio, Some(0.6));
         assert_eq!(o.budget_period, Some(5_000_000));
+        assert_eq!(o.budget_frame, Some(5_100_000));
         assert_eq!(o.bootrom, Some(PathBuf::from("rom.mjs")));
         assert_eq!(o.interleave, Interleave::Independent);
     }
@@ -256,6 +268,7 @@ mod tests {
         assert!(parse_args(&["--single", "a", "--dual", "b", "--budget-ratio", "-1"]).is_err());
         assert!(parse_args(&["--single", "a", "--single", "b"]).is_err());
         assert!(parse_args(&["--single", "a", "--budget-period", "25fps"]).is_err());
+        assert!(parse_args(&["--single", "a", "--budget-frame", "-1"]).is_err());
         assert!(parse_args(&["--single", "a", "--wat"]).is_err());
         assert!(parse_args(&["--single", "a", "--interleave", "both"]).is_err());
         let Ok(Command::Run(o)) = parse_args(&["--single", "a", "--interleave", "contended"])

@@ -94,6 +94,7 @@ fn check(options: &Options) -> Result<bool, String> {
     let mut passed = single_verdict.failures.is_empty();
     let Some((dual, dual_outcome)) = dual.as_ref().zip(dual_outcome.as_ref()) else {
         passed &= within_period_budget(options.budget_period, &single_verdict);
+        passed &= within_frame_budget(options.budget_frame, &single_verdict);
         println!("{}", report::single_summary(&single_verdict));
         return Ok(passed);
     };
@@ -113,6 +114,7 @@ fn check(options: &Options) -> Result<bool, String> {
         passed = false;
     }
     passed &= within_period_budget(options.budget_period, &dual_verdict);
+    passed &= within_frame_budget(options.budget_frame, &dual_verdict);
     println!("{}", report::dual_summary(&single_verdict, &dual_verdict));
     Ok(passed)
 }
@@ -123,6 +125,18 @@ fn within_period_budget(budget: Option<u64>, verdict: &Verdict) -> bool {
     match (budget, verdict.median_period) {
         (Some(budget), Some(period)) if period > budget => {
             println!("FAIL: median period {period} cycles is over the budget of {budget}");
+            false
+        }
+        _ => true,
+    }
+}
+
+/// Whether every checked frame's period in `verdict` is within `budget`
+/// cycles (`--budget-frame`; none given: yes), saying which is not.
+fn within_frame_budget(budget: Option<u64>, verdict: &Verdict) -> bool {
+    match (budget, verdict.slowest_frame) {
+        (Some(budget), Some((frame, period))) if period > budget => {
+            println!("FAIL: frame {frame}'s period {period} cycles is over the budget of {budget}");
             false
         }
         _ => true,
@@ -146,5 +160,31 @@ fn print_verdict(label: &str, verdict: &Verdict) {
     }
     for failure in &verdict.failures {
         println!("FAIL: {label}: {failure}");
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn verdict(median_period: u64, slowest: (usize, u64)) -> Verdict {
+        Verdict {
+            lines: Vec::new(),
+            failures: Vec::new(),
+            median_period: Some(median_period),
+            slowest_frame: Some(slowest),
+            crc_ok: true,
+        }
+    }
+
+    /// The median budget passes a run whose first frame alone is over it;
+    /// the frame budget does not.
+    #[test]
+    fn the_frame_budget_holds_every_frame() {
+        let run = verdict(3_900_000, (1, 5_100_000));
+        assert!(within_period_budget(Some(5_000_000), &run));
+        assert!(!within_frame_budget(Some(5_000_000), &run));
+        assert!(within_frame_budget(Some(5_100_000), &run));
+        assert!(within_frame_budget(None, &run));
     }
 }

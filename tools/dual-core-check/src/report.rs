@@ -41,6 +41,8 @@ pub struct Verdict {
     pub failures: Vec<String>,
     /// Median period of frames 1..=N, in cycles.
     pub median_period: Option<u64>,
+    /// The slowest of frames 1..=N and its period in cycles.
+    pub slowest_frame: Option<(usize, u64)>,
     /// Every frame wanted was decoded and matched its CRC.
     pub crc_ok: bool,
 }
@@ -52,6 +54,7 @@ pub fn judge(label: &str, firmware: &Firmware, outcome: &Outcome, frames: usize)
     let mut failures = Vec::new();
     let mut crc_ok = true;
     let mut periods = Vec::new();
+    let mut slowest_frame = None;
     for f in outcome.frames.iter().take(frames + 1) {
         let want = expected_crc(f.index, &firmware.expected_crcs);
         let ok = f.crc32 == want && f.pixels == FRAME_PIXELS;
@@ -79,6 +82,9 @@ pub fn judge(label: &str, firmware: &Firmware, outcome: &Outcome, frames: usize)
         crc_ok &= ok;
         if f.index >= 1 {
             periods.push(period(f));
+            if slowest_frame.is_none_or(|(_, p)| period(f) > p) {
+                slowest_frame = Some((f.index, period(f)));
+            }
         }
     }
     let decoded = outcome.frames.len().saturating_sub(1).min(frames);
@@ -109,6 +115,7 @@ pub fn judge(label: &str, firmware: &Firmware, outcome: &Outcome, frames: usize)
         lines,
         failures,
         median_period: median(&periods),
+        slowest_frame,
         crc_ok,
     }
 }
@@ -207,8 +214,9 @@ pub fn period_ratio(single: &Verdict, dual: &Verdict) -> Option<f64> {
 /// The last line with both firmwares.
 pub fn dual_summary(single: &Verdict, dual: &Verdict) -> String {
     let ratio = period_ratio(single, dual).map_or("nan".to_string(), |r| format!("{r:.3}"));
+    let (frame, slowest) = dual.slowest_frame.unwrap_or((0, 0));
     format!(
-        "dual-core: period_ratio={ratio} single={} dual={} crc={}",
+        "dual-core: period_ratio={ratio} single={} dual={} dual_slowest={slowest} (frame {frame}) crc={}",
         single.median_period.unwrap_or(0),
         dual.median_period.unwrap_or(0),
         crc_word(single.crc_ok && dual.crc_ok)
@@ -258,6 +266,7 @@ mod tests {
             lines: Vec::new(),
             failures: Vec::new(),
             median_period,
+            slowest_frame: median_period.map(|p| (2, p + 1)),
             crc_ok,
         }
     }
@@ -272,12 +281,14 @@ mod tests {
         );
         assert_eq!(
             dual_summary(&single, &dual),
-            "dual-core: period_ratio=0.625 single=4000000 dual=2500000 crc=ok"
+            "dual-core: period_ratio=0.625 single=4000000 dual=2500000 dual_slowest=2500001 \
+             (frame 2) crc=ok"
         );
         let broken = verdict(None, false);
         assert_eq!(
             dual_summary(&single, &broken),
-            "dual-core: period_ratio=nan single=4000000 dual=0 crc=MISMATCH"
+            "dual-core: period_ratio=nan single=4000000 dual=0 dual_slowest=0 (frame 0) \
+             crc=MISMATCH"
         );
     }
 
