@@ -223,7 +223,7 @@ struct Dual {
 
 /// Buffers of rows in a frame (feature `dual-core`).
 #[cfg(feature = "dual-core")]
-const PROFILE_BUFFERS: usize = HEIGHT as usize / ROWS_PER_BUFFER;
+pub const PROFILE_BUFFERS: usize = HEIGHT as usize / ROWS_PER_BUFFER;
 
 impl Queue {
     /// Takes back the buffers of finished transfers (clearing their
@@ -1057,34 +1057,44 @@ impl LcdRows {
 /// were apart by up to a buffer's time (about 0.13 M cycles), and the cut
 /// swung from frame to frame between two edges. Before any row below core
 /// 0's has a time (the first frame), the rows core 0 has still to draw are
-/// halved, as if each took as long. Returns the cut and whether it came
-/// from times.
-pub fn choose_cut(bias: i32) -> Option<(u16, bool)> {
+/// halved, as if each took as long, unless `estimate` gives each buffer's
+/// time ([`crate::row_costs::estimate`]): it then stands for the times.
+/// Returns the cut and whether it came from times (not from an estimate
+/// or the halving).
+pub fn choose_cut(bias: i32, estimate: Option<&[u32; PROFILE_BUFFERS]>) -> Option<(u16, bool)> {
     with_queue(|q| {
         let d = &mut q.dual;
         let per_buffer = ROWS_PER_BUFFER as i32;
-        let first = usize::from(d.core0_rows.div_ceil(ROWS_PER_BUFFER as u16))
-            .max(PROFILE_BUFFERS.saturating_sub(POOL_BUFFERS));
+        // Core 0's next buffer, and the first that core 1 may take (its
+        // own buffers hold every row below).
+        let next = usize::from(d.core0_rows.div_ceil(ROWS_PER_BUFFER as u16)).min(PROFILE_BUFFERS);
+        let first = next.max(PROFILE_BUFFERS.saturating_sub(POOL_BUFFERS));
         // Microseconds, each buffer's capped so that the sums and the
         // split's `gap · 8 + m` below stay in an i32 (a frame takes far
         // fewer than 2^26 of them).
         let micros_of = |m: u32| m.min(i32::MAX as u32 / 32) as i32;
-        let mut core1: i32 = d.profile.get(first..).map_or(0, |p| {
-            p.iter()
-                .fold(0i32, |sum, &m| sum.saturating_add(micros_of(m)))
-        });
+        let sum = |p: &[u32]| p.iter().fold(0i32, |s, &m| s.saturating_add(micros_of(m)));
+        let estimated = estimate.is_some_and(|_| d.profile[next..].iter().all(|&m| m == 0));
+        if let (true, Some(estimate)) = (estimated, estimate) {
+            d.profile[next..].copy_from_slice(&estimate[next..]);
+        }
+        let mut core1 = sum(&d.profile[first..]);
         let lowest = first as i32 * per_buffer;
         if core1 == 0 {
             let from = i32::from(d.core0_rows);
             d.cut = (from + (i32::from(HEIGHT) - from) / 2).max(lowest) as u16;
             return (d.cut, false);
         }
-        let mut core0 = bias;
+        // Core 0's rows above those core 1 may take are core 0's whatever
+        // the cut. (Left out until 2026-12-03, they were what `bias`
+        // learnt: about 8,000 µs on the Gouraud torus knot, so the frames
+        // before it was learnt gave core 0 a third more than core 1.)
+        let mut core0 = bias.saturating_add(sum(&d.profile[next..first]));
         let mut cut = lowest;
         for &micros in d.profile.iter().skip(first) {
             let m = micros_of(micros);
             if core0.saturating_add(m) <= core1 - m {
-                core0 += m;
+                core0 = core0.saturating_add(m);
                 core1 -= m;
                 cut += per_buffer;
                 continue;
@@ -1105,6 +1115,6 @@ pub fn choose_cut(bias: i32) -> Option<(u16, bool)> {
         {
             *slot = 0;
         }
-        (d.cut, true)
+        (d.cut, !estimated)
     })
 }

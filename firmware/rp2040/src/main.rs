@@ -32,6 +32,8 @@ mod board;
 mod dual;
 mod frame;
 mod lcd;
+#[cfg(feature = "dual-core")]
+mod row_costs;
 mod stack;
 mod wiring;
 
@@ -354,6 +356,13 @@ fn run() -> Result<core::convert::Infallible, Fault> {
         sphere,
         (yaw_of(0), sizes::PITCH_DEG),
     );
+    // The first frame's cut from an estimate of each buffer's time, made
+    // from frame 0's tables here, at start-up, not on core 1 while the
+    // frame's rows wait (it takes about 2 ms; `src/row_costs.rs`).
+    #[cfg(not(any(feature = "gouraud", feature = "textured")))]
+    let mut estimate = Some(row_costs::estimate(&first.tables.prepare()));
+    #[cfg(any(feature = "gouraud", feature = "textured"))]
+    let mut estimate = Some(row_costs::estimate(&first.renderer.tables.prepare()));
     let (mut current, mut next) = (first, second);
     let mut step = 1 % sizes::YAW_STEPS;
     let mut last_start = None;
@@ -440,7 +449,7 @@ fn run() -> Result<core::convert::Infallible, Fault> {
                 // would then time.)
                 let (cut, timed) = match scanned_rows {
                     0 => (0, false),
-                    _ => lcd::choose_cut(bias).unwrap_or((HEIGHT, false)),
+                    _ => lcd::choose_cut(bias, estimate.as_ref()).unwrap_or((HEIGHT, false)),
                 };
                 let cut = cut.min(scanned_rows);
                 let begun = pool_rows.begin_band().map_err(RenderError::Sink);
@@ -469,10 +478,11 @@ fn run() -> Result<core::convert::Infallible, Fault> {
         // cut moves by rows, so the whole gap is learnt: a bias of `b`
         // moves about `b / 2` of work from one core to the other, closing
         // a gap of `b`. Learnt only from a frame both cores drew whole,
-        // its cut chosen by the rows' times: the first frame's cut (no row
-        // had a time yet) and a band an error cut short say nothing of the
-        // bias, and learnt at full gain such a gap could pin the cut at
-        // the frame's foot, where core 1 draws nothing.
+        // its cut chosen by the rows' times: the first frame's cut (from an
+        // estimate: no row had a time yet) and a band an error cut short
+        // say nothing of the bias, and learnt at full gain such a gap
+        // could pin the cut at the frame's foot, where core 1 draws
+        // nothing.
         let gap = our_end.wrapping_sub(their_end) as i32;
         if timed && ours.is_ok() && their_scan.is_ok() && frame_done.is_ok() {
             // (Within a frame's time either way: a cut pinned at a limit
@@ -500,6 +510,7 @@ fn run() -> Result<core::convert::Infallible, Fault> {
             }
         }
         scene = drawn;
+        estimate = None;
         core::mem::swap(&mut current, &mut next);
         if stack::HIGH_WATER_BYTES.load(Ordering::Relaxed) == 0 {
             stack::HIGH_WATER_BYTES.store(stack::measure(), Ordering::Relaxed);
