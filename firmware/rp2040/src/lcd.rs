@@ -1074,10 +1074,13 @@ pub fn choose_cut(bias: i32, estimate: Option<&[u32; PROFILE_BUFFERS]>) -> Optio
         // fewer than 2^26 of them).
         let micros_of = |m: u32| m.min(i32::MAX as u32 / 32) as i32;
         let sum = |p: &[u32]| p.iter().fold(0i32, |s, &m| s.saturating_add(micros_of(m)));
-        let estimated = estimate.is_some_and(|_| d.profile[next..].iter().all(|&m| m == 0));
-        if let (true, Some(estimate)) = (estimated, estimate) {
-            d.profile[next..].copy_from_slice(&estimate[next..]);
-        }
+        let estimated = match estimate {
+            Some(estimate) if d.profile[next..].iter().all(|&m| m == 0) => {
+                d.profile[next..].copy_from_slice(&estimate[next..]);
+                true
+            }
+            _ => false,
+        };
         let mut core1 = sum(&d.profile[first..]);
         let lowest = first as i32 * per_buffer;
         if core1 == 0 {

@@ -358,7 +358,7 @@ fn run() -> Result<core::convert::Infallible, Fault> {
     );
     // The first frame's cut from an estimate of each buffer's time, made
     // from frame 0's tables here, at start-up, not on core 1 while the
-    // frame's rows wait (it takes about 2 ms; `src/row_costs.rs`).
+    // frame's rows wait (it takes about 3 ms; `src/row_costs.rs`).
     #[cfg(not(any(feature = "gouraud", feature = "textured")))]
     let mut estimate = Some(row_costs::estimate(&first.tables.prepare()));
     #[cfg(any(feature = "gouraud", feature = "textured"))]

@@ -5,9 +5,9 @@
 //! estimate as it balances the times of later frames. Without it the
 //! first frame's rows were halved, as if each took as long, while the
 //! torus knot's costly rows are in its middle. Made once, at start-up,
-//! from frame 0's tables (about 2 ms on the RP2040).
+//! from frame 0's tables (about 3 ms on the RP2040).
 
-use zline::Prepared;
+use zline::{OutlineBuilder, Prepared};
 
 use crate::lcd::PROFILE_BUFFERS as BUFFERS;
 use crate::sizes::{ROWS_PER_BUFFER, WIDTH};
@@ -44,8 +44,7 @@ const PIXEL_CYCLES: u32 = if cfg!(feature = "textured") {
 const CYCLES_PER_MICROSECOND: u32 = 125;
 
 /// Each buffer's estimated time in microseconds, from the polygons of
-/// `prepared`. Sums over a buffer saturate; a polygon's area is taken in
-/// whole pixels from its corners.
+/// `prepared`. Sums over a buffer saturate.
 pub fn estimate<C: Copy>(prepared: &Prepared<'_, C>) -> [u32; BUFFERS] {
     let mut cycles = [ROW_CYCLES * ROWS_PER_BUFFER as u32; BUFFERS];
     for polygon in prepared.polygons() {
@@ -56,7 +55,7 @@ pub fn estimate<C: Copy>(prepared: &Prepared<'_, C>) -> [u32; BUFFERS] {
         }
         // Pixels a row, at most the frame's width: below 2^16, so each
         // product below stays far inside a `u32`.
-        let pixels = (twice_area_pixels(polygon.corners()) / 2)
+        let pixels = area_pixels(polygon.corners())
             .div_ceil(height)
             .min(u32::from(WIDTH));
         let per_row = POLYGON_ROW_CYCLES + PIXEL_CYCLES * pixels;
@@ -78,24 +77,12 @@ pub fn estimate<C: Copy>(prepared: &Prepared<'_, C>) -> [u32; BUFFERS] {
     cycles.map(|c| c / CYCLES_PER_MICROSECOND)
 }
 
-/// Twice a polygon's area in whole pixels, whichever way it winds: its
-/// corners (in 1/256 pixel) taken to pixels and clamped to
-/// `±CLAMP_PIXELS`, so that each product is below 2^22 and no term
-/// overflows an `i32` (the sum saturates).
-fn twice_area_pixels(corners: impl Iterator<Item = zline::ScreenVertex> + Clone) -> u32 {
-    const CLAMP_PIXELS: i32 = 2048;
-    let pixel = |v: zline::ScreenVertex| {
-        let c = |a: i32| (a >> 8).clamp(-CLAMP_PIXELS, CLAMP_PIXELS);
-        (c(v.x), c(v.y))
-    };
-    let mut points = corners.map(pixel);
-    let Some(first) = points.next() else {
-        return 0;
-    };
-    let (mut sum, mut last) = (0i32, first);
-    for p in points.chain(core::iter::once(first)) {
-        sum = sum.saturating_add(last.0 * p.1 - p.0 * last.1);
-        last = p;
-    }
-    sum.unsigned_abs()
+/// A polygon's area in whole pixels, whichever way it winds, from the
+/// twice-area `OutlineBuilder` gathers (in square 1/256 pixels: below
+/// 2^55 for the corners a polygon may have).
+fn area_pixels(corners: impl Iterator<Item = zline::ScreenVertex>) -> u32 {
+    let mut outline = OutlineBuilder::default();
+    corners.for_each(|v| outline.add(v));
+    let square_steps = outline.finish().twice_area.unsigned_abs() / 2;
+    u32::try_from(square_steps >> 16).unwrap_or(u32::MAX)
 }
