@@ -49,6 +49,8 @@ pub struct Lambert {
     light_q15: [i32; 3],
     /// `ambient` in units of `2^-15`.
     ambient_q15: i32,
+    /// `base`'s channels over 255, for [`Self::vertex_color`].
+    base_unit: [f32; 3],
 }
 
 impl Lambert {
@@ -72,6 +74,7 @@ impl Lambert {
             // integers whatever its floating-point library rounds.
             light_q15: unit_q15([raw.x, raw.y, raw.z]).unwrap_or([0; 3]),
             ambient_q15: fraction_bits(ambient, 15),
+            base_unit: unit_channels(base),
         }
     }
 
@@ -138,9 +141,9 @@ impl Lambert {
                 b: ch(self.base.b()),
             };
         }
-        let d = vertex.normal().map_or(1.0, |n| n.dot(self.light));
+        let d = vertex.normal_dot(self.light).unwrap_or(1.0);
         let k = self.ambient + (1.0 - self.ambient) * d.max(0.0);
-        scale_8p8(self.base, k)
+        scale_8p8(self.base_unit, k)
     }
 }
 
@@ -187,7 +190,7 @@ impl Shading {
             Shading::Lambert(ref lambert) => lambert.vertex_color(vertex),
             Shading::Depth { near, far } => {
                 let t = ((far - vertex.view_depth()) / (far - near)).clamp(0.0, 1.0);
-                scale_8p8(Rgb888::WHITE, t)
+                scale_8p8(unit_channels(Rgb888::WHITE), t)
             }
             Shading::FaceId => Rgb8p8::from_rgb888(face_id_color(vertex.vertex)),
         }
@@ -195,14 +198,19 @@ impl Shading {
 }
 
 /// `c · k` in 8.8 fixed point, `k` clamped to `[0, 1]` (NaN as 0).
-fn scale_8p8(c: Rgb888, k: f32) -> Rgb8p8 {
+/// Channels of `unit_base` ([`unit_channels`]) scaled by `k`, in 8.8.
+fn scale_8p8(unit_base: [f32; 3], k: f32) -> Rgb8p8 {
     let k = if k.is_finite() {
         k.clamp(0.0, 1.0)
     } else {
         0.0
     };
-    let channel = |v: u8| f32::from(v) / 255.0 * k;
-    Rgb8p8::from_unit([channel(c.r()), channel(c.g()), channel(c.b())])
+    Rgb8p8::from_unit(unit_base.map(|v| v * k))
+}
+
+/// Each channel of `c` over 255 (the division made once, not per vertex).
+fn unit_channels(c: Rgb888) -> [f32; 3] {
+    [c.r(), c.g(), c.b()].map(|v| f32::from(v) / 255.0)
 }
 
 fn scale(c: Rgb888, k: f32) -> Rgb888 {

@@ -925,6 +925,7 @@ mod tests {
     fn normal_dot_is_the_normals_dot_product() {
         use crate::front::mesh::StaticMesh;
         use crate::front::scene::FaceInfo;
+        use crate::front::scene::VertexInfo;
         let camera = Camera::reference(64, 64);
         let lights = [
             Vec3::new(-0.4, 0.5, 0.77),
@@ -965,6 +966,24 @@ mod tests {
                         let (got, want) = (face.normal_dot(v), face.normal().dot(v));
                         assert_eq!(got.to_bits(), want.to_bits(), "{face:?} {v:?}");
                     }
+                }
+            }
+            // And a vertex's: with a stored normal of unit length and one
+            // not, with none, and a known one.
+            let long = [[normal.x * 3.0, normal.y * 3.0, normal.z * 3.0]; 3];
+            let units = [[normal.x, normal.y, normal.z]; 3];
+            let smooth = plain.with_vertex_normals(&units).unwrap();
+            let scaled = plain.with_vertex_normals(&long).unwrap();
+            for vertex in [
+                VertexInfo::of_mesh(&smooth, &frame, 1),
+                VertexInfo::of_mesh(&scaled, &frame, 2),
+                VertexInfo::of_mesh(&plain, &frame, 0),
+                VertexInfo::new(0, Some(normal), None),
+                VertexInfo::new(0, None, None),
+            ] {
+                for v in lights {
+                    let (got, want) = (vertex.normal_dot(v), vertex.normal().map(|n| n.dot(v)));
+                    assert_eq!(got.map(f32::to_bits), want.map(f32::to_bits), "{vertex:?}");
                 }
             }
         }

@@ -80,6 +80,23 @@ impl<'a> VertexInfo<'a> {
         }
     }
 
+    /// [`Self::normal`]`.map(|n| n.dot(v))`, the same value. The product
+    /// is taken where the normal is turned, so no vector passes through
+    /// memory between the two (Lambert's colour of each vertex takes it,
+    /// as [`FaceInfo::normal_dot`](crate::FaceInfo::normal_dot) for faces).
+    #[inline(always)]
+    pub fn normal_dot(&self, v: Vec3) -> Option<f32> {
+        if let Some(n) = self.normal_q15() {
+            return Some(normal_vector_i32(n).dot(v));
+        }
+        match self.geometry {
+            VertexGeometry::Mesh { mesh, frame } => mesh
+                .vertex_normal(self.vertex as usize)
+                .map(|n| frame.view_normal_dot(Vec3::from_array(n), v)),
+            VertexGeometry::Known { normal, .. } => normal.map(|n| n.dot(v)),
+        }
+    }
+
     /// The unit normal in view space in integers, units of `1/32767`, when
     /// the vertex is a [quantized mesh](crate::QuantizedMesh)'s with a
     /// stored normal
