@@ -49,7 +49,10 @@ pub struct Lambert {
     light_q15: [i32; 3],
     /// `ambient` in units of `2^-15`.
     ambient_q15: i32,
-    /// `base`'s channels over 255, for [`Self::vertex_color`].
+    /// `base`'s channels over 255, for [`Self::vertex_color`]'s `f32`
+    /// path. Not on 32-bit Arm, whose firmware lights quantized normals
+    /// in integers: there they are made where used ([`Self::unit_base`]).
+    #[cfg(not(target_arch = "arm"))]
     base_unit: [f32; 3],
 }
 
@@ -74,6 +77,7 @@ impl Lambert {
             // integers whatever its floating-point library rounds.
             light_q15: unit_q15([raw.x, raw.y, raw.z]).unwrap_or([0; 3]),
             ambient_q15: fraction_bits(ambient, 15),
+            #[cfg(not(target_arch = "arm"))]
             base_unit: unit_channels(base),
         }
     }
@@ -143,7 +147,21 @@ impl Lambert {
         }
         let d = vertex.normal_dot(self.light).unwrap_or(1.0);
         let k = self.ambient + (1.0 - self.ambient) * d.max(0.0);
-        scale_8p8(self.base_unit, k)
+        scale_8p8(self.unit_base(), k)
+    }
+
+    /// `base`'s channels over 255: made once in [`Self::new`] on a host,
+    /// where vertices are lit in `f32`; on 32-bit Arm made here, so that
+    /// a firmware that lights quantized normals in integers, or faces
+    /// alone, keeps its `Lambert` as small as before (with the field, the
+    /// minimal QEMU firmware took 2,520 more instructions a frame). The
+    /// same values either way.
+    #[inline(always)]
+    fn unit_base(&self) -> [f32; 3] {
+        #[cfg(target_arch = "arm")]
+        return unit_channels(self.base);
+        #[cfg(not(target_arch = "arm"))]
+        return self.base_unit;
     }
 }
 
