@@ -208,15 +208,16 @@ impl Shading {
             Shading::Lambert(ref lambert) => lambert.vertex_color(vertex),
             Shading::Depth { near, far } => {
                 let t = ((far - vertex.view_depth()) / (far - near)).clamp(0.0, 1.0);
-                scale_8p8(unit_channels(Rgb888::WHITE), t)
+                // White's channels over 255, each exactly 1.
+                scale_8p8([1.0; 3], t)
             }
             Shading::FaceId => Rgb8p8::from_rgb888(face_id_color(vertex.vertex)),
         }
     }
 }
 
-/// `c · k` in 8.8 fixed point, `k` clamped to `[0, 1]` (NaN as 0).
-/// Channels of `unit_base` ([`unit_channels`]) scaled by `k`, in 8.8.
+/// `unit_base · k` in 8.8 fixed point (`unit_base` a colour's channels
+/// over 255, [`unit_channels`]), `k` clamped to `[0, 1]` (NaN as 0).
 fn scale_8p8(unit_base: [f32; 3], k: f32) -> Rgb8p8 {
     let k = if k.is_finite() {
         k.clamp(0.0, 1.0)
