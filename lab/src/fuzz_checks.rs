@@ -43,7 +43,6 @@ use crate::methods::exact::{Offered, check_frame_shared};
 use zline::FnSink;
 use zline::Outline;
 use zline::ScreenVertex;
-use zline::Shading;
 use zline::host::{BandedRenderer, ScanVecs, host_renderer};
 use zline::host::{HostMesh, QuantizedHostMesh};
 use zline::limits::{DEPTH_MAX, GUARD_BAND, MAX_POLYGONS, SUBPIXEL_STEPS};
@@ -57,6 +56,7 @@ use zline::{Depth16, Depth24, DepthFormat};
 use zline::{Error, RenderError};
 use zline::{Mat4, Vec3};
 use zline::{Mesh, StaticMesh};
+use zline::{Shading, VertexInfo};
 
 /// Reads fixed-size values from the front of the input; zeros once it
 /// runs out, so every input decodes to something.
@@ -990,6 +990,9 @@ fn pipeline_check<D: DepthFormat, M: Mesh + Sync>(
         // Lambert too (the integer path for a quantized mesh): any panic
         // or overflow in it is a finding.
         core::hint::black_box(shading.color(f));
+        // And Gouraud's vertex colour, on the face's normal as a known
+        // vertex normal (`VertexInfo::normal_dot`, `f32` path).
+        core::hint::black_box(shading.vertex_color(&VertexInfo::new(0, Some(f.normal()), None)));
         f.face + 1
     });
     let queued = recorded.queued;
